@@ -1,0 +1,212 @@
+#include "BilateralFilter.h"
+
+#include "BilateralKernel.h"
+#include "CellColoringScheduler.h"
+#include "ProcessingOctree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace pcbilateral
+{
+
+namespace
+{
+std::string Describe(const char* what, double value)
+{
+  std::ostringstream message;
+  message << what << " must be a finite number >= 0 (0 means automatic), got " << value;
+  return message.str();
+}
+
+int ResolveThreadCount(int requested)
+{
+#ifdef _OPENMP
+  return requested > 0 ? requested : omp_get_max_threads();
+#else
+  (void)requested;
+  return 1;
+#endif
+}
+
+bool IsFinitePoint(const double* p)
+{
+  return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+}
+} // namespace
+
+double AutomaticRadius(std::size_t numberOfPoints, double largestExtent)
+{
+  if (numberOfPoints == 0)
+  {
+    return 0.0;
+  }
+  return std::sqrt(20.0 / static_cast<double>(numberOfPoints)) * largestExtent;
+}
+
+BilateralResult RunBilateralFilter(const PointCloudView& cloud,
+  const BilateralParameters& parameters,
+  const BilateralObserver& observer)
+{
+  BilateralResult result;
+  if (!(std::isfinite(parameters.Radius) && parameters.Radius >= 0.0))
+  {
+    result.Error = Describe("the radius", parameters.Radius);
+    return result;
+  }
+  if (!(std::isfinite(parameters.NormalRadius) && parameters.NormalRadius >= 0.0))
+  {
+    result.Error = Describe("the normal radius", parameters.NormalRadius);
+    return result;
+  }
+  if (parameters.NumberOfIterations < 0)
+  {
+    result.Error =
+      "the number of iterations must be >= 0, got " + std::to_string(parameters.NumberOfIterations);
+    return result;
+  }
+  if (parameters.NumberOfThreads < 0)
+  {
+    result.Error = "the number of threads must be >= 0 (0 means all cores), got " +
+                   std::to_string(parameters.NumberOfThreads);
+    return result;
+  }
+  if (cloud.NumberOfPoints > 0 && cloud.Positions == nullptr)
+  {
+    result.Error = "the point cloud has no coordinates";
+    return result;
+  }
+  if (cloud.NumberOfPoints > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+  {
+    result.Error = "the point cloud has more than 2^31 - 1 points";
+    return result;
+  }
+
+  const std::size_t n = cloud.NumberOfPoints;
+  result.Positions.assign(cloud.Positions, cloud.Positions + 3 * n);
+  result.Removed.assign(n, 0);
+  if (parameters.ComputeNormals)
+  {
+    result.Normals.assign(3 * n, 0.0);
+  }
+
+  // Bounds of the finite points; the others are passed through and never become neighbours.
+  double boundsMin[3] = { 0.0, 0.0, 0.0 };
+  double boundsMax[3] = { 0.0, 0.0, 0.0 };
+  std::size_t finiteCount = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double* p = cloud.Positions + 3 * i;
+    if (!IsFinitePoint(p))
+    {
+      continue;
+    }
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      boundsMin[axis] = finiteCount == 0 ? p[axis] : std::min(boundsMin[axis], p[axis]);
+      boundsMax[axis] = finiteCount == 0 ? p[axis] : std::max(boundsMax[axis], p[axis]);
+    }
+    ++finiteCount;
+  }
+  result.NumberOfNonFinitePoints = n - finiteCount;
+  if (result.NumberOfNonFinitePoints > 0)
+  {
+    result.Warnings.push_back(
+      std::to_string(result.NumberOfNonFinitePoints) +
+      " point(s) have NaN or infinite coordinates: they are passed through unchanged and are "
+      "never used as neighbours");
+  }
+
+  const double largestExtent = std::max(
+    { boundsMax[0] - boundsMin[0], boundsMax[1] - boundsMin[1], boundsMax[2] - boundsMin[2] });
+  result.RadiusUsed =
+    parameters.Radius > 0.0 ? parameters.Radius : AutomaticRadius(finiteCount, largestExtent);
+  result.NormalRadiusUsed =
+    parameters.NormalRadius > 0.0 ? parameters.NormalRadius : result.RadiusUsed;
+  result.Status = BilateralStatus::Completed;
+  if (finiteCount == 0 || parameters.NumberOfIterations == 0)
+  {
+    return result;
+  }
+  if (!(result.RadiusUsed > 0.0))
+  {
+    result.Warnings.push_back("all points coincide, so no radius can be chosen automatically: "
+                              "the points are left where they are");
+    return result;
+  }
+
+  const int threads = ResolveThreadCount(parameters.NumberOfThreads);
+  ProcessingOctree octree(boundsMin, boundsMax, result.RadiusUsed);
+  result.ProcessingDepth = octree.GetProcessingDepth();
+  octree.Clear(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double* p = cloud.Positions + 3 * i;
+    if (IsFinitePoint(p))
+    {
+      octree.PlaceSerially(static_cast<std::uint32_t>(i), octree.LeafOf(p));
+    }
+  }
+
+  PointState state;
+  state.Current = result.Positions;
+  state.Next = result.Positions;
+  state.Normals = std::move(result.Normals);
+  state.Removed = std::move(result.Removed);
+  state.OrientationNormals = cloud.OrientationNormals;
+
+  const KernelConstants constants(result.RadiusUsed, result.NormalRadiusUsed);
+  CellColoringScheduler scheduler(
+    octree, constants, result.RadiusUsed, parameters.RemoveIsolatedPoints, threads);
+  const int iterations = parameters.NumberOfIterations;
+  int iteration = 0;
+  double lastReported = -1.0;
+  auto report = [&](double fraction)
+  {
+    if (observer.Progress && fraction - lastReported >= 0.01)
+    {
+      observer.Progress(fraction);
+      lastReported = fraction;
+    }
+  };
+  scheduler.ShouldAbort = observer.ShouldAbort;
+  scheduler.ReportPoints = [&](std::size_t pointsDone)
+  {
+    const std::size_t total = std::max<std::size_t>(1, scheduler.GetNumberOfPointsProcessed());
+    report((iteration + static_cast<double>(pointsDone) / static_cast<double>(total)) / iterations);
+  };
+
+  bool completed = true;
+  for (; iteration < iterations; ++iteration)
+  {
+    octree.Compact(state.Current.data(), threads);
+    if (!scheduler.RunIteration(state))
+    {
+      completed = false;
+      break;
+    }
+    // Removed and non-finite points are not written by the iteration: carry them over.
+    state.Current.swap(state.Next);
+    state.Next = state.Current;
+    report(static_cast<double>(iteration + 1) / iterations);
+  }
+
+  result.Positions = std::move(state.Current);
+  result.Normals = std::move(state.Normals);
+  result.Removed = std::move(state.Removed);
+  result.NumberOfRemovedPoints = static_cast<std::size_t>(
+    std::count(result.Removed.begin(), result.Removed.end(), std::uint8_t{ 1 }));
+  if (!completed)
+  {
+    result.Status = BilateralStatus::Aborted;
+  }
+  return result;
+}
+
+} // namespace pcbilateral

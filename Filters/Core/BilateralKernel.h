@@ -1,0 +1,70 @@
+// The per-point bilateral filter of Digne & de Franchis, "The Bilateral Filter for Point
+// Clouds", IPOL 2017, Algorithm 1. Plain C++17, no VTK types.
+#ifndef pcbilateral_BilateralKernel_h
+#define pcbilateral_BilateralKernel_h
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace pcbilateral
+{
+
+/// The paper's rule: a point with fewer neighbours than this (itself included) is not filtered.
+constexpr std::uint32_t MinimumNeighbourCount = 5;
+
+/// Constants of one run, derived once from the radius r and the normal radius rn.
+struct KernelConstants
+{
+  KernelConstants(double radius, double normalRadius);
+
+  double RadiusSquared;
+  /// 1 / (2 sd^2) with sd = r / 3: the distance weight is exp(-|q - p|^2 * DistanceScale).
+  double DistanceScale;
+  /// 1 / (2 sn^2) with sn = rn / 3: the normal weight is exp(-h^2 * NormalScale).
+  double NormalScale;
+};
+
+/// Candidate neighbours of a block of points, gathered once and read for each of them.
+/// Coordinates are absolute; the kernel subtracts the filtered point before any other
+/// arithmetic, so large offsets (georeferenced data) do not cost precision.
+struct CandidateNeighbours
+{
+  std::vector<double> X, Y, Z;
+  /// Scratch for the distance weights, one per candidate, shared by the kernel's two passes.
+  std::vector<double> DistanceWeight;
+
+  std::size_t Size() const { return this->X.size(); }
+  void Clear();
+  void Append(const double* x, const double* y, const double* z, std::size_t count);
+};
+
+/// What the kernel computed for one point.
+struct FilteredPoint
+{
+  /// Signed displacement along Normal: the new point is p + Displacement * Normal.
+  double Displacement = 0.0;
+  /// Unit normal of the weighted regression plane (zero when not estimated).
+  double Normal[3] = { 0.0, 0.0, 0.0 };
+  /// Candidates q with |q - p| < r, p itself included.
+  std::uint32_t NeighbourCount = 0;
+  /// False when the point has too few neighbours or a zero weight sum: it does not move.
+  bool Filtered = false;
+};
+
+/**
+ * Algorithm 1 for the point p against the candidates, which must contain every point q with
+ * |q - p| < r (and may contain more: they are masked out). Sums run over the candidates in
+ * their given order, so the result depends only on that order, never on threads.
+ */
+FilteredPoint FilterPoint(const double p[3],
+  CandidateNeighbours& candidates,
+  const KernelConstants& constants);
+
+/// Eigenvector of the smallest eigenvalue of a symmetric 3x3 matrix given by its upper
+/// triangle (xx, xy, xz, yy, yz, zz), as a unit vector.
+void SmallestEigenvector(const double covariance[6], double eigenvector[3]);
+
+} // namespace pcbilateral
+
+#endif

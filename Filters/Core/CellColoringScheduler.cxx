@@ -1,0 +1,247 @@
+#include "CellColoringScheduler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace pcbilateral
+{
+
+namespace
+{
+int CurrentThread()
+{
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+/// Report progress after this many points per thread, so the observer is called often
+/// enough for a smooth bar without costing anything next to the kernel.
+constexpr std::size_t PointsPerReport = 256;
+} // namespace
+
+CellColoringScheduler::CellColoringScheduler(ProcessingOctree& octree,
+  const KernelConstants& constants,
+  double radius,
+  bool removeIsolatedPoints,
+  int numberOfThreads)
+  : Octree(octree)
+  , Constants(constants)
+  , RemoveIsolatedPoints(removeIsolatedPoints)
+  , NumberOfThreads(numberOfThreads)
+  , Scratch(static_cast<std::size_t>(numberOfThreads))
+{
+  // A point of a leaf has its neighbours in the leaves whose boxes come closer than r to that
+  // leaf's box. The slack covers rounding in the point-to-leaf assignment.
+  const double leafSize = octree.GetLeafSize();
+  const int reach = static_cast<int>(std::floor(radius / leafSize)) + 1;
+  const double reachSquared = radius * radius * (1.0 + 1e-6);
+  for (int z = -reach; z <= reach; ++z)
+  {
+    for (int y = -reach; y <= reach; ++y)
+    {
+      for (int x = -reach; x <= reach; ++x)
+      {
+        const double gapX = std::max(0, std::abs(x) - 1) * leafSize;
+        const double gapY = std::max(0, std::abs(y) - 1) * leafSize;
+        const double gapZ = std::max(0, std::abs(z) - 1) * leafSize;
+        if (gapX * gapX + gapY * gapY + gapZ * gapZ < reachSquared)
+        {
+          this->ReachableLeafOffsets.push_back({ x, y, z });
+        }
+      }
+    }
+  }
+}
+
+void CellColoringScheduler::GatherCandidates(const LatticeCoord& cellCoord,
+  const std::int32_t* neighbours,
+  int localLeaf,
+  CandidateNeighbours& candidates) const
+{
+  constexpr int perAxis = ProcessingOctree::LeavesPerAxis;
+  const LatticeCoord leaf{ perAxis * cellCoord.X + localLeaf % perAxis,
+    perAxis * cellCoord.Y + (localLeaf / perAxis) % perAxis,
+    perAxis * cellCoord.Z + localLeaf / (perAxis * perAxis) };
+  const double* x = this->Octree.GetSortedX();
+  const double* y = this->Octree.GetSortedY();
+  const double* z = this->Octree.GetSortedZ();
+  candidates.Clear();
+  for (const auto& offset : this->ReachableLeafOffsets)
+  {
+    const LatticeCoord other{ leaf.X + offset[0], leaf.Y + offset[1], leaf.Z + offset[2] };
+    const LatticeCoord otherCell = ProcessingOctree::CellOfLeaf(other);
+    const std::int32_t cell =
+      neighbours[ProcessingOctree::NeighbourSlot(static_cast<int>(otherCell.X - cellCoord.X),
+        static_cast<int>(otherCell.Y - cellCoord.Y),
+        static_cast<int>(otherCell.Z - cellCoord.Z))];
+    if (cell == ProcessingOctree::NoCell ||
+        static_cast<std::size_t>(cell) >= this->Octree.GetNumberOfProcessingCells())
+    {
+      continue;
+    }
+    const int otherLeaf = ProcessingOctree::LocalLeafIndex(other);
+    const std::uint32_t begin = this->Octree.LeafBegin(cell, otherLeaf);
+    const std::uint32_t end = this->Octree.LeafEnd(cell, otherLeaf);
+    candidates.Append(x + begin, y + begin, z + begin, end - begin);
+  }
+}
+
+void CellColoringScheduler::ProcessCell(std::size_t cell,
+  PointState& state,
+  ThreadScratch& scratch,
+  bool isMaster)
+{
+  const LatticeCoord& cellCoord = this->Octree.GetCellCoord(cell);
+  const std::int32_t* neighbours = this->Octree.GetNeighbourCells(cell);
+  const std::uint32_t* ids = this->Octree.GetSortedIds();
+  const double* x = this->Octree.GetSortedX();
+  const double* y = this->Octree.GetSortedY();
+  const double* z = this->Octree.GetSortedZ();
+  const bool orient = state.OrientationNormals != nullptr;
+  const bool keepNormals = !state.Normals.empty();
+
+  for (int localLeaf = 0; localLeaf < ProcessingOctree::LeavesPerCell; ++localLeaf)
+  {
+    const std::uint32_t begin = this->Octree.LeafBegin(cell, localLeaf);
+    const std::uint32_t end = this->Octree.LeafEnd(cell, localLeaf);
+    if (begin == end)
+    {
+      continue;
+    }
+    this->GatherCandidates(cellCoord, neighbours, localLeaf, scratch.Candidates);
+    for (std::uint32_t i = begin; i < end; ++i)
+    {
+      if (this->Aborted.load(std::memory_order_relaxed))
+      {
+        return;
+      }
+      if (isMaster && this->ShouldAbort && this->ShouldAbort())
+      {
+        this->Aborted.store(true, std::memory_order_relaxed);
+        return;
+      }
+      const std::uint32_t id = ids[i];
+      const double p[3] = { x[i], y[i], z[i] };
+      const FilteredPoint filtered = FilterPoint(p, scratch.Candidates, this->Constants);
+      double* next = state.Next.data() + 3 * static_cast<std::size_t>(id);
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        next[axis] = p[axis] + filtered.Displacement * filtered.Normal[axis];
+      }
+      if (keepNormals)
+      {
+        // The orientation of n does not change p + d n: only the reported normal flips.
+        double* normal = state.Normals.data() + 3 * static_cast<std::size_t>(id);
+        double sign = 1.0;
+        if (orient)
+        {
+          const double* reference = state.OrientationNormals + 3 * static_cast<std::size_t>(id);
+          const double agreement = filtered.Normal[0] * reference[0] +
+                                   filtered.Normal[1] * reference[1] +
+                                   filtered.Normal[2] * reference[2];
+          sign = agreement < 0.0 ? -1.0 : 1.0;
+        }
+        for (int axis = 0; axis < 3; ++axis)
+        {
+          normal[axis] = sign * filtered.Normal[axis];
+        }
+      }
+      if (!filtered.Filtered && this->RemoveIsolatedPoints)
+      {
+        state.Removed[id] = 1;
+        continue;
+      }
+
+      const LatticeCoord leaf = this->Octree.LeafOf(next);
+      const LatticeCoord destination = ProcessingOctree::CellOfLeaf(leaf);
+      const std::int64_t dx = destination.X - cellCoord.X;
+      const std::int64_t dy = destination.Y - cellCoord.Y;
+      const std::int64_t dz = destination.Z - cellCoord.Z;
+      std::int32_t destinationCell = ProcessingOctree::NoCell;
+      if (std::abs(dx) <= 1 && std::abs(dy) <= 1 && std::abs(dz) <= 1)
+      {
+        destinationCell = neighbours[ProcessingOctree::NeighbourSlot(
+          static_cast<int>(dx), static_cast<int>(dy), static_cast<int>(dz))];
+      }
+      if (destinationCell != ProcessingOctree::NoCell)
+      {
+        this->Octree.Place(id, destinationCell, ProcessingOctree::LocalLeafIndex(leaf));
+      }
+      else
+      {
+        scratch.Deferred.push_back(id);
+      }
+    }
+    scratch.PointsSinceReport += end - begin;
+    if (scratch.PointsSinceReport >= PointsPerReport)
+    {
+      this->PointsDone.fetch_add(scratch.PointsSinceReport, std::memory_order_relaxed);
+      scratch.PointsSinceReport = 0;
+      if (isMaster && this->ReportPoints)
+      {
+        this->ReportPoints(this->PointsDone.load(std::memory_order_relaxed));
+      }
+    }
+  }
+}
+
+bool CellColoringScheduler::RunIteration(PointState& state)
+{
+  this->Aborted.store(false);
+  this->PointsDone.store(0);
+  this->PointsProcessed = this->Octree.GetNumberOfSortedPoints();
+
+  std::array<std::vector<std::int64_t>, 8> classes;
+  for (std::size_t cell = 0; cell < this->Octree.GetNumberOfProcessingCells(); ++cell)
+  {
+    classes[ProcessingOctree::ColourOf(this->Octree.GetCellCoord(cell))].push_back(
+      static_cast<std::int64_t>(cell));
+  }
+
+  for (const auto& cells : classes)
+  {
+    const auto cellCount = static_cast<std::int64_t>(cells.size());
+#pragma omp parallel num_threads(this->NumberOfThreads)
+    {
+      ThreadScratch& scratch = this->Scratch[CurrentThread()];
+      const bool isMaster = CurrentThread() == 0;
+#pragma omp for schedule(dynamic, 1)
+      for (std::int64_t k = 0; k < cellCount; ++k)
+      {
+        if (!this->Aborted.load(std::memory_order_relaxed))
+        {
+          this->ProcessCell(static_cast<std::size_t>(cells[k]), state, scratch, isMaster);
+        }
+      }
+    }
+    if (this->Aborted.load())
+    {
+      return false;
+    }
+    // Points that landed in a cell the octree did not hold yet: placed here, serially.
+    for (auto& scratch : this->Scratch)
+    {
+      for (const std::uint32_t id : scratch.Deferred)
+      {
+        this->Octree.PlaceSerially(
+          id, this->Octree.LeafOf(state.Next.data() + 3 * static_cast<std::size_t>(id)));
+      }
+      scratch.Deferred.clear();
+    }
+  }
+  for (auto& scratch : this->Scratch)
+  {
+    scratch.PointsSinceReport = 0;
+  }
+  return true;
+}
+
+} // namespace pcbilateral

@@ -1,0 +1,88 @@
+// Algorithm 2 of Digne & de Franchis (IPOL 2017): one iteration of the bilateral filter over
+// all points, with the octree's processing cells run in parallel by colour class.
+#ifndef pcbilateral_CellColoringScheduler_h
+#define pcbilateral_CellColoringScheduler_h
+
+#include "BilateralKernel.h"
+#include "ProcessingOctree.h"
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace pcbilateral
+{
+
+/// Per-point state and storage of a run, indexed by point id.
+struct PointState
+{
+  std::vector<double> Current; // xyz, read during an iteration
+  std::vector<double> Next;    // xyz, written during an iteration
+  std::vector<double> Normals; // xyz, written when asked for
+  std::vector<std::uint8_t> Removed;
+  const double* OrientationNormals = nullptr;
+};
+
+/**
+ * Runs iterations of the filter. Before each one the octree is compacted and its processing
+ * cells are sorted into 8 classes by colour (child index). The classes run one after another;
+ * the cells of one class run in parallel. Each filtered point is placed into the octree's
+ * next-iteration lists right away, without locks: it moved by less than r, so it lands in a
+ * leaf of its cell's r-dilation, and the dilations of two cells of one class share no leaf.
+ * The rare point that lands in a cell not yet stored is placed after its class, serially.
+ *
+ * Every neighbour sum runs over the candidates in an order fixed by the octree's geometry and
+ * the point ids, so the result does not depend on the number of threads.
+ */
+class CellColoringScheduler
+{
+public:
+  CellColoringScheduler(ProcessingOctree& octree,
+    const KernelConstants& constants,
+    double radius,
+    bool removeIsolatedPoints,
+    int numberOfThreads);
+
+  /// Hooks polled by the calling thread; both may be empty.
+  std::function<void(std::size_t pointsDone)> ReportPoints;
+  std::function<bool()> ShouldAbort;
+
+  /// Filters every placed point once: reads state.Current, writes state.Next (and normals),
+  /// and leaves the moved points placed in the octree for the next iteration.
+  /// Returns false if aborted.
+  bool RunIteration(PointState& state);
+
+  /// Number of points filtered in the last iteration (those placed in the octree).
+  std::size_t GetNumberOfPointsProcessed() const { return this->PointsProcessed; }
+
+private:
+  struct ThreadScratch
+  {
+    CandidateNeighbours Candidates;
+    std::vector<std::uint32_t> Deferred;
+    std::size_t PointsSinceReport = 0;
+  };
+
+  void ProcessCell(std::size_t cell, PointState& state, ThreadScratch& scratch, bool isMaster);
+  void GatherCandidates(const LatticeCoord& cellCoord,
+    const std::int32_t* neighbours,
+    int localLeaf,
+    CandidateNeighbours& candidates) const;
+
+  ProcessingOctree& Octree;
+  KernelConstants Constants;
+  bool RemoveIsolatedPoints;
+  int NumberOfThreads;
+  /// Leaf offsets whose leaves can hold a neighbour of a point of the centre leaf.
+  std::vector<std::array<int, 3>> ReachableLeafOffsets;
+  std::vector<ThreadScratch> Scratch;
+  std::atomic<bool> Aborted{ false };
+  std::atomic<std::size_t> PointsDone{ 0 };
+  std::size_t PointsProcessed = 0;
+};
+
+} // namespace pcbilateral
+
+#endif

@@ -1,0 +1,163 @@
+// The octree that sorts the points for Algorithm 2 of Digne & de Franchis (IPOL 2017).
+// Plain C++17, no VTK types.
+#ifndef pcbilateral_ProcessingOctree_h
+#define pcbilateral_ProcessingOctree_h
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace pcbilateral
+{
+
+/// Integer coordinates of a cell or a leaf on the octree's lattice (may be negative: points
+/// that drift out of the root cube keep their place on the same lattice).
+struct LatticeCoord
+{
+  std::int64_t X = 0, Y = 0, Z = 0;
+  bool operator==(const LatticeCoord& other) const
+  {
+    return X == other.X && Y == other.Y && Z == other.Z;
+  }
+};
+
+struct LatticeCoordHash
+{
+  std::size_t operator()(const LatticeCoord& c) const;
+};
+
+/**
+ * An octree over a root cube around the points, kept only down to two levels:
+ * - processing cells: the octree's cells at the processing depth, the smallest cells whose
+ *   size is at least 2.1 r (and at least one level below the root). Their child index (the
+ *   parities of their lattice coordinates) is their colour: two cells of one colour are at
+ *   least one cell size apart, so their r-dilations share no leaf.
+ * - leaves: each processing cell split LeavesPerAxis times per axis (two octree levels
+ *   further down). A leaf holds the ids of its points, sorted, so that every traversal
+ *   order is defined by geometry and ids alone.
+ *
+ * Only non-empty cells are stored. Each iteration reads the points from a compact layout
+ * (ids and coordinates contiguous per leaf, leaves contiguous per cell) and places the
+ * filtered points into per-leaf lists for the next iteration. A leaf's list is written by one
+ * thread at a time without locks: the caller guarantees it (the colouring invariant).
+ */
+class ProcessingOctree
+{
+public:
+  static constexpr int LeavesPerAxis = 4;
+  static constexpr int LeavesPerCell = LeavesPerAxis * LeavesPerAxis * LeavesPerAxis;
+  /// Index of a cell's neighbour (dx, dy, dz in -1..1) in a cell's neighbour table.
+  static int NeighbourSlot(int dx, int dy, int dz)
+  {
+    return (dx + 1) + 3 * ((dy + 1) + 3 * (dz + 1));
+  }
+  static constexpr int CentreSlot = 13;
+  static constexpr std::int32_t NoCell = -1;
+
+  /// Builds the geometry for points in [boundsMin, boundsMax] and radius r > 0.
+  ProcessingOctree(const double boundsMin[3], const double boundsMax[3], double radius);
+
+  ///@{
+  /// Geometry of the lattice.
+  const double* GetRootOrigin() const { return this->RootOrigin.data(); }
+  double GetRootSize() const { return this->RootSize; }
+  int GetProcessingDepth() const { return this->ProcessingDepth; }
+  double GetCellSize() const { return this->CellSize; }
+  double GetLeafSize() const { return this->LeafSize; }
+  ///@}
+
+  /// The leaf (global lattice coordinates) holding point p.
+  LatticeCoord LeafOf(const double p[3]) const;
+  /// The processing cell holding a leaf, and the leaf's index inside that cell.
+  static LatticeCoord CellOfLeaf(const LatticeCoord& leaf);
+  static int LocalLeafIndex(const LatticeCoord& leaf);
+  /// Colour of a processing cell: its child index in the octree, 0 to 7.
+  static int ColourOf(const LatticeCoord& cell)
+  {
+    return static_cast<int>((cell.X & 1) | ((cell.Y & 1) << 1) | ((cell.Z & 1) << 2));
+  }
+
+  /// Forgets all points; prepares the next-iteration lists for ids below numberOfPoints.
+  void Clear(std::size_t numberOfPoints);
+
+  ///@{
+  /// Placement of points into the next iteration's leaf lists.
+  /// FindOrCreateCell and PlaceSerially may only be called while no thread places points.
+  std::int32_t FindCell(const LatticeCoord& cell) const;
+  std::int32_t FindOrCreateCell(const LatticeCoord& cell);
+  void PlaceSerially(std::uint32_t pointId, const LatticeCoord& leaf);
+  /// Lock-free placement into an existing cell: no other thread may place into the same leaf
+  /// at the same time.
+  void Place(std::uint32_t pointId, std::int32_t cell, int localLeaf)
+  {
+    const std::size_t leaf = static_cast<std::size_t>(cell) * LeavesPerCell + localLeaf;
+    this->NextLink[pointId] = this->NextHead[leaf];
+    this->NextHead[leaf] = static_cast<std::int32_t>(pointId);
+  }
+  ///@}
+
+  /**
+   * Turns the placed points into the compact layout read by the next iteration: drops empty
+   * cells, sorts cells by lattice coordinates and each leaf's ids, copies the coordinates
+   * (interleaved xyz, indexed by id) next to the ids, and rebuilds the neighbour tables.
+   */
+  void Compact(const double* positions, int numberOfThreads);
+
+  ///@{
+  /// The compact layout (valid after Compact).
+  /// Cells that held points at the last Compact, numbered 0 to this count - 1. Cells created
+  /// while placing come after them.
+  std::size_t GetNumberOfProcessingCells() const { return this->NumberOfProcessingCells; }
+  const LatticeCoord& GetCellCoord(std::size_t cell) const { return this->CellCoords[cell]; }
+  /// The 27 cells around a cell (itself in CentreSlot), NoCell where none is stored.
+  const std::int32_t* GetNeighbourCells(std::size_t cell) const
+  {
+    return this->NeighbourTable.data() + 27 * cell;
+  }
+  /// Points of leaf `localLeaf` of `cell`: positions [begin, end) in the arrays below.
+  std::uint32_t LeafBegin(std::size_t cell, int localLeaf) const
+  {
+    return this->LeafOffsets[cell * LeavesPerCell + localLeaf];
+  }
+  std::uint32_t LeafEnd(std::size_t cell, int localLeaf) const
+  {
+    return this->LeafOffsets[cell * LeavesPerCell + localLeaf + 1];
+  }
+  const std::uint32_t* GetSortedIds() const { return this->SortedIds.data(); }
+  const double* GetSortedX() const { return this->SortedX.data(); }
+  const double* GetSortedY() const { return this->SortedY.data(); }
+  const double* GetSortedZ() const { return this->SortedZ.data(); }
+  std::size_t GetNumberOfSortedPoints() const { return this->SortedIds.size(); }
+  ///@}
+
+private:
+  void RebuildNeighbourTable(int numberOfThreads);
+
+  std::array<double, 3> RootOrigin;
+  double RootSize;
+  int ProcessingDepth;
+  double CellSize;
+  double LeafSize;
+
+  // Cells: lattice coordinates and where to find them. Cells created while placing are
+  // appended; Compact renumbers.
+  std::vector<LatticeCoord> CellCoords;
+  std::unordered_map<LatticeCoord, std::int32_t, LatticeCoordHash> CellIndex;
+  std::vector<std::int32_t> NeighbourTable;
+  std::size_t NumberOfProcessingCells = 0;
+
+  // Next iteration: per leaf, the head of a list linked through NextLink (-1 ends it).
+  std::vector<std::int32_t> NextHead;
+  std::vector<std::int32_t> NextLink;
+
+  // This iteration: ids and coordinates sorted by cell, leaf, then id.
+  std::vector<std::uint32_t> LeafOffsets;
+  std::vector<std::uint32_t> SortedIds;
+  std::vector<double> SortedX, SortedY, SortedZ;
+};
+
+} // namespace pcbilateral
+
+#endif
