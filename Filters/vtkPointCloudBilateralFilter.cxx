@@ -1,0 +1,287 @@
+#include "vtkPointCloudBilateralFilter.h"
+
+#include "BilateralFilter.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkCellArray.h"
+#include "vtkDataArrayRange.h"
+#include "vtkDoubleArray.h"
+#include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+vtkStandardNewMacro(vtkPointCloudBilateralFilter);
+
+namespace
+{
+/// Copies a 3-component array of any value type into interleaved doubles.
+struct CopyTuplesToDouble
+{
+  template<typename ArrayT>
+  void operator()(ArrayT* array, std::vector<double>& values) const
+  {
+    const auto range = vtk::DataArrayValueRange<3>(array);
+    values.assign(range.begin(), range.end());
+  }
+};
+
+void ToDoubles(vtkDataArray* array, std::vector<double>& values)
+{
+  using Dispatcher = vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>;
+  CopyTuplesToDouble worker;
+  if (!Dispatcher::Execute(array, worker, values))
+  {
+    worker(array, values); // any other array type, through the generic API
+  }
+}
+
+/// Writes the kept points' filtered positions into an array of the input's value type.
+struct CopyKeptPositions
+{
+  template<typename ArrayT>
+  void operator()(ArrayT* array,
+    const std::vector<double>& positions,
+    const std::vector<vtkIdType>& kept) const
+  {
+    using ValueType = vtk::GetAPIType<ArrayT>;
+    auto range = vtk::DataArrayValueRange<3>(array);
+    for (std::size_t out = 0; out < kept.size(); ++out)
+    {
+      const double* p = positions.data() + 3 * kept[out];
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        range[3 * out + axis] = static_cast<ValueType>(p[axis]);
+      }
+    }
+  }
+};
+
+vtkSmartPointer<vtkCellArray> OneVertexPerPoint(vtkIdType numberOfPoints)
+{
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfValues(numberOfPoints + 1);
+  std::iota(offsets->GetPointer(0), offsets->GetPointer(0) + numberOfPoints + 1, vtkIdType(0));
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfValues(numberOfPoints);
+  std::iota(
+    connectivity->GetPointer(0), connectivity->GetPointer(0) + numberOfPoints, vtkIdType(0));
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  cells->SetData(offsets, connectivity);
+  return cells;
+}
+} // namespace
+
+vtkPointCloudBilateralFilter::vtkPointCloudBilateralFilter() = default;
+
+vtkPointCloudBilateralFilter::~vtkPointCloudBilateralFilter()
+{
+  this->SetOrientationArrayName(nullptr);
+}
+
+int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  this->RadiusUsed = 0.0;
+  this->NormalRadiusUsed = 0.0;
+  this->ProcessingDepth = 0;
+  this->NumberOfRemovedPoints = 0;
+  this->NumberOfNonFinitePoints = 0;
+  output->Initialize();
+  if (!input)
+  {
+    vtkErrorMacro(<< "the input is not a vtkPolyData");
+    return 0;
+  }
+
+  const vtkIdType numberOfPoints = input->GetNumberOfPoints();
+  std::vector<double> positions;
+  if (numberOfPoints > 0)
+  {
+    ToDoubles(input->GetPoints()->GetData(), positions);
+  }
+
+  vtkPointData* inPD = input->GetPointData();
+  std::vector<double> orientation;
+  if (this->OrientNormals && numberOfPoints > 0)
+  {
+    vtkDataArray* reference = inPD->GetNormals();
+    if (this->OrientationArrayName && *this->OrientationArrayName)
+    {
+      reference = inPD->GetArray(this->OrientationArrayName);
+      if (!reference)
+      {
+        vtkErrorMacro(<< "the orientation array '" << this->OrientationArrayName
+                      << "' is not a point-data array of the input");
+        return 0;
+      }
+    }
+    if (reference && reference->GetNumberOfComponents() != 3)
+    {
+      vtkErrorMacro(<< "the orientation array '"
+                    << (reference->GetName() ? reference->GetName() : "(unnamed)") << "' has "
+                    << reference->GetNumberOfComponents() << " components, not 3");
+      return 0;
+    }
+    if (reference)
+    {
+      ToDoubles(reference, orientation);
+    }
+  }
+
+  pcbilateral::BilateralParameters parameters;
+  parameters.Radius = this->Radius;
+  parameters.NormalRadius = this->NormalRadius;
+  parameters.NumberOfIterations = this->NumberOfIterations;
+  parameters.RemoveIsolatedPoints = this->RemoveIsolatedPoints;
+  parameters.NumberOfThreads = this->NumberOfThreads;
+  parameters.ComputeNormals = this->GenerateEstimatedNormals;
+  pcbilateral::PointCloudView cloud;
+  cloud.NumberOfPoints = static_cast<std::size_t>(numberOfPoints);
+  cloud.Positions = positions.data();
+  cloud.OrientationNormals = orientation.empty() ? nullptr : orientation.data();
+  pcbilateral::BilateralObserver observer;
+  observer.Progress = [this](double fraction) { this->UpdateProgress(fraction); };
+  observer.ShouldAbort = [this]() { return this->GetAbortExecute() != 0; };
+
+  this->UpdateProgress(0.0);
+  const pcbilateral::BilateralResult result =
+    pcbilateral::RunBilateralFilter(cloud, parameters, observer);
+  if (result.Status == pcbilateral::BilateralStatus::Failed)
+  {
+    vtkErrorMacro(<< result.Error);
+    return 0;
+  }
+  for (const std::string& warning : result.Warnings)
+  {
+    vtkWarningMacro(<< warning);
+  }
+  this->RadiusUsed = result.RadiusUsed;
+  this->NormalRadiusUsed = result.NormalRadiusUsed;
+  this->ProcessingDepth = result.ProcessingDepth;
+  this->NumberOfRemovedPoints = static_cast<vtkIdType>(result.NumberOfRemovedPoints);
+  this->NumberOfNonFinitePoints = static_cast<vtkIdType>(result.NumberOfNonFinitePoints);
+  if (result.Status == pcbilateral::BilateralStatus::Aborted || numberOfPoints == 0)
+  {
+    return 1; // an empty output
+  }
+  if (input->GetNumberOfLines() + input->GetNumberOfPolys() + input->GetNumberOfStrips() > 0)
+  {
+    vtkWarningMacro(<< "the input's lines and polygons are not carried to the output, which is "
+                       "a point cloud");
+  }
+
+  std::vector<vtkIdType> kept;
+  kept.reserve(static_cast<std::size_t>(numberOfPoints));
+  for (vtkIdType id = 0; id < numberOfPoints; ++id)
+  {
+    if (!result.Removed[id])
+    {
+      kept.push_back(id);
+    }
+  }
+  const auto outputCount = static_cast<vtkIdType>(kept.size());
+
+  vtkNew<vtkPoints> points;
+  points->SetDataType(input->GetPoints()->GetDataType());
+  points->SetNumberOfPoints(outputCount);
+  {
+    using Dispatcher = vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>;
+    CopyKeptPositions worker;
+    if (!Dispatcher::Execute(points->GetData(), worker, result.Positions, kept))
+    {
+      worker(points->GetData(), result.Positions, kept);
+    }
+  }
+  output->SetPoints(points);
+  output->SetVerts(OneVertexPerPoint(outputCount));
+
+  vtkPointData* outPD = output->GetPointData();
+  if (outputCount == numberOfPoints)
+  {
+    outPD->PassData(inPD);
+  }
+  else
+  {
+    vtkNew<vtkIdList> from;
+    from->SetNumberOfIds(outputCount);
+    std::copy(kept.begin(), kept.end(), from->GetPointer(0));
+    vtkNew<vtkIdList> to;
+    to->SetNumberOfIds(outputCount);
+    std::iota(to->GetPointer(0), to->GetPointer(0) + outputCount, vtkIdType(0));
+    outPD->CopyAllocate(inPD, outputCount);
+    outPD->CopyData(inPD, from, to);
+  }
+  if (this->RemoveIsolatedPoints)
+  {
+    vtkNew<vtkIdTypeArray> originalIds;
+    originalIds->SetName("vtkOriginalPointIds");
+    originalIds->SetNumberOfValues(outputCount);
+    std::copy(kept.begin(), kept.end(), originalIds->GetPointer(0));
+    outPD->AddArray(originalIds);
+  }
+  if (this->GenerateEstimatedNormals)
+  {
+    vtkNew<vtkDoubleArray> normals;
+    normals->SetName("EstimatedNormals");
+    normals->SetNumberOfComponents(3);
+    normals->SetNumberOfTuples(outputCount);
+    for (vtkIdType out = 0; out < outputCount; ++out)
+    {
+      normals->SetTypedTuple(out, result.Normals.data() + 3 * kept[out]);
+    }
+    outPD->AddArray(normals);
+  }
+  if (this->GenerateDisplacementLength)
+  {
+    vtkNew<vtkDoubleArray> lengths;
+    lengths->SetName("DisplacementLength");
+    lengths->SetNumberOfValues(outputCount);
+    for (vtkIdType out = 0; out < outputCount; ++out)
+    {
+      const double* before = positions.data() + 3 * kept[out];
+      const double* after = result.Positions.data() + 3 * kept[out];
+      const double length = std::sqrt((after[0] - before[0]) * (after[0] - before[0]) +
+                                      (after[1] - before[1]) * (after[1] - before[1]) +
+                                      (after[2] - before[2]) * (after[2] - before[2]));
+      lengths->SetValue(out, std::isfinite(length) ? length : 0.0);
+    }
+    outPD->AddArray(lengths);
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkPointCloudBilateralFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Radius: " << this->Radius << (this->Radius == 0.0 ? " (automatic)" : "") << "\n";
+  os << indent << "NormalRadius: " << this->NormalRadius
+     << (this->NormalRadius == 0.0 ? " (same as the radius)" : "") << "\n";
+  os << indent << "NumberOfIterations: " << this->NumberOfIterations << "\n";
+  os << indent << "OrientNormals: " << this->OrientNormals << "\n";
+  os << indent << "OrientationArrayName: "
+     << (this->OrientationArrayName ? this->OrientationArrayName : "(none: point normals)") << "\n";
+  os << indent << "RemoveIsolatedPoints: " << this->RemoveIsolatedPoints << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "GenerateEstimatedNormals: " << this->GenerateEstimatedNormals << "\n";
+  os << indent << "GenerateDisplacementLength: " << this->GenerateDisplacementLength << "\n";
+  os << indent << "RadiusUsed: " << this->RadiusUsed << "\n";
+  os << indent << "NormalRadiusUsed: " << this->NormalRadiusUsed << "\n";
+  os << indent << "ProcessingDepth: " << this->ProcessingDepth << "\n";
+  os << indent << "NumberOfRemovedPoints: " << this->NumberOfRemovedPoints << "\n";
+  os << indent << "NumberOfNonFinitePoints: " << this->NumberOfNonFinitePoints << "\n";
+}

@@ -1,0 +1,186 @@
+/**
+ * @class   vtkPointCloudBilateralFilter
+ * @brief   denoise a point cloud with the bilateral filter, keeping sharp edges
+ *
+ * vtkPointCloudBilateralFilter moves each point along its estimated normal toward the
+ * neighbours that are close to it both in space and to its tangent plane, as in
+ * J. Digne and C. de Franchis, "The Bilateral Filter for Point Clouds", Image Processing On
+ * Line 7 (2017), pp. 278-287, https://doi.org/10.5201/ipol.2017.179.
+ *
+ * For a point p with neighbours q, |q - p| < Radius (p included):
+ * - the normal n is the eigenvector of the smallest eigenvalue of the covariance of the
+ *   neighbours, each weighted by wd = exp(-|q - p|^2 / (2 sd^2)), sd = Radius / 3;
+ * - p moves to p + d n, with d = sum(wd wn h) / sum(wd wn), h = <n, q - p> and
+ *   wn = exp(-h^2 / (2 sn^2)), sn = NormalRadius / 3.
+ * Each of the NumberOfIterations iterations reads the positions written by the previous one.
+ * A point moves by less than Radius per iteration.
+ *
+ * Parameters, in the paper's terms:
+ * - Radius r: the neighbourhood; a few times the point spacing, larger for stronger noise.
+ *   0 (the default) chooses sqrt(20 / number of points) times the largest bounding-box
+ *   extent, the paper's heuristic.
+ * - NormalRadius rn: how far from the tangent plane a neighbour still counts. Small values
+ *   (about the noise level) keep sharp edges; large values (rn >> r) smooth them like a
+ *   plain Gaussian filter. 0 (the default) means rn = r.
+ * - NumberOfIterations N: 1 by default; more iterations denoise more and sharpen edges.
+ * The values actually used are readable after an update: GetRadiusUsed(),
+ * GetNormalRadiusUsed().
+ *
+ * The normals are estimated without orientation. If the input has point normals (or the
+ * 3-component point array named by OrientationArrayName), each estimated normal is flipped
+ * to agree with it; this changes only the reported normals, never the positions.
+ *
+ * A point with fewer than 5 neighbours stays where it is. With RemoveIsolatedPoints on, such
+ * points are removed instead (for the rest of the run, as the authors' program does), and the
+ * output gets a "vtkOriginalPointIds" array giving, for each output point, its input id.
+ *
+ * The output is a point cloud: the input's points in the same order (less removed ones),
+ * with the same point type, every point-data array passed through, and one vertex cell per
+ * point. The input's lines and polygons are not carried over. Optional arrays: the estimated
+ * normals ("EstimatedNormals", see GenerateEstimatedNormals) and the distance each point
+ * moved ("DisplacementLength", see GenerateDisplacementLength).
+ *
+ * Points with NaN or infinite coordinates are passed through unchanged, are never used as
+ * neighbours, and are reported in one warning.
+ *
+ * @warning
+ * The filter runs in parallel with OpenMP (NumberOfThreads, 0 for all cores), scheduled by the
+ * paper's octree cell colouring. Results are bit-for-bit identical whatever the number of
+ * threads. Computation is in double precision, relative to each filtered point, so
+ * georeferenced coordinates lose nothing.
+ *
+ * @sa
+ * vtkPointSmoothingFilter vtkPointCloudTextReader vtkPointCloudTextWriter
+ */
+
+#ifndef vtkPointCloudBilateralFilter_h
+#define vtkPointCloudBilateralFilter_h
+
+#include "vtkFiltersPointCloudBilateralModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class VTKFILTERSPOINTCLOUDBILATERAL_EXPORT vtkPointCloudBilateralFilter
+  : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkPointCloudBilateralFilter* New();
+  vtkTypeMacro(vtkPointCloudBilateralFilter, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Neighbourhood radius r, in the input's length unit; 0 means automatic (the default).
+   * Negative or non-finite values are an error.
+   */
+  vtkSetMacro(Radius, double);
+  vtkGetMacro(Radius, double);
+  ///@}
+
+  ///@{
+  /**
+   * Normal radius rn, in the input's length unit; 0 means "same as the radius used" (the
+   * default). Negative or non-finite values are an error.
+   */
+  vtkSetMacro(NormalRadius, double);
+  vtkGetMacro(NormalRadius, double);
+  ///@}
+
+  ///@{
+  /**
+   * Number of iterations N (default 1). 0 passes the points through unchanged.
+   */
+  vtkSetMacro(NumberOfIterations, int);
+  vtkGetMacro(NumberOfIterations, int);
+  ///@}
+
+  ///@{
+  /**
+   * Flip the estimated normals to agree with reference normals (default on). The reference is
+   * the point array named by OrientationArrayName if set, else the input's point normals; with
+   * neither, normals keep the arbitrary sign of the eigen solver.
+   */
+  vtkSetMacro(OrientNormals, bool);
+  vtkGetMacro(OrientNormals, bool);
+  vtkBooleanMacro(OrientNormals, bool);
+  vtkSetStringMacro(OrientationArrayName);
+  vtkGetStringMacro(OrientationArrayName);
+  ///@}
+
+  ///@{
+  /**
+   * Remove points with fewer than 5 neighbours (or a zero weight sum) instead of leaving them
+   * where they are (default off). The output then has a "vtkOriginalPointIds" array.
+   */
+  vtkSetMacro(RemoveIsolatedPoints, bool);
+  vtkGetMacro(RemoveIsolatedPoints, bool);
+  vtkBooleanMacro(RemoveIsolatedPoints, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Number of threads; 0 (the default) uses all cores. The result does not depend on it.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
+  /**
+   * Add the estimated unit normals of the last iteration as the point array
+   * "EstimatedNormals" (default off). Zero for points that had too few neighbours.
+   */
+  vtkSetMacro(GenerateEstimatedNormals, bool);
+  vtkGetMacro(GenerateEstimatedNormals, bool);
+  vtkBooleanMacro(GenerateEstimatedNormals, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Add the distance between each output point and its input position as the point array
+   * "DisplacementLength" (default off).
+   */
+  vtkSetMacro(GenerateDisplacementLength, bool);
+  vtkGetMacro(GenerateDisplacementLength, bool);
+  vtkBooleanMacro(GenerateDisplacementLength, bool);
+  ///@}
+
+  ///@{
+  /**
+   * What the last update used and did: the radius and normal radius (after the automatic
+   * choices), the octree's processing depth, and the numbers of removed and non-finite points.
+   */
+  vtkGetMacro(RadiusUsed, double);
+  vtkGetMacro(NormalRadiusUsed, double);
+  vtkGetMacro(ProcessingDepth, int);
+  vtkGetMacro(NumberOfRemovedPoints, vtkIdType);
+  vtkGetMacro(NumberOfNonFinitePoints, vtkIdType);
+  ///@}
+
+protected:
+  vtkPointCloudBilateralFilter();
+  ~vtkPointCloudBilateralFilter() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  double Radius = 0.0;
+  double NormalRadius = 0.0;
+  int NumberOfIterations = 1;
+  bool OrientNormals = true;
+  char* OrientationArrayName = nullptr;
+  bool RemoveIsolatedPoints = false;
+  int NumberOfThreads = 0;
+  bool GenerateEstimatedNormals = false;
+  bool GenerateDisplacementLength = false;
+
+  double RadiusUsed = 0.0;
+  double NormalRadiusUsed = 0.0;
+  int ProcessingDepth = 0;
+  vtkIdType NumberOfRemovedPoints = 0;
+  vtkIdType NumberOfNonFinitePoints = 0;
+
+private:
+  vtkPointCloudBilateralFilter(const vtkPointCloudBilateralFilter&) = delete;
+  void operator=(const vtkPointCloudBilateralFilter&) = delete;
+};
+
+#endif

@@ -1,0 +1,96 @@
+#include "vtkPointCloudTextWriter.h"
+
+#include "PointCloudText.h"
+
+#include "vtkDataArray.h"
+#include "vtkErrorCode.h"
+#include "vtkInformation.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+vtkStandardNewMacro(vtkPointCloudTextWriter);
+
+vtkPointCloudTextWriter::vtkPointCloudTextWriter() = default;
+
+vtkPointCloudTextWriter::~vtkPointCloudTextWriter()
+{
+  this->SetFileName(nullptr);
+}
+
+int vtkPointCloudTextWriter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+void vtkPointCloudTextWriter::WriteData()
+{
+  this->ErrorMessage.clear();
+  vtkPolyData* input = vtkPolyData::SafeDownCast(this->GetInput());
+  if (!this->FileName || !*this->FileName)
+  {
+    this->ErrorMessage = "no file name was given";
+  }
+  else if (!input)
+  {
+    this->ErrorMessage = "the input is not a vtkPolyData";
+  }
+  if (!this->ErrorMessage.empty())
+  {
+    vtkErrorMacro(<< this->ErrorMessage);
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return;
+  }
+
+  const vtkIdType count = input->GetNumberOfPoints();
+  pcbilateral::PointCloudTable table;
+  table.NumberOfPoints = static_cast<std::size_t>(count);
+  table.Positions.resize(3 * table.NumberOfPoints);
+  for (vtkIdType id = 0; id < count; ++id)
+  {
+    input->GetPoint(id, table.Positions.data() + 3 * id);
+  }
+  vtkPointData* pointData = input->GetPointData();
+  vtkDataArray* normals = this->WriteNormals ? pointData->GetNormals() : nullptr;
+  if (normals && normals->GetNumberOfComponents() == 3)
+  {
+    table.Normals.resize(3 * table.NumberOfPoints);
+    for (vtkIdType id = 0; id < count; ++id)
+    {
+      normals->GetTuple(id, table.Normals.data() + 3 * id);
+    }
+  }
+  for (int a = 0; a < pointData->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = pointData->GetArray(a);
+    if (!array || (array == normals && !table.Normals.empty()))
+    {
+      continue;
+    }
+    for (int component = 0; component < array->GetNumberOfComponents(); ++component)
+    {
+      std::vector<double> column(table.NumberOfPoints);
+      for (vtkIdType id = 0; id < count; ++id)
+      {
+        column[id] = array->GetComponent(id, component);
+      }
+      table.ExtraColumns.push_back(std::move(column));
+      table.ExtraColumnNames.emplace_back(array->GetName() ? array->GetName() : "");
+    }
+  }
+  this->ErrorMessage = pcbilateral::WritePointCloudText(this->FileName, table);
+  if (!this->ErrorMessage.empty())
+  {
+    vtkErrorMacro(<< this->ErrorMessage);
+    this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
+  }
+}
+
+void vtkPointCloudTextWriter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "WriteNormals: " << this->WriteNormals << "\n";
+}
