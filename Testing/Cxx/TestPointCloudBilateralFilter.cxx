@@ -1,0 +1,538 @@
+// Tests of vtkPointCloudBilateralFilter on synthetic clouds with known surfaces.
+// Run as: TestPointCloudBilateralFilter CASE, CASE one of the names in main().
+#include "vtkPointCloudBilateralFilter.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace
+{
+int Failures = 0;
+
+#define CHECK(condition, ...)                                                                      \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(condition))                                                                              \
+    {                                                                                              \
+      std::fprintf(stderr, "line %d: check failed: %s: ", __LINE__, #condition);                   \
+      std::fprintf(stderr, __VA_ARGS__);                                                           \
+      std::fprintf(stderr, "\n");                                                                  \
+      ++Failures;                                                                                  \
+    }                                                                                              \
+  } while (false)
+
+/// Deterministic Gaussian noise (Box-Muller on a fixed-seed generator).
+class Noise
+{
+public:
+  explicit Noise(std::uint64_t seed)
+    : Random(seed)
+  {
+  }
+  double Uniform() { return std::uniform_real_distribution<double>(0.0, 1.0)(this->Random); }
+  double Gaussian(double sigma)
+  {
+    const double u = std::max(this->Uniform(), 1e-300);
+    return sigma * std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * M_PI * this->Uniform());
+  }
+
+private:
+  std::mt19937_64 Random;
+};
+
+vtkSmartPointer<vtkPolyData> MakeCloud(const std::vector<double>& xyz, int pointType = VTK_DOUBLE)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataType(pointType);
+  points->SetNumberOfPoints(static_cast<vtkIdType>(xyz.size() / 3));
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    points->SetPoint(i, &xyz[3 * i]);
+  }
+  auto cloud = vtkSmartPointer<vtkPolyData>::New();
+  cloud->SetPoints(points);
+  return cloud;
+}
+
+vtkSmartPointer<vtkPolyData> Filter(vtkPolyData* input,
+  double radius,
+  double normalRadius,
+  int iterations,
+  int threads = 0,
+  const std::function<void(vtkPointCloudBilateralFilter*)>& setup = {})
+{
+  vtkNew<vtkPointCloudBilateralFilter> filter;
+  filter->SetInputData(input);
+  filter->SetRadius(radius);
+  filter->SetNormalRadius(normalRadius);
+  filter->SetNumberOfIterations(iterations);
+  filter->SetNumberOfThreads(threads);
+  if (setup)
+  {
+    setup(filter);
+  }
+  filter->Update();
+  auto output = vtkSmartPointer<vtkPolyData>::New();
+  output->ShallowCopy(filter->GetOutput());
+  return output;
+}
+
+/// A noisy square patch of the plane z = 0 (unit side, about 20,000 points).
+std::vector<double> NoisyPlane(double sigma, std::uint64_t seed)
+{
+  Noise noise(seed);
+  std::vector<double> xyz;
+  const int side = 140;
+  for (int j = 0; j < side; ++j)
+  {
+    for (int i = 0; i < side; ++i)
+    {
+      xyz.push_back((i + noise.Uniform()) / side);
+      xyz.push_back((j + noise.Uniform()) / side);
+      xyz.push_back(noise.Gaussian(sigma));
+    }
+  }
+  return xyz;
+}
+
+/// Points sampled uniformly on the surface of the cube [-0.5, 0.5]^3, with Gaussian noise.
+std::vector<double> NoisyCube(std::size_t count, double sigma, std::uint64_t seed)
+{
+  Noise noise(seed);
+  std::vector<double> xyz;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const int face = static_cast<int>(i % 6);
+    double p[3] = { noise.Uniform() - 0.5, noise.Uniform() - 0.5, noise.Uniform() - 0.5 };
+    p[face / 2] = face % 2 ? 0.5 : -0.5;
+    for (double c : p)
+    {
+      xyz.push_back(c + noise.Gaussian(sigma));
+    }
+  }
+  return xyz;
+}
+
+double RootMeanSquareZ(vtkPolyData* cloud, double trim)
+{
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (vtkIdType i = 0; i < cloud->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    cloud->GetPoint(i, p);
+    // Away from the patch border, where the filter is known to bend an open surface.
+    if (p[0] > trim && p[0] < 1 - trim && p[1] > trim && p[1] < 1 - trim)
+    {
+      sum += p[2] * p[2];
+      ++count;
+    }
+  }
+  return std::sqrt(sum / count);
+}
+
+/// Distance from p to the surface of the cube [-0.5, 0.5]^3.
+double DistanceToCube(const double p[3])
+{
+  double outside = 0.0;
+  double inside = 1e300;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const double excess = std::abs(p[axis]) - 0.5;
+    outside += excess > 0 ? excess * excess : 0.0;
+    inside = std::min(inside, -excess);
+  }
+  return outside > 0 ? std::sqrt(outside) : std::max(inside, 0.0);
+}
+
+/// Number of coordinates at least 0.5 - margin in absolute value: 2 or 3 near an edge.
+int CloseFaces(const double p[3], double margin)
+{
+  int count = 0;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    count += std::abs(p[axis]) > 0.5 - margin ? 1 : 0;
+  }
+  return count;
+}
+
+void TestPlane()
+{
+  const double sigma = 0.005;
+  auto noisy = MakeCloud(NoisyPlane(sigma, 1));
+  auto filtered = Filter(noisy, 0.05, 0.05, 2);
+  const double before = RootMeanSquareZ(noisy, 0.1);
+  const double after = RootMeanSquareZ(filtered, 0.1);
+  std::printf("noisy plane: rms height %.3g before, %.3g after (factor %.1f)\n",
+    before,
+    after,
+    before / after);
+  CHECK(after < before / 8, "the plane became flatter only by %.2f", before / after);
+
+  // An exact plane does not move at all: every neighbour has height 0 exactly.
+  std::vector<double> flat = NoisyPlane(0.0, 2);
+  for (std::size_t i = 2; i < flat.size(); i += 3)
+  {
+    flat[i] = 0.375;
+  }
+  auto exact = MakeCloud(flat);
+  auto unchanged = Filter(exact, 0.05, 0.05, 3);
+  auto* in = vtkDoubleArray::SafeDownCast(exact->GetPoints()->GetData());
+  auto* out = vtkDoubleArray::SafeDownCast(unchanged->GetPoints()->GetData());
+  CHECK(in && out && in->GetNumberOfValues() == out->GetNumberOfValues() &&
+          std::memcmp(
+            in->GetPointer(0), out->GetPointer(0), sizeof(double) * in->GetNumberOfValues()) == 0,
+    "an exact plane moved");
+}
+
+void TestCubeEdges()
+{
+  // The paper's Figure 5: noise 0.1% of the bounding box, r = 0.04; rn = 0.01 keeps the edges,
+  // rn = 1 rounds them.
+  const double sigma = 0.001 * std::sqrt(3.0);
+  const std::vector<double> xyz = NoisyCube(60000, sigma, 5);
+  auto noisy = MakeCloud(xyz);
+  auto sharp = Filter(noisy, 0.04, 0.01, 1);
+  auto round = Filter(noisy, 0.04, 1.0, 1);
+
+  // Points near an edge (two or three faces within 0.01): mean distance to the cube's surface,
+  // and how many still reach out to the edge region.
+  double noisyError = 0, sharpError = 0, roundError = 0;
+  std::size_t edgePoints = 0, sharpOnSurface = 0, roundOnSurface = 0;
+  for (vtkIdType i = 0; i < noisy->GetNumberOfPoints(); ++i)
+  {
+    double p[3], s[3], r[3];
+    noisy->GetPoint(i, p);
+    if (CloseFaces(p, 0.01) < 2)
+    {
+      continue;
+    }
+    sharp->GetPoint(i, s);
+    round->GetPoint(i, r);
+    ++edgePoints;
+    noisyError += DistanceToCube(p);
+    sharpError += DistanceToCube(s);
+    roundError += DistanceToCube(r);
+    sharpOnSurface += DistanceToCube(s) < 2 * sigma ? 1 : 0;
+    roundOnSurface += DistanceToCube(r) < 2 * sigma ? 1 : 0;
+  }
+  noisyError /= edgePoints;
+  sharpError /= edgePoints;
+  roundError /= edgePoints;
+  std::printf("cube edges (%zu points): mean distance to the cube %.3g noisy, %.3g with rn = "
+              "0.01, %.3g with rn = 1; within 2 sigma of the cube: %zu and %zu\n",
+    edgePoints,
+    noisyError,
+    sharpError,
+    roundError,
+    sharpOnSurface,
+    roundOnSurface);
+  CHECK(sharpError < noisyError,
+    "a small rn did not denoise the edges (%g vs %g)",
+    sharpError,
+    noisyError);
+  CHECK(roundError > 2.5 * sharpError,
+    "a large rn did not round the edges (%g vs %g)",
+    roundError,
+    sharpError);
+  CHECK(sharpOnSurface > 1.5 * roundOnSurface,
+    "edge points within 2 sigma of the cube: %zu with a small rn, %zu with a large one",
+    sharpOnSurface,
+    roundOnSurface);
+}
+
+void TestPassThrough()
+{
+  const std::vector<double> xyz = NoisyCube(3000, 0.002, 7);
+  auto cloud = MakeCloud(xyz);
+  const vtkIdType n = cloud->GetNumberOfPoints();
+  vtkNew<vtkDoubleArray> scalars;
+  scalars->SetName("Intensity");
+  vtkNew<vtkUnsignedCharArray> colours;
+  colours->SetName("RGB");
+  colours->SetNumberOfComponents(3);
+  vtkNew<vtkFloatArray> vectors;
+  vectors->SetName("Velocity");
+  vectors->SetNumberOfComponents(3);
+  vtkNew<vtkIntArray> labels;
+  labels->SetName("Label");
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    scalars->InsertNextValue(0.5 * i);
+    const unsigned char rgb[3] = { static_cast<unsigned char>(i % 256),
+      static_cast<unsigned char>((7 * i) % 256),
+      static_cast<unsigned char>((13 * i) % 256) };
+    colours->InsertNextTypedTuple(rgb);
+    const float v[3] = { float(i), float(-i), float(2 * i) };
+    vectors->InsertNextTypedTuple(v);
+    labels->InsertNextValue(static_cast<int>(i % 17));
+  }
+  cloud->GetPointData()->SetScalars(scalars);
+  cloud->GetPointData()->AddArray(colours);
+  cloud->GetPointData()->SetVectors(vectors);
+  cloud->GetPointData()->AddArray(labels);
+
+  auto checkArrays =
+    [&](vtkPolyData* output, const std::function<vtkIdType(vtkIdType)>& source, const char* what)
+  {
+    vtkPointData* pd = output->GetPointData();
+    CHECK(output->GetNumberOfVerts() == output->GetNumberOfPoints(),
+      "%s: %lld vertices for %lld points",
+      what,
+      (long long)output->GetNumberOfVerts(),
+      (long long)output->GetNumberOfPoints());
+    const char* names[] = { "Intensity", "RGB", "Velocity", "Label" };
+    for (int a = 0; a < 4; ++a)
+    {
+      CHECK(pd->GetArray(a) && pd->GetArray(a)->GetName() == std::string(names[a]),
+        "%s: array %d is not %s",
+        what,
+        a,
+        names[a]);
+    }
+    CHECK(pd->GetScalars() && std::string(pd->GetScalars()->GetName()) == "Intensity",
+      "%s: scalars not active",
+      what);
+    CHECK(pd->GetVectors() && std::string(pd->GetVectors()->GetName()) == "Velocity",
+      "%s: vectors not active",
+      what);
+    auto* outColours = vtkUnsignedCharArray::SafeDownCast(pd->GetArray("RGB"));
+    auto* outVectors = vtkFloatArray::SafeDownCast(pd->GetArray("Velocity"));
+    auto* outScalars = vtkDoubleArray::SafeDownCast(pd->GetArray("Intensity"));
+    auto* outLabels = vtkIntArray::SafeDownCast(pd->GetArray("Label"));
+    CHECK(outColours && outVectors && outScalars && outLabels, "%s: array types changed", what);
+    if (!(outColours && outVectors && outScalars && outLabels))
+    {
+      return;
+    }
+    std::size_t wrong = 0;
+    for (vtkIdType i = 0; i < output->GetNumberOfPoints(); ++i)
+    {
+      const vtkIdType j = source(i);
+      wrong += outScalars->GetValue(i) != scalars->GetValue(j);
+      wrong += outLabels->GetValue(i) != labels->GetValue(j);
+      for (int c = 0; c < 3; ++c)
+      {
+        wrong += outColours->GetTypedComponent(i, c) != colours->GetTypedComponent(j, c);
+        wrong += outVectors->GetTypedComponent(i, c) != vectors->GetTypedComponent(j, c);
+      }
+    }
+    CHECK(wrong == 0, "%s: %zu values differ from the input's", what, wrong);
+  };
+
+  auto output = Filter(cloud, 0.08, 0.08, 1);
+  CHECK(output->GetNumberOfPoints() == n,
+    "%lld points out of %lld",
+    (long long)output->GetNumberOfPoints(),
+    (long long)n);
+  checkArrays(
+    output, [](vtkIdType i) { return i; }, "kept");
+
+  // With removal: a few far-away points have no neighbours and go; the rest keep their values.
+  for (int k = 0; k < 3; ++k)
+  {
+    const double far[3] = { 10.0 + k, 10.0, 10.0 };
+    cloud->GetPoints()->InsertNextPoint(far);
+    scalars->InsertNextValue(-1);
+    const unsigned char black[3] = { 0, 0, 0 };
+    colours->InsertNextTypedTuple(black);
+    const float zero[3] = { 0, 0, 0 };
+    vectors->InsertNextTypedTuple(zero);
+    labels->InsertNextValue(-1);
+  }
+  auto removed = Filter(
+    cloud, 0.08, 0.08, 1, 0, [](vtkPointCloudBilateralFilter* f) { f->RemoveIsolatedPointsOn(); });
+  auto* ids =
+    vtkIdTypeArray::SafeDownCast(removed->GetPointData()->GetArray("vtkOriginalPointIds"));
+  CHECK(ids != nullptr, "no vtkOriginalPointIds array");
+  if (ids)
+  {
+    CHECK(removed->GetNumberOfPoints() > n * 0.99 && removed->GetNumberOfPoints() <= n,
+      "removal kept %lld of %lld points",
+      (long long)removed->GetNumberOfPoints(),
+      (long long)n);
+    for (vtkIdType i = 0; i < ids->GetNumberOfValues(); ++i)
+    {
+      CHECK(ids->GetValue(i) < n && (i == 0 || ids->GetValue(i) > ids->GetValue(i - 1)),
+        "original id %lld at %lld: out of order or a far point",
+        (long long)ids->GetValue(i),
+        (long long)i);
+    }
+    checkArrays(
+      removed, [ids](vtkIdType i) { return ids->GetValue(i); }, "removal");
+  }
+}
+
+/// The output's point coordinates as raw bytes, to compare bit for bit.
+std::vector<unsigned char> PointBytes(vtkPolyData* cloud)
+{
+  vtkDataArray* data = cloud->GetPoints()->GetData();
+  const auto* begin = static_cast<const unsigned char*>(data->GetVoidPointer(0));
+  return std::vector<unsigned char>(
+    begin, begin + data->GetNumberOfValues() * data->GetDataTypeSize());
+}
+
+void TestThreadsGiveIdenticalBits()
+{
+  auto cloud = MakeCloud(NoisyCube(40000, 0.005, 11));
+  const auto reference = PointBytes(Filter(cloud, 0.05, 0.03, 3, 1));
+  for (int threads : { 2, 4 })
+  {
+    for (int run = 0; run < 2; ++run)
+    {
+      CHECK(PointBytes(Filter(cloud, 0.05, 0.03, 3, threads)) == reference,
+        "%d threads (run %d) differ from 1 thread",
+        threads,
+        run);
+    }
+  }
+  std::printf("1, 2 and 4 threads: identical output bits\n");
+}
+
+void TestPointTypes()
+{
+  const std::vector<double> xyz = NoisyCube(20000, 0.005, 13);
+  auto asDouble = Filter(MakeCloud(xyz, VTK_DOUBLE), 0.06, 0.06, 1);
+  auto asFloat = Filter(MakeCloud(xyz, VTK_FLOAT), 0.06, 0.06, 1);
+  CHECK(asDouble->GetPoints()->GetDataType() == VTK_DOUBLE,
+    "double points became %s",
+    asDouble->GetPoints()->GetData()->GetDataTypeAsString());
+  CHECK(asFloat->GetPoints()->GetDataType() == VTK_FLOAT,
+    "float points became %s",
+    asFloat->GetPoints()->GetData()->GetDataTypeAsString());
+  double largest = 0.0, moved = 0.0;
+  for (vtkIdType i = 0; i < asDouble->GetNumberOfPoints(); ++i)
+  {
+    double a[3], b[3];
+    asDouble->GetPoint(i, a);
+    asFloat->GetPoint(i, b);
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      largest = std::max(largest, std::abs(a[axis] - b[axis]));
+      moved = std::max(moved, std::abs(a[axis] - xyz[3 * i + axis]));
+    }
+  }
+  std::printf(
+    "float vs double points: largest difference %.3g (points moved up to %.3g)\n", largest, moved);
+  CHECK(largest < 1e-5, "float and double inputs differ by %g", largest);
+  CHECK(moved > 1e-3, "the points did not move (%g)", moved);
+}
+
+void TestParametersAndNormals()
+{
+  // The automatic radius, read back; estimated normals oriented by the input's normals.
+  const std::vector<double> xyz = NoisyCube(30000, 0.003, 17);
+  auto cloud = MakeCloud(xyz);
+  vtkNew<vtkDoubleArray> outward;
+  outward->SetName("Normals");
+  outward->SetNumberOfComponents(3);
+  for (vtkIdType i = 0; i < cloud->GetNumberOfPoints(); ++i)
+  {
+    const int face = static_cast<int>(i % 6);
+    double n[3] = { 0, 0, 0 };
+    n[face / 2] = face % 2 ? 1.0 : -1.0;
+    outward->InsertNextTypedTuple(n);
+  }
+  cloud->GetPointData()->SetNormals(outward);
+  vtkNew<vtkPointCloudBilateralFilter> filter;
+  filter->SetInputData(cloud);
+  filter->GenerateEstimatedNormalsOn();
+  filter->GenerateDisplacementLengthOn();
+  filter->Update();
+  const double expected =
+    std::sqrt(20.0 / 30000.0) * filter->GetOutput()->GetLength() / std::sqrt(3.0);
+  std::printf("automatic radius %.6g (largest extent x sqrt(20/n) = %.6g), normal radius %.6g\n",
+    filter->GetRadiusUsed(),
+    expected,
+    filter->GetNormalRadiusUsed());
+  CHECK(std::abs(filter->GetRadiusUsed() - expected) < 0.02 * expected,
+    "automatic radius %g",
+    filter->GetRadiusUsed());
+  CHECK(filter->GetNormalRadiusUsed() == filter->GetRadiusUsed(),
+    "normal radius %g",
+    filter->GetNormalRadiusUsed());
+  vtkPointData* pd = filter->GetOutput()->GetPointData();
+  vtkDataArray* normals = pd->GetArray("EstimatedNormals");
+  vtkDataArray* lengths = pd->GetArray("DisplacementLength");
+  CHECK(normals && normals->GetNumberOfComponents() == 3, "no EstimatedNormals");
+  CHECK(lengths && lengths->GetNumberOfComponents() == 1, "no DisplacementLength");
+  CHECK(pd->GetNormals() && std::string(pd->GetNormals()->GetName()) == "Normals",
+    "the input's normals are not the output's point normals");
+  if (!normals || !lengths)
+  {
+    return;
+  }
+  std::size_t disagreeing = 0, faceInterior = 0, notEstimated = 0;
+  double largestLength = 0.0;
+  for (vtkIdType i = 0; i < cloud->GetNumberOfPoints(); ++i)
+  {
+    double p[3], n[3], reference[3];
+    cloud->GetPoint(i, p);
+    normals->GetTuple(i, n);
+    outward->GetTuple(i, reference);
+    largestLength = std::max(largestLength, lengths->GetComponent(i, 0));
+    if (CloseFaces(p, 0.05) == 1)
+    {
+      ++faceInterior;
+      const double agreement = n[0] * reference[0] + n[1] * reference[1] + n[2] * reference[2];
+      notEstimated += agreement == 0.0 ? 1 : 0;
+      disagreeing += agreement < 0.0 ? 1 : 0;
+    }
+  }
+  std::printf("face points: %zu, normals against the input's: %zu, not estimated: %zu\n",
+    faceInterior,
+    disagreeing,
+    notEstimated);
+  CHECK(disagreeing == 0,
+    "%zu of %zu face normals point against the input's",
+    disagreeing,
+    faceInterior);
+  CHECK(notEstimated < faceInterior / 100,
+    "%zu of %zu face normals not estimated",
+    notEstimated,
+    faceInterior);
+  CHECK(largestLength > 0.0 && largestLength < filter->GetRadiusUsed(),
+    "displacement lengths up to %g, radius %g",
+    largestLength,
+    filter->GetRadiusUsed());
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  const std::map<std::string, std::function<void()>> cases = {
+    { "plane", TestPlane },
+    { "cube-edges", TestCubeEdges },
+    { "pass-through", TestPassThrough },
+    { "threads", TestThreadsGiveIdenticalBits },
+    { "point-types", TestPointTypes },
+    { "parameters-and-normals", TestParametersAndNormals },
+  };
+  const auto found = argc > 1 ? cases.find(argv[1]) : cases.end();
+  if (found == cases.end())
+  {
+    std::fprintf(stderr, "usage: %s CASE (plane, cube-edges, ...)\n", argv[0]);
+    return EXIT_FAILURE;
+  }
+  found->second();
+  std::printf("%s: %s\n", found->first.c_str(), Failures == 0 ? "passed" : "FAILED");
+  return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
