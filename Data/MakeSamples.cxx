@@ -54,7 +54,9 @@ Sample Cube(std::size_t count, Random& random)
   for (std::size_t i = 0; i < count; ++i)
   {
     const int face = static_cast<int>(random.Uniform(0, 6));
-    double p[3] = { random.Uniform(-0.5, 0.5), random.Uniform(-0.5, 0.5), random.Uniform(-0.5, 0.5) };
+    double p[3] = {
+      random.Uniform(-0.5, 0.5), random.Uniform(-0.5, 0.5), random.Uniform(-0.5, 0.5)
+    };
     p[face / 2] = face % 2 ? 0.5 : -0.5;
     sample.Clean.insert(sample.Clean.end(), p, p + 3);
   }

@@ -5,13 +5,14 @@
 //
 // BEFORE and AFTER: .txt, .xyz, .ply or .vtp. Both are drawn the same way (points as lit
 // spheres, same camera), so differences are the filter's. --view sets the direction the camera
-// looks from (default 1 0.7 0.45), --zoom magnifies (default 1). Needs an X display (xvfb-run on a headless machine).
+// looks from (default 1 0.7 0.45), --zoom magnifies (default 1). Needs an X display (xvfb-run on a
+// headless machine).
 #include "vtkPointCloudTextReader.h"
 
 #include "vtkActor.h"
 #include "vtkAlgorithm.h"
-#include "vtkCellArray.h"
 #include "vtkCamera.h"
+#include "vtkCellArray.h"
 #include "vtkCoordinate.h"
 #include "vtkNew.h"
 #include "vtkPLYReader.h"
@@ -67,8 +68,11 @@ vtkSmartPointer<vtkPolyData> Read(const std::string& path)
   return cloud;
 }
 
-vtkSmartPointer<vtkRenderer> View(vtkPolyData* cloud, const std::string& caption, double left,
-  double right, vtkCamera* camera)
+vtkSmartPointer<vtkRenderer> View(vtkPolyData* cloud,
+  const std::string& caption,
+  double left,
+  double right,
+  vtkCamera* camera)
 {
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputData(cloud);
@@ -153,8 +157,9 @@ int main(int argc, char* argv[])
 
   double bounds[6];
   before->GetBounds(bounds);
-  const double centre[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
-    0.5 * (bounds[4] + bounds[5]) };
+  const double centre[3] = {
+    0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5])
+  };
   vtkNew<vtkCamera> camera;
   camera->SetFocalPoint(centre);
   camera->SetPosition(centre[0] + view[0], centre[1] + view[1], centre[2] + view[2]);

@@ -2,6 +2,8 @@
 // Run as: TestPointCloudBilateralFilter CASE, CASE one of the names in main().
 #include "vtkPointCloudBilateralFilter.h"
 
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
@@ -514,6 +516,117 @@ void TestParametersAndNormals()
     largestLength,
     filter->GetRadiusUsed());
 }
+void TestProgressAndAbort()
+{
+  auto cloud = MakeCloud(NoisyCube(200000, 0.005, 19));
+  vtkNew<vtkPointCloudBilateralFilter> filter;
+  filter->SetInputData(cloud);
+  filter->SetRadius(0.03);
+  filter->SetNumberOfIterations(2);
+  std::vector<double> reported;
+  vtkNew<vtkCallbackCommand> recorder;
+  recorder->SetClientData(&reported);
+  recorder->SetCallback([](vtkObject*, unsigned long, void* clientData, void* callData)
+    { static_cast<std::vector<double>*>(clientData)->push_back(*static_cast<double*>(callData)); });
+  filter->AddObserver(vtkCommand::ProgressEvent, recorder);
+  filter->Update();
+  const bool increasing = std::is_sorted(reported.begin(), reported.end());
+  std::printf("progress: %zu reports, from %g to %g\n",
+    reported.size(),
+    reported.empty() ? -1.0 : reported.front(),
+    reported.empty() ? -1.0 : reported.back());
+  CHECK(reported.size() >= 20 && increasing && reported.back() == 1.0,
+    "%zu progress reports, increasing: %d",
+    reported.size(),
+    int(increasing));
+  CHECK(filter->GetOutput()->GetNumberOfPoints() == cloud->GetNumberOfPoints(), "no output");
+
+  // An observer that aborts a third of the way: the filter stops soon and outputs nothing.
+  vtkNew<vtkPointCloudBilateralFilter> aborted;
+  aborted->SetInputData(cloud);
+  aborted->SetRadius(0.03);
+  aborted->SetNumberOfIterations(2);
+  std::size_t reportsAfterAbort = 0;
+  vtkNew<vtkCallbackCommand> stopper;
+  stopper->SetClientData(&reportsAfterAbort);
+  stopper->SetCallback(
+    [](vtkObject* caller, unsigned long, void* clientData, void* callData)
+    {
+      auto* algorithm = static_cast<vtkAlgorithm*>(caller);
+      if (algorithm->GetAbortExecute())
+      {
+        ++*static_cast<std::size_t*>(clientData);
+      }
+      if (*static_cast<double*>(callData) > 0.3)
+      {
+        algorithm->AbortExecuteOn();
+      }
+    });
+  aborted->AddObserver(vtkCommand::ProgressEvent, stopper);
+  aborted->Update();
+  std::printf("abort: %lld output points, %zu progress reports after the abort request\n",
+    (long long)aborted->GetOutput()->GetNumberOfPoints(),
+    reportsAfterAbort);
+  CHECK(aborted->GetOutput()->GetNumberOfPoints() == 0,
+    "an aborted run output %lld points",
+    (long long)aborted->GetOutput()->GetNumberOfPoints());
+  CHECK(
+    reportsAfterAbort <= 2, "the run went on for %zu reports after the abort", reportsAfterAbort);
+}
+
+void TestDegenerateNeighbourhoods()
+{
+  // Flat, linear and single-point neighbourhoods: the eigen solver must give a usable normal or
+  // none, never NaN, and no point may move by r or more.
+  Noise noise(23);
+  std::vector<double> line, repeated, mixed;
+  for (int i = 0; i < 2000; ++i)
+  {
+    const double t = noise.Uniform();
+    const double onLine[3] = { t, 2 * t, -t };
+    line.insert(line.end(), onLine, onLine + 3);
+    const double same[3] = { 0.25, -1.5, 3.0 };
+    repeated.insert(repeated.end(), same, same + 3);
+    // Half the points are copies of ten points, the others a noisy patch around them.
+    const double patch[3] = { i % 2 ? double(i % 10) * 0.01 : noise.Uniform() * 0.1,
+      i % 2 ? 0.0 : noise.Uniform() * 0.1,
+      i % 2 ? 0.0 : noise.Gaussian(0.002) };
+    mixed.insert(mixed.end(), patch, patch + 3);
+  }
+  struct Case
+  {
+    const char* Name;
+    std::vector<double>* Points;
+    double Radius;
+  };
+  for (const Case& c : { Case{ "line", &line, 0.05 },
+         Case{ "one repeated point", &repeated, 0.1 },
+         Case{ "duplicates in a patch", &mixed, 0.03 } })
+  {
+    auto input = MakeCloud(*c.Points);
+    auto output = Filter(input, c.Radius, c.Radius, 3);
+    double largestMove = 0.0;
+    std::size_t nonFinite = 0;
+    for (vtkIdType i = 0; i < output->GetNumberOfPoints(); ++i)
+    {
+      double a[3], b[3];
+      input->GetPoint(i, a);
+      output->GetPoint(i, b);
+      nonFinite += std::isfinite(b[0] + b[1] + b[2]) ? 0 : 1;
+      largestMove = std::max(largestMove,
+        std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                  (a[2] - b[2]) * (a[2] - b[2])));
+    }
+    std::printf("%s: %lld points, largest move %.3g (3 iterations of r = %g)\n",
+      c.Name,
+      (long long)output->GetNumberOfPoints(),
+      largestMove,
+      c.Radius);
+    CHECK(output->GetNumberOfPoints() == input->GetNumberOfPoints(), "%s: points lost", c.Name);
+    CHECK(nonFinite == 0, "%s: %zu non-finite points", c.Name, nonFinite);
+    CHECK(largestMove < 3 * c.Radius, "%s: a point moved by %g", c.Name, largestMove);
+  }
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -525,6 +638,8 @@ int main(int argc, char* argv[])
     { "threads", TestThreadsGiveIdenticalBits },
     { "point-types", TestPointTypes },
     { "parameters-and-normals", TestParametersAndNormals },
+    { "progress-and-abort", TestProgressAndAbort },
+    { "degenerate-neighbourhoods", TestDegenerateNeighbourhoods },
   };
   const auto found = argc > 1 ? cases.find(argv[1]) : cases.end();
   if (found == cases.end())
