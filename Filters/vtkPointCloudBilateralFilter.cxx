@@ -18,6 +18,7 @@
 #include "vtkSmartPointer.h"
 
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <vector>
 
@@ -122,11 +123,10 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     if (this->OrientationArrayName && *this->OrientationArrayName)
     {
       reference = inPD->GetArray(this->OrientationArrayName);
-      if (!reference)
+      if (!reference && std::strcmp(this->OrientationArrayName, "None") != 0)
       {
-        vtkErrorMacro(<< "the orientation array '" << this->OrientationArrayName
-                      << "' is not a point-data array of the input");
-        return 0;
+        vtkWarningMacro(<< "the input has no point array '" << this->OrientationArrayName
+                        << "': the estimated normals are not oriented");
       }
     }
     if (reference && reference->GetNumberOfComponents() != 3)

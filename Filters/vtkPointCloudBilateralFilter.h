@@ -97,7 +97,9 @@ public:
   /**
    * Flip the estimated normals to agree with reference normals (default on). The reference is
    * the point array named by OrientationArrayName if set, else the input's point normals; with
-   * neither, normals keep the arbitrary sign of the eigen solver.
+   * neither, normals keep the arbitrary sign of the eigen solver. A name that is not a point
+   * array of the input means no orientation: with a warning, unless the name is "None" (the
+   * "no array" entry of ParaView's chooser).
    */
   vtkSetMacro(OrientNormals, bool);
   vtkGetMacro(OrientNormals, bool);

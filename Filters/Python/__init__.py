@@ -1,0 +1,24 @@
+"""The bilateral filter for point clouds (Digne & de Franchis, IPOL 2017) for VTK.
+
+    from pointcloudbilateral import vtkPointCloudBilateralFilter
+
+Classes: vtkPointCloudBilateralFilter, vtkPointCloudTextReader, vtkPointCloudTextWriter.
+They work in pipelines with ParaView's ``vtkmodules``.
+"""
+# The wrapped classes derive from VTK classes: their Python modules must be loaded first.
+import vtkmodules.vtkCommonCore  # noqa: F401
+import vtkmodules.vtkCommonDataModel  # noqa: F401
+import vtkmodules.vtkCommonExecutionModel  # noqa: F401
+import vtkmodules.vtkIOCore  # noqa: F401
+
+from .vtkFiltersPointCloudBilateral import (  # noqa: F401
+    vtkPointCloudBilateralFilter,
+    vtkPointCloudTextReader,
+    vtkPointCloudTextWriter,
+)
+
+__all__ = [
+    "vtkPointCloudBilateralFilter",
+    "vtkPointCloudTextReader",
+    "vtkPointCloudTextWriter",
+]
