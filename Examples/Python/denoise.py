@@ -1,0 +1,95 @@
+"""Denoise a point cloud with ParaView's Python, in a batch script.
+
+    pvpython Examples/Python/denoise.py IN OUT --radius R [--normal-radius RN] [--iterations N]
+    pvbatch  Examples/Python/denoise.py IN OUT ...
+    mpirun -np 2 pvbatch Examples/Python/denoise.py IN OUT ...
+
+IN and OUT: .ply, .vtp, or the authors' text format (.xyz, .txt). The script loads the
+PointCloudBilateral plugin itself: from --plugin, from PV_PLUGIN_PATH (auto-loaded), or from the
+build or install tree that holds this script.
+"""
+import argparse
+import glob
+import os
+import sys
+
+from paraview import servermanager
+from paraview import simple
+
+PLUGIN = "PointCloudBilateral"
+HERE = os.path.dirname(os.path.abspath(__file__))
+# Where the plugin is relative to this script: the source tree next to a build/ folder, and the
+# install tree (<prefix>/share/pointcloudbilateral/examples/).
+CANDIDATES = [
+    os.path.join(HERE, "..", "..", "build", "lib", "paraview-5.11", "plugins", PLUGIN),
+    os.path.join(HERE, "..", "..", "..", "lib", "paraview-5.11", "plugins", PLUGIN),
+    os.path.join(HERE, "..", "..", "..", "lib", "*", "paraview-5.11", "plugins", PLUGIN),
+]
+
+
+def load_plugin(explicit):
+    if hasattr(simple, "PointCloudBilateralFilter"):
+        return "already loaded (PV_PLUGIN_PATH)"
+    paths = [explicit] if explicit else []
+    for pattern in CANDIDATES:
+        paths += glob.glob(os.path.join(pattern, PLUGIN + ".so"))
+    for path in paths:
+        if os.path.isfile(path):
+            # Into paraview.simple's namespace, where an auto-loaded plugin's functions are too.
+            simple.LoadPlugin(path, remote=True, ns=vars(simple))
+            return os.path.normpath(path)
+    sys.exit(f"error: the {PLUGIN} plugin was not found: give --plugin PATH or set PV_PLUGIN_PATH")
+
+
+def open_cloud(path, oriented_normals):
+    if not os.path.isfile(path):
+        sys.exit(f"error: {path}: no such file")
+    if path.endswith((".xyz", ".txt")):
+        return simple.PointCloudTextReader(FileName=path, HasNormals=int(oriented_normals))
+    reader = simple.OpenDataFile(path)
+    if reader is None:
+        sys.exit(f"error: {path}: no reader for this file type")
+    return reader
+
+
+def main():
+    parser = argparse.ArgumentParser(description="Denoise a point cloud with the bilateral filter.")
+    parser.add_argument("input")
+    parser.add_argument("output")
+    parser.add_argument("--radius", type=float, default=0.0, help="0 (default): automatic")
+    parser.add_argument("--normal-radius", type=float, default=0.0, help="0 (default): the radius")
+    parser.add_argument("--iterations", type=int, default=1)
+    parser.add_argument("--oriented-normals", action="store_true",
+                        help="text files carry normals in columns 4-6")
+    parser.add_argument("--remove-isolated", action="store_true")
+    parser.add_argument("--threads", type=int, default=0, help="0 (default): all cores")
+    parser.add_argument("--plugin", help="path of PointCloudBilateral.so")
+    args = parser.parse_args()
+
+    where = load_plugin(args.plugin)
+    reader = open_cloud(args.input, args.oriented_normals)
+    reader.UpdatePipeline()
+    bilateral = simple.PointCloudBilateralFilter(
+        Input=reader,
+        Radius=args.radius,
+        NormalRadius=args.normal_radius,
+        NumberOfIterations=args.iterations,
+        RemoveIsolatedPoints=int(args.remove_isolated),
+        NumberOfThreads=args.threads,
+    )
+    bilateral.UpdatePipeline()
+    bilateral.UpdatePropertyInformation()
+    points = bilateral.GetDataInformation().GetNumberOfPoints()
+    if points == 0:
+        sys.exit("error: the filter produced no points (see the messages above)")
+    if args.output.endswith((".xyz", ".txt")):
+        simple.SaveData(args.output, proxy=bilateral, WriteNormals=int(args.oriented_normals))
+    else:
+        simple.SaveData(args.output, proxy=bilateral)
+    print(f"plugin: {where}")
+    print(f"radius {bilateral.RadiusUsed:.6g}, normal radius {bilateral.NormalRadiusUsed:.6g}, "
+          f"{args.iterations} iteration(s): {points} points written to {args.output}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,60 @@
+"""The plugin in pvpython and pvbatch: PointCloudBilateralFilter on a noisy plane.
+
+    pvpython TestParaViewFilter.py PLUGIN SCRATCH_FOLDER
+"""
+import os
+import sys
+
+import numpy as np
+from paraview import servermanager, simple
+from vtkmodules.numpy_interface import dataset_adapter as dsa
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pcb_testing import PLANE_NOISE, PLANE_POINTS, check, finish, interior, write_noisy_plane  # noqa: E402
+
+plugin, scratch = sys.argv[1], sys.argv[2]
+os.makedirs(scratch, exist_ok=True)
+points, colours, intensity = write_noisy_plane(os.path.join(scratch, "plane.vtp"))
+
+simple.LoadPlugin(plugin, remote=True, ns=vars(simple))
+check(hasattr(simple, "PointCloudBilateralFilter"), "the plugin adds PointCloudBilateralFilter")
+reader = simple.XMLPolyDataReader(FileName=[os.path.join(scratch, "plane.vtp")])
+reader.UpdatePipeline()
+bilateral = simple.PointCloudBilateralFilter(Input=reader)
+largest_extent = np.max(np.ptp(points, axis=0))
+check(abs(bilateral.Radius - 0.025 * largest_extent) < 1e-6,
+      f"the default radius is 2.5% of the largest extent: {bilateral.Radius:.6g}")
+bilateral.Radius = 0.05
+bilateral.NumberOfIterations = 2
+bilateral.OutputDisplacementLength = 1
+bilateral.UpdatePipeline()
+bilateral.UpdatePropertyInformation()
+check(bilateral.RadiusUsed == 0.05 and bilateral.NormalRadiusUsed == 0.05,
+      f"information properties: radius used {bilateral.RadiusUsed}, "
+      f"normal radius used {bilateral.NormalRadiusUsed}")
+
+result = dsa.WrapDataObject(servermanager.Fetch(bilateral))
+filtered = np.asarray(result.Points)
+check(filtered.shape == points.shape, f"{filtered.shape[0]} points out of {PLANE_POINTS}")
+check(np.array_equal(np.asarray(result.PointData["RGB"]), colours), "colours pass through")
+check(np.array_equal(np.asarray(result.PointData["Intensity"]), intensity),
+      "intensities pass through")
+inner = interior(points)
+before = np.sqrt(np.mean(points[inner, 2] ** 2))
+after = np.sqrt(np.mean(filtered[inner, 2] ** 2))
+check(after < before / 5, f"rms height {before:.5f} -> {after:.5f}")
+# Interior points move onto the plane: by about their noise, |z|, on average.
+moved = np.asarray(result.PointData["DisplacementLength"])[inner]
+expected = np.mean(np.abs(points[inner, 2]))
+check(0.8 < np.mean(moved) / expected < 1.05,
+      f"mean displacement {np.mean(moved):.5f}, mean |noise| {expected:.5f}")
+check(np.max(moved) < 2 * 0.05, f"no point moved by more than N r: {np.max(moved):.4f}")
+
+# 0 chooses the paper's rule: sqrt(20 / points) times the largest extent.
+bilateral.Radius = 0
+bilateral.UpdatePipeline()
+bilateral.UpdatePropertyInformation()
+automatic = np.sqrt(20.0 / PLANE_POINTS) * largest_extent
+check(abs(bilateral.RadiusUsed - automatic) < 1e-12,
+      f"automatic radius {bilateral.RadiusUsed:.6g}, expected {automatic:.6g}")
+finish()
