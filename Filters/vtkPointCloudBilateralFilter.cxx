@@ -6,6 +6,7 @@
 #include "vtkCellArray.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
@@ -85,6 +86,47 @@ vtkSmartPointer<vtkCellArray> OneVertexPerPoint(vtkIdType numberOfPoints)
 
 vtkPointCloudBilateralFilter::vtkPointCloudBilateralFilter() = default;
 
+pcbilateral::BilateralParameters vtkPointCloudBilateralFilter::MakeParameters() const
+{
+  pcbilateral::BilateralParameters parameters;
+  parameters.Radius = this->Radius;
+  parameters.NormalRadius = this->NormalRadius;
+  parameters.NumberOfIterations = this->NumberOfIterations;
+  parameters.RemoveIsolatedPoints = this->RemoveIsolatedPoints;
+  parameters.NumberOfThreads = this->NumberOfThreads;
+  parameters.ComputeNormals = this->GenerateEstimatedNormals;
+  return parameters;
+}
+
+int vtkPointCloudBilateralFilter::RequestInformation(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
+{
+  // ParaView reads the "used" values when the pipeline information is updated, before the data
+  // is: resolve them here already, from the input as it is now. RequestData resolves them again
+  // the same way.
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  if (!input || input->GetNumberOfPoints() == 0 || !(this->Radius >= 0.0) ||
+      !(this->NormalRadius >= 0.0))
+  {
+    return 1;
+  }
+  pcbilateral::CloudExtent extent;
+  if (this->Radius == 0.0 || this->NormalRadius == 0.0)
+  {
+    std::vector<double> positions;
+    ToDoubles(input->GetPoints()->GetData(), positions);
+    pcbilateral::PointCloudView cloud;
+    cloud.NumberOfPoints = static_cast<std::size_t>(input->GetNumberOfPoints());
+    cloud.Positions = positions.data();
+    extent = pcbilateral::MeasureCloud(cloud);
+  }
+  const pcbilateral::RadiiUsed radii = pcbilateral::ResolveRadii(this->MakeParameters(), extent);
+  this->RadiusUsed = radii.Radius;
+  this->NormalRadiusUsed = radii.NormalRadius;
+  return 1;
+}
+
 vtkPointCloudBilateralFilter::~vtkPointCloudBilateralFilter()
 {
   this->SetOrientationArrayName(nullptr);
@@ -142,13 +184,7 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     }
   }
 
-  pcbilateral::BilateralParameters parameters;
-  parameters.Radius = this->Radius;
-  parameters.NormalRadius = this->NormalRadius;
-  parameters.NumberOfIterations = this->NumberOfIterations;
-  parameters.RemoveIsolatedPoints = this->RemoveIsolatedPoints;
-  parameters.NumberOfThreads = this->NumberOfThreads;
-  parameters.ComputeNormals = this->GenerateEstimatedNormals;
+  const pcbilateral::BilateralParameters parameters = this->MakeParameters();
   pcbilateral::PointCloudView cloud;
   cloud.NumberOfPoints = static_cast<std::size_t>(numberOfPoints);
   cloud.Positions = positions.data();
@@ -208,6 +244,16 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   }
   output->SetPoints(points);
   output->SetVerts(OneVertexPerPoint(outputCount));
+  // The radii used travel with the data (ParaView's Information panel shows them).
+  output->GetFieldData()->PassData(input->GetFieldData());
+  for (const auto& used : { std::make_pair("BilateralRadius", this->RadiusUsed),
+         std::make_pair("BilateralNormalRadius", this->NormalRadiusUsed) })
+  {
+    vtkNew<vtkDoubleArray> value;
+    value->SetName(used.first);
+    value->InsertNextValue(used.second);
+    output->GetFieldData()->AddArray(value);
+  }
 
   vtkPointData* outPD = output->GetPointData();
   if (outputCount == numberOfPoints)

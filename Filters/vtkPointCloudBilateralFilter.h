@@ -36,7 +36,9 @@
  *
  * The output is a point cloud: the input's points in the same order (less removed ones),
  * with the same point type, every point-data array passed through, and one vertex cell per
- * point. The input's lines and polygons are not carried over. Optional arrays: the estimated
+ * point. The input's field data passes through, with two more arrays: "BilateralRadius" and
+ * "BilateralNormalRadius", the radii used. The input's lines and polygons are not carried
+ * over. Optional arrays: the estimated
  * normals ("EstimatedNormals", see GenerateEstimatedNormals) and the distance each point
  * moved ("DisplacementLength", see GenerateDisplacementLength).
  *
@@ -58,6 +60,11 @@
 
 #include "vtkFiltersPointCloudBilateralModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
+
+namespace pcbilateral
+{
+struct BilateralParameters;
+}
 
 class VTKFILTERSPOINTCLOUDBILATERAL_EXPORT vtkPointCloudBilateralFilter
   : public vtkPolyDataAlgorithm
@@ -162,6 +169,7 @@ protected:
   vtkPointCloudBilateralFilter();
   ~vtkPointCloudBilateralFilter() override;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   double Radius = 0.0;
@@ -181,6 +189,8 @@ protected:
   vtkIdType NumberOfNonFinitePoints = 0;
 
 private:
+  pcbilateral::BilateralParameters MakeParameters() const;
+
   vtkPointCloudBilateralFilter(const vtkPointCloudBilateralFilter&) = delete;
   void operator=(const vtkPointCloudBilateralFilter&) = delete;
 };

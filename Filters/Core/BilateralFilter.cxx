@@ -50,6 +50,43 @@ double AutomaticRadius(std::size_t numberOfPoints, double largestExtent)
   return std::sqrt(20.0 / static_cast<double>(numberOfPoints)) * largestExtent;
 }
 
+double CloudExtent::LargestExtent() const
+{
+  return std::max({ this->Max[0] - this->Min[0], this->Max[1] - this->Min[1],
+    this->Max[2] - this->Min[2] });
+}
+
+CloudExtent MeasureCloud(const PointCloudView& cloud)
+{
+  CloudExtent extent;
+  for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
+  {
+    const double* p = cloud.Positions + 3 * i;
+    if (!IsFinitePoint(p))
+    {
+      continue;
+    }
+    const bool first = extent.NumberOfFinitePoints == 0;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      extent.Min[axis] = first ? p[axis] : std::min(extent.Min[axis], p[axis]);
+      extent.Max[axis] = first ? p[axis] : std::max(extent.Max[axis], p[axis]);
+    }
+    ++extent.NumberOfFinitePoints;
+  }
+  return extent;
+}
+
+RadiiUsed ResolveRadii(const BilateralParameters& parameters, const CloudExtent& extent)
+{
+  RadiiUsed radii;
+  radii.Radius = parameters.Radius > 0.0
+    ? parameters.Radius
+    : AutomaticRadius(extent.NumberOfFinitePoints, extent.LargestExtent());
+  radii.NormalRadius = parameters.NormalRadius > 0.0 ? parameters.NormalRadius : radii.Radius;
+  return radii;
+}
+
 BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   const BilateralParameters& parameters,
   const BilateralObserver& observer)
@@ -96,39 +133,19 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
     result.Normals.assign(3 * n, 0.0);
   }
 
-  // Bounds of the finite points; the others are passed through and never become neighbours.
-  double boundsMin[3] = { 0.0, 0.0, 0.0 };
-  double boundsMax[3] = { 0.0, 0.0, 0.0 };
-  std::size_t finiteCount = 0;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const double* p = cloud.Positions + 3 * i;
-    if (!IsFinitePoint(p))
-    {
-      continue;
-    }
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      boundsMin[axis] = finiteCount == 0 ? p[axis] : std::min(boundsMin[axis], p[axis]);
-      boundsMax[axis] = finiteCount == 0 ? p[axis] : std::max(boundsMax[axis], p[axis]);
-    }
-    ++finiteCount;
-  }
+  // Non-finite points are passed through and never become neighbours.
+  const CloudExtent extent = MeasureCloud(cloud);
+  const std::size_t finiteCount = extent.NumberOfFinitePoints;
   result.NumberOfNonFinitePoints = n - finiteCount;
   if (result.NumberOfNonFinitePoints > 0)
   {
-    result.Warnings.push_back(
-      std::to_string(result.NumberOfNonFinitePoints) +
+    result.Warnings.push_back(std::to_string(result.NumberOfNonFinitePoints) +
       " point(s) have NaN or infinite coordinates: they are passed through unchanged and are "
       "never used as neighbours");
   }
-
-  const double largestExtent = std::max(
-    { boundsMax[0] - boundsMin[0], boundsMax[1] - boundsMin[1], boundsMax[2] - boundsMin[2] });
-  result.RadiusUsed =
-    parameters.Radius > 0.0 ? parameters.Radius : AutomaticRadius(finiteCount, largestExtent);
-  result.NormalRadiusUsed =
-    parameters.NormalRadius > 0.0 ? parameters.NormalRadius : result.RadiusUsed;
+  const RadiiUsed radii = ResolveRadii(parameters, extent);
+  result.RadiusUsed = radii.Radius;
+  result.NormalRadiusUsed = radii.NormalRadius;
   result.Status = BilateralStatus::Completed;
   if (finiteCount == 0 || parameters.NumberOfIterations == 0)
   {
@@ -142,7 +159,7 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   }
 
   const int threads = ResolveThreadCount(parameters.NumberOfThreads);
-  ProcessingOctree octree(boundsMin, boundsMax, result.RadiusUsed);
+  ProcessingOctree octree(extent.Min, extent.Max, result.RadiusUsed);
   result.ProcessingDepth = octree.GetProcessingDepth();
   octree.Clear(n);
   for (std::size_t i = 0; i < n; ++i)

@@ -84,6 +84,25 @@ struct BilateralResult
 /// The automatic radius of the paper: sqrt(20 / numberOfPoints) * largestExtent.
 double AutomaticRadius(std::size_t numberOfPoints, double largestExtent);
 
+/// The finite points of a cloud and their bounding box (NaN and infinite points are left out).
+struct CloudExtent
+{
+  std::size_t NumberOfFinitePoints = 0;
+  double Min[3] = { 0.0, 0.0, 0.0 };
+  double Max[3] = { 0.0, 0.0, 0.0 };
+  double LargestExtent() const;
+};
+CloudExtent MeasureCloud(const PointCloudView& cloud);
+
+/// The radius and normal radius a run uses on a cloud of this extent, the automatic choices
+/// resolved (both 0 when the cloud has no extent and the radius is automatic).
+struct RadiiUsed
+{
+  double Radius = 0.0;
+  double NormalRadius = 0.0;
+};
+RadiiUsed ResolveRadii(const BilateralParameters& parameters, const CloudExtent& extent);
+
 /// Runs NumberOfIterations iterations of the bilateral filter on the cloud.
 BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   const BilateralParameters& parameters,

@@ -5,6 +5,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkIntArray.h"
@@ -340,7 +341,14 @@ void TestPassThrough()
     CHECK(wrong == 0, "%s: %zu values differ from the input's", what, wrong);
   };
 
+  vtkNew<vtkIntArray> scanId;
+  scanId->SetName("ScanId");
+  scanId->InsertNextValue(42);
+  cloud->GetFieldData()->AddArray(scanId);
+
   auto output = Filter(cloud, 0.08, 0.08, 1);
+  vtkDataArray* scanIdOut = output->GetFieldData()->GetArray("ScanId");
+  CHECK(scanIdOut && scanIdOut->GetComponent(0, 0) == 42, "the input's field data was lost");
   CHECK(output->GetNumberOfPoints() == n,
     "%lld points out of %lld",
     (long long)output->GetNumberOfPoints(),
@@ -471,6 +479,13 @@ void TestParametersAndNormals()
   CHECK(filter->GetNormalRadiusUsed() == filter->GetRadiusUsed(),
     "normal radius %g",
     filter->GetNormalRadiusUsed());
+  vtkFieldData* fd = filter->GetOutput()->GetFieldData();
+  vtkDataArray* radiusRecord = fd->GetArray("BilateralRadius");
+  vtkDataArray* normalRadiusRecord = fd->GetArray("BilateralNormalRadius");
+  CHECK(radiusRecord && radiusRecord->GetComponent(0, 0) == filter->GetRadiusUsed() &&
+          normalRadiusRecord &&
+          normalRadiusRecord->GetComponent(0, 0) == filter->GetNormalRadiusUsed(),
+    "the output's field data does not record the radii used");
   vtkPointData* pd = filter->GetOutput()->GetPointData();
   vtkDataArray* normals = pd->GetArray("EstimatedNormals");
   vtkDataArray* lengths = pd->GetArray("DisplacementLength");
