@@ -57,4 +57,33 @@ bilateral.UpdatePropertyInformation()
 automatic = np.sqrt(20.0 / PLANE_POINTS) * largest_extent
 check(abs(bilateral.RadiusUsed - automatic) < 1e-12,
       f"automatic radius {bilateral.RadiusUsed:.6g}, expected {automatic:.6g}")
+
+# The authors' text format opens through the plugin's reader, by extension; columns become arrays.
+text_path = os.path.join(scratch, "small.xyz")
+with open(text_path, "w") as text:
+    text.write("x y z nx ny nz intensity\n")
+    for i in range(200):
+        text.write(f"{i % 20 * 0.05} {i // 20 * 0.05} 0 0 0 1 {i}\n")
+# ParaView's PLOT3D reader claims .xyz too: the GUI asks which reader to use, so the plugin's
+# must be among the possible ones.
+factory = servermanager.vtkSMProxyManager.GetProxyManager().GetReaderFactory()
+possible = factory.GetPossibleReaders(text_path, servermanager.ActiveConnection.Session)
+names = [possible.GetString(i) for i in range(possible.GetNumberOfStrings())]
+check("PointCloudTextReader" in names,
+      f".xyz files can be opened with the Point Cloud Text Reader ({len(names) // 3} offered)")
+text_reader = simple.PointCloudTextReader(FileName=text_path, HasNormals=1)
+text_reader.UpdatePipeline()
+text_cloud = servermanager.Fetch(text_reader)
+check(text_cloud.GetNumberOfPoints() == 200 and text_cloud.GetPointData().GetNormals() is not None
+      and text_cloud.GetPointData().GetArray("intensity") is not None,
+      "the reader gives 200 points, point normals and the named extra column")
+
+# A multiblock of clouds is filtered block by block.
+group = simple.GroupDatasets(Input=[reader, text_reader])
+blocks = simple.PointCloudBilateralFilter(Input=group, Radius=0.12)
+blocks.UpdatePipeline()
+output = servermanager.Fetch(blocks)
+sizes = [output.GetBlock(i).GetNumberOfPoints() for i in range(output.GetNumberOfBlocks())]
+check(output.IsA("vtkMultiBlockDataSet") and sizes == [PLANE_POINTS, 200],
+      f"a multiblock input gives a multiblock output, block by block: {sizes}")
 finish()
