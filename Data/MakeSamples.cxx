@@ -1,119 +1,85 @@
-// Makes the sample clouds in Data/ with a fixed seed, so anyone can remake them bit for bit:
+// Makes the sample clouds in Data/ with fixed seeds, so anyone can remake them bit for bit:
 //   pcbilateral_make_samples OUTPUT_FOLDER [--clean]
-// For each shape it writes SHAPE_noisy.ply (float coordinates) and, with --clean, the
-// noise-free points SHAPE_clean.ply in the same order, to measure the error of a filter.
-// Noise is Gaussian, its standard deviation a fraction of the bounding-box diagonal, as in
-// the paper's experiments.
+// For each sample of SampleShapes.h it writes NAME.ply (float coordinates), or NAME.vtp for
+// the sample with colours and an intensity; with --clean also the noise-free points,
+// NAME_clean.ply, in the same order. Noise is Gaussian, its standard deviation a fraction of
+// the shape's bounding-box diagonal, as in the paper's experiments.
+#include "SampleShapes.h"
+
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
 #include "vtkPLYWriter.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkXMLPolyDataWriter.h"
 
-#include <cmath>
 #include <cstdio>
-#include <functional>
-#include <random>
 #include <string>
 #include <vector>
 
 namespace
 {
-struct Sample
-{
-  std::vector<double> Clean; // xyz
-  double Diagonal = 1.0;     // of the clean shape's bounding box
-};
+using namespace pcbilateral_samples;
 
-class Random
+vtkNew<vtkPolyData> MakeCloud(const std::vector<Vec3>& points)
 {
-public:
-  explicit Random(std::uint64_t seed)
-    : Engine(seed)
+  vtkNew<vtkPoints> coordinates;
+  coordinates->SetDataTypeToFloat();
+  coordinates->SetNumberOfPoints(static_cast<vtkIdType>(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i)
   {
-  }
-  double Uniform(double low = 0.0, double high = 1.0)
-  {
-    return low + (high - low) * std::uniform_real_distribution<double>(0.0, 1.0)(this->Engine);
-  }
-  /// Box-Muller, so the numbers do not depend on the standard library's normal distribution.
-  double Gaussian()
-  {
-    const double u = std::max(this->Uniform(), 1e-300);
-    return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * M_PI * this->Uniform());
-  }
-
-private:
-  std::mt19937_64 Engine;
-};
-
-/// The surface of the cube [-0.5, 0.5]^3, uniformly.
-Sample Cube(std::size_t count, Random& random)
-{
-  Sample sample;
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    const int face = static_cast<int>(random.Uniform(0, 6));
-    double p[3] = {
-      random.Uniform(-0.5, 0.5), random.Uniform(-0.5, 0.5), random.Uniform(-0.5, 0.5)
-    };
-    p[face / 2] = face % 2 ? 0.5 : -0.5;
-    sample.Clean.insert(sample.Clean.end(), p, p + 3);
-  }
-  sample.Diagonal = std::sqrt(3.0);
-  return sample;
-}
-
-/// The paper's sharp edge (Figure 6): two unit squares meeting at a 90-degree ridge along y.
-Sample SharpEdge(std::size_t count, Random& random)
-{
-  Sample sample;
-  const double half = std::sqrt(0.5);
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    const double along = random.Uniform(-0.5, 0.5);
-    const double across = random.Uniform(-1.0, 1.0); // signed distance from the ridge
-    const double p[3] = { across * half, along, -std::abs(across) * half };
-    sample.Clean.insert(sample.Clean.end(), p, p + 3);
-  }
-  sample.Diagonal = std::sqrt(2 * half * 2 * half + 1 + half * half);
-  return sample;
-}
-
-/// The sphere of radius 0.5, uniformly.
-Sample Sphere(std::size_t count, Random& random)
-{
-  Sample sample;
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    const double z = random.Uniform(-1, 1);
-    const double angle = random.Uniform(0, 2 * M_PI);
-    const double ring = std::sqrt(1 - z * z);
-    const double p[3] = { 0.5 * ring * std::cos(angle), 0.5 * ring * std::sin(angle), 0.5 * z };
-    sample.Clean.insert(sample.Clean.end(), p, p + 3);
-  }
-  sample.Diagonal = std::sqrt(3.0);
-  return sample;
-}
-
-bool Write(const std::string& path, const std::vector<double>& xyz)
-{
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToFloat();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(xyz.size() / 3));
-  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
-  {
-    points->SetPoint(i, &xyz[3 * i]);
+    coordinates->SetPoint(static_cast<vtkIdType>(i), points[i].data());
   }
   vtkNew<vtkPolyData> cloud;
-  cloud->SetPoints(points);
-  vtkNew<vtkPLYWriter> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetFileTypeToBinary();
-  writer->SetInputData(cloud);
-  const bool ok = writer->Write() == 1;
-  std::printf("%s: %zu points%s\n", path.c_str(), xyz.size() / 3, ok ? "" : " (FAILED)");
-  return ok;
+  cloud->SetPoints(coordinates);
+  return cloud;
+}
+
+/// Colours by height, as a scanner's camera might see a landscape, and an intensity that
+/// depends on the slope and on the noise of the sensor.
+void AddAttributes(vtkPolyData* cloud, const std::vector<Vec3>& clean, Random& random)
+{
+  vtkNew<vtkUnsignedCharArray> colours;
+  colours->SetName("RGB");
+  colours->SetNumberOfComponents(3);
+  vtkNew<vtkFloatArray> intensity;
+  intensity->SetName("Intensity");
+  for (const Vec3& p : clean)
+  {
+    const double t = std::clamp((p[2] + 0.1) / 0.25, 0.0, 1.0);
+    const unsigned char rgb[3] = { static_cast<unsigned char>(60 + 150 * t),
+      static_cast<unsigned char>(140 - 40 * t), static_cast<unsigned char>(60 + 60 * t) };
+    colours->InsertNextTypedTuple(rgb);
+    const double dx = Terrain::Height(p[0] + 1e-4, p[1]) - Terrain::Height(p[0], p[1]);
+    intensity->InsertNextValue(static_cast<float>(0.8 - 500 * std::abs(dx) + 0.05 * random.Gaussian()));
+  }
+  cloud->GetPointData()->SetScalars(colours);
+  cloud->GetPointData()->AddArray(intensity);
+}
+
+bool Write(const std::string& path, vtkPolyData* cloud)
+{
+  int written = 0;
+  if (path.size() > 4 && path.substr(path.size() - 4) == ".vtp")
+  {
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetFileName(path.c_str());
+    writer->SetInputData(cloud);
+    written = writer->Write();
+  }
+  else
+  {
+    vtkNew<vtkPLYWriter> writer;
+    writer->SetFileName(path.c_str());
+    writer->SetFileTypeToBinary();
+    writer->SetInputData(cloud);
+    written = writer->Write();
+  }
+  std::printf("%s: %lld points%s\n", path.c_str(), static_cast<long long>(cloud->GetNumberOfPoints()),
+    written == 1 ? "" : " (FAILED)");
+  return written == 1;
 }
 } // namespace
 
@@ -126,33 +92,35 @@ int main(int argc, char* argv[])
   }
   const std::string folder = argv[1];
   const bool clean = argc > 2 && std::string(argv[2]) == "--clean";
-  struct Shape
-  {
-    const char* Name;
-    std::function<Sample(Random&)> Make;
-    double NoiseOfDiagonal;
-  };
-  const Shape shapes[] = {
-    { "cube", [](Random& r) { return Cube(60000, r); }, 0.005 },
-    { "sharp_edge", [](Random& r) { return SharpEdge(30000, r); }, 0.005 },
-    { "sphere", [](Random& r) { return Sphere(40000, r); }, 0.005 },
-  };
   bool ok = true;
   std::uint64_t seed = 20171029; // the paper's publication date
-  for (const Shape& shape : shapes)
+  for (const SampleSpec& spec : Samples())
   {
     Random random(seed++);
-    const Sample sample = shape.Make(random);
-    std::vector<double> noisy = sample.Clean;
-    const double sigma = shape.NoiseOfDiagonal * sample.Diagonal;
-    for (double& value : noisy)
+    const auto shape = spec.Make();
+    std::vector<Vec3> points(spec.Points);
+    for (Vec3& p : points)
     {
-      value += sigma * random.Gaussian();
+      p = shape->Sample(random);
     }
-    ok = Write(folder + "/" + shape.Name + "_noisy.ply", noisy) && ok;
+    std::vector<Vec3> noisy = points;
+    const double sigma = spec.Noise * shape->Diagonal();
+    for (Vec3& p : noisy)
+    {
+      for (double& c : p)
+      {
+        c += sigma * random.Gaussian();
+      }
+    }
+    auto cloud = MakeCloud(noisy);
+    if (spec.Attributes)
+    {
+      AddAttributes(cloud, points, random);
+    }
+    ok = Write(folder + "/" + spec.Name + (spec.Attributes ? ".vtp" : ".ply"), cloud) && ok;
     if (clean)
     {
-      ok = Write(folder + "/" + shape.Name + "_clean.ply", sample.Clean) && ok;
+      ok = Write(folder + "/" + spec.Name + "_clean.ply", MakeCloud(points)) && ok;
     }
   }
   return ok ? 0 : 1;

@@ -1,7 +1,7 @@
 """A VTK pipeline in Python: reader, bilateral filter, writer.
 
     PYTHONPATH=<build>/lib/python3/dist-packages \
-        /usr/bin/python3 Examples/Python/vtk_pipeline.py Data/cube_noisy.ply cube.vtp --radius 0.06
+        /usr/bin/python3 Examples/Python/vtk_pipeline.py Data/cube_noise0.5.ply cube.vtp --radius 0.06
 
 Reads .ply, .vtp or the authors' text format (.xyz, .txt), filters, and writes a .vtp file
 with every point array of the input.

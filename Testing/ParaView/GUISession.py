@@ -5,8 +5,8 @@ import os
 
 from paraview import simple
 
-data = os.path.join(os.environ["PCB_SOURCE_DIR"], "Data", "sharp_edge_noisy.ply")
-reader = simple.PLYReader(registrationName="sharp_edge_noisy.ply", FileNames=[data])
+data = os.path.join(os.environ["PCB_SOURCE_DIR"], "Data", "sharp_edge_noise0.5.ply")
+reader = simple.PLYReader(registrationName="sharp_edge_noise0.5.ply", FileNames=[data])
 reader.UpdatePipeline()
 
 
