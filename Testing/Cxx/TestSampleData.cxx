@@ -65,8 +65,7 @@ int main(int argc, char* argv[])
     std::fprintf(stderr, "unknown sample %s\n", name.c_str());
     return EXIT_FAILURE;
   }
-  const std::string path =
-    std::string(argv[1]) + "/" + name + (spec->Attributes ? ".vtp" : ".ply");
+  const std::string path = std::string(argv[1]) + "/" + name + (spec->Attributes ? ".vtp" : ".ply");
   vtkSmartPointer<vtkAlgorithm> reader;
   if (spec->Attributes)
   {
@@ -91,7 +90,10 @@ int main(int argc, char* argv[])
   const double before = RootMeanSquareDistance(noisy, *shape);
   const double sigma = spec->Noise * shape->Diagonal();
   std::printf("%s: %zu points, noise sigma %.4g, rms distance to the surface %.4g\n",
-    name.c_str(), spec->Points, sigma, before);
+    name.c_str(),
+    spec->Points,
+    sigma,
+    before);
 
   if (std::string(argv[3]) == "--sweep")
   {
@@ -123,6 +125,11 @@ int main(int argc, char* argv[])
   const double after = FilteredError(noisy, *shape, r, rn, iterations);
   std::printf("filtered with r = %g, rn = %g, N = %d: rms distance %.4g, %.2f times smaller "
               "(at least %.2f expected)\n",
-    r, rn, iterations, after, before / after, minimumFactor);
+    r,
+    rn,
+    iterations,
+    after,
+    before / after,
+    minimumFactor);
   return before / after >= minimumFactor ? EXIT_SUCCESS : EXIT_FAILURE;
 }
