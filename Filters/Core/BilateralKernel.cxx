@@ -48,38 +48,53 @@ void SmallestEigenvector(const double covariance[6], double eigenvector[3])
   eigenvector[2] = smallest[2];
 }
 
-FilteredPoint FilterPoint(const double p[3],
-  CandidateNeighbours& candidates,
-  const KernelConstants& constants)
+FilteredPoint FilterPoint(
+  const double p[3], CandidateNeighbours& candidates, const KernelConstants& constants)
 {
   FilteredPoint result;
   const std::size_t count = candidates.Size();
+  candidates.DistanceSquared.resize(count);
+  candidates.NeighbourIndex.resize(count);
   candidates.DistanceWeight.resize(count);
   const double* x = candidates.X.data();
   const double* y = candidates.Y.data();
   const double* z = candidates.Z.data();
+  double* distanceSquared = candidates.DistanceSquared.data();
+  std::uint32_t* neighbour = candidates.NeighbourIndex.data();
   double* distanceWeight = candidates.DistanceWeight.data();
 
-  // Pass 1: neighbour count, distance weights, and the weighted first and second moments of
-  // the offsets q - p, for the regression plane.
+  // The neighbours, |q - p| < r, in candidate order, selected without a branch: most candidates
+  // are not neighbours, and a branch per candidate is mispredicted often. The distances come
+  // first, in a loop the compiler vectorises.
+  const double px = p[0], py = p[1], pz = p[2];
+  for (std::size_t j = 0; j < count; ++j)
+  {
+    const double dx = x[j] - px;
+    const double dy = y[j] - py;
+    const double dz = z[j] - pz;
+    distanceSquared[j] = dx * dx + dy * dy + dz * dz;
+  }
   std::uint32_t neighbours = 0;
+  for (std::size_t j = 0; j < count; ++j)
+  {
+    neighbour[neighbours] = static_cast<std::uint32_t>(j);
+    neighbours += (distanceSquared[j] < constants.RadiusSquared) ? 1 : 0;
+  }
+  result.NeighbourCount = neighbours;
+
+  // Pass 1: distance weights, and the weighted first and second moments of the offsets q - p,
+  // for the regression plane.
   double weightSum = 0.0;
   double first[3] = { 0.0, 0.0, 0.0 };
   double second[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
-  for (std::size_t j = 0; j < count; ++j)
+  for (std::uint32_t k = 0; k < neighbours; ++k)
   {
+    const std::uint32_t j = neighbour[k];
     const double dx = x[j] - p[0];
     const double dy = y[j] - p[1];
     const double dz = z[j] - p[2];
-    const double distanceSquared = dx * dx + dy * dy + dz * dz;
-    if (!(distanceSquared < constants.RadiusSquared))
-    {
-      distanceWeight[j] = 0.0;
-      continue;
-    }
-    const double w = std::exp(-distanceSquared * constants.DistanceScale);
-    distanceWeight[j] = w;
-    ++neighbours;
+    const double w = std::exp(-distanceSquared[j] * constants.DistanceScale);
+    distanceWeight[k] = w;
     weightSum += w;
     first[0] += w * dx;
     first[1] += w * dy;
@@ -91,7 +106,6 @@ FilteredPoint FilterPoint(const double p[3],
     second[4] += w * dy * dz;
     second[5] += w * dz * dz;
   }
-  result.NeighbourCount = neighbours;
   if (neighbours < MinimumNeighbourCount || !(weightSum > 0.0))
   {
     return result;
@@ -114,14 +128,11 @@ FilteredPoint FilterPoint(const double p[3],
   // Pass 2: the bilateral average of the heights h = <n, q - p> over the same neighbours.
   double bilateralWeightSum = 0.0;
   double weightedHeightSum = 0.0;
-  for (std::size_t j = 0; j < count; ++j)
+  for (std::uint32_t k = 0; k < neighbours; ++k)
   {
-    if (distanceWeight[j] == 0.0)
-    {
-      continue;
-    }
+    const std::uint32_t j = neighbour[k];
     const double h = n[0] * (x[j] - p[0]) + n[1] * (y[j] - p[1]) + n[2] * (z[j] - p[2]);
-    const double w = distanceWeight[j] * std::exp(-h * h * constants.NormalScale);
+    const double w = distanceWeight[k] * std::exp(-h * h * constants.NormalScale);
     bilateralWeightSum += w;
     weightedHeightSum += w * h;
   }

@@ -31,8 +31,13 @@ struct KernelConstants
 struct CandidateNeighbours
 {
   std::vector<double> X, Y, Z;
-  /// Scratch for the distance weights, one per candidate, shared by the kernel's two passes.
+  ///@{
+  /// Scratch of the kernel: squared distances (one per candidate), then the neighbours'
+  /// candidate indices and distance weights (one per neighbour), shared by its two passes.
+  std::vector<double> DistanceSquared;
+  std::vector<std::uint32_t> NeighbourIndex;
   std::vector<double> DistanceWeight;
+  ///@}
 
   std::size_t Size() const { return this->X.size(); }
   void Clear();
