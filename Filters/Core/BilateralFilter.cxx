@@ -52,8 +52,8 @@ double AutomaticRadius(std::size_t numberOfPoints, double largestExtent)
 
 double CloudExtent::LargestExtent() const
 {
-  return std::max({ this->Max[0] - this->Min[0], this->Max[1] - this->Min[1],
-    this->Max[2] - this->Min[2] });
+  return std::max(
+    { this->Max[0] - this->Min[0], this->Max[1] - this->Min[1], this->Max[2] - this->Min[2] });
 }
 
 CloudExtent MeasureCloud(const PointCloudView& cloud)
@@ -81,8 +81,8 @@ RadiiUsed ResolveRadii(const BilateralParameters& parameters, const CloudExtent&
 {
   RadiiUsed radii;
   radii.Radius = parameters.Radius > 0.0
-    ? parameters.Radius
-    : AutomaticRadius(extent.NumberOfFinitePoints, extent.LargestExtent());
+                   ? parameters.Radius
+                   : AutomaticRadius(extent.NumberOfFinitePoints, extent.LargestExtent());
   radii.NormalRadius = parameters.NormalRadius > 0.0 ? parameters.NormalRadius : radii.Radius;
   return radii;
 }
@@ -139,7 +139,8 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   result.NumberOfNonFinitePoints = n - finiteCount;
   if (result.NumberOfNonFinitePoints > 0)
   {
-    result.Warnings.push_back(std::to_string(result.NumberOfNonFinitePoints) +
+    result.Warnings.push_back(
+      std::to_string(result.NumberOfNonFinitePoints) +
       " point(s) have NaN or infinite coordinates: they are passed through unchanged and are "
       "never used as neighbours");
   }
@@ -208,6 +209,7 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
       completed = false;
       break;
     }
+    result.NumberOfNeighbourEvaluations += scheduler.GetNumberOfNeighbourEvaluations();
     // Removed and non-finite points are not written by the iteration: carry them over.
     state.Current.swap(state.Next);
     state.Next = state.Current;

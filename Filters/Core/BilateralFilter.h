@@ -79,6 +79,8 @@ struct BilateralResult
   std::size_t NumberOfRemovedPoints = 0;
   /// Points with a NaN or infinite coordinate: passed through, never neighbours.
   std::size_t NumberOfNonFinitePoints = 0;
+  /// Neighbours visited, summed over points and iterations (the kernel's unit of work).
+  std::uint64_t NumberOfNeighbourEvaluations = 0;
 };
 
 /// The automatic radius of the paper: sqrt(20 / numberOfPoints) * largestExtent.

@@ -48,8 +48,9 @@ void SmallestEigenvector(const double covariance[6], double eigenvector[3])
   eigenvector[2] = smallest[2];
 }
 
-FilteredPoint FilterPoint(
-  const double p[3], CandidateNeighbours& candidates, const KernelConstants& constants)
+FilteredPoint FilterPoint(const double p[3],
+  CandidateNeighbours& candidates,
+  const KernelConstants& constants)
 {
   FilteredPoint result;
   const std::size_t count = candidates.Size();

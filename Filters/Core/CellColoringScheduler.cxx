@@ -131,6 +131,7 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
       const std::uint32_t id = ids[i];
       const double p[3] = { x[i], y[i], z[i] };
       const FilteredPoint filtered = FilterPoint(p, scratch.Candidates, this->Constants);
+      scratch.NeighbourEvaluations += filtered.NeighbourCount;
       double* next = state.Next.data() + 3 * static_cast<std::size_t>(id);
       for (int axis = 0; axis < 3; ++axis)
       {
@@ -237,9 +238,12 @@ bool CellColoringScheduler::RunIteration(PointState& state)
       scratch.Deferred.clear();
     }
   }
+  this->NeighbourEvaluations = 0;
   for (auto& scratch : this->Scratch)
   {
     scratch.PointsSinceReport = 0;
+    this->NeighbourEvaluations += scratch.NeighbourEvaluations;
+    scratch.NeighbourEvaluations = 0;
   }
   return true;
 }

@@ -56,6 +56,8 @@ public:
 
   /// Number of points filtered in the last iteration (those placed in the octree).
   std::size_t GetNumberOfPointsProcessed() const { return this->PointsProcessed; }
+  /// Neighbours visited in the last iteration, summed over its points.
+  std::uint64_t GetNumberOfNeighbourEvaluations() const { return this->NeighbourEvaluations; }
 
 private:
   struct ThreadScratch
@@ -63,6 +65,7 @@ private:
     CandidateNeighbours Candidates;
     std::vector<std::uint32_t> Deferred;
     std::size_t PointsSinceReport = 0;
+    std::uint64_t NeighbourEvaluations = 0;
   };
 
   void ProcessCell(std::size_t cell, PointState& state, ThreadScratch& scratch, bool isMaster);
@@ -81,6 +84,7 @@ private:
   std::atomic<bool> Aborted{ false };
   std::atomic<std::size_t> PointsDone{ 0 };
   std::size_t PointsProcessed = 0;
+  std::uint64_t NeighbourEvaluations = 0;
 };
 
 } // namespace pcbilateral

@@ -1,0 +1,282 @@
+// pcb_benchmark: times the bilateral filter on generated workloads and prints a table.
+// Built with the project, not run by the tests (shared machines are too noisy for timed tests).
+//
+//   pcb_benchmark [--runs N] [--skip-10m]
+//       the filter alone, through the core, with 1 and 2 threads, on:
+//       - cube600k: the unit cube's surface, 600,000 points, noise 0.5% of the diagonal,
+//         r = 0.03, rn = 0.05, N = 2 (the paper's Table 1);
+//       - sphere1M: a sphere, 1,000,000 points, noise 0.5%, the automatic radius, N = 1;
+//       - sphere10M: the same with 10,000,000 points.
+//       Each workload runs in a child process, so its peak resident memory is its own.
+//   pcb_benchmark --write-cube600k FILE.xyz
+//       writes the cube600k workload as an ASCII file, for other programs.
+//   pcb_benchmark --end-to-end [--runs N] PROGRAM ARGUMENTS...
+//       times a whole program run (reading, filtering and writing), e.g. pcbilateral or the
+//       authors' program on the same file, and reports its peak resident memory.
+#include "BilateralFilter.h"
+#include "PointCloudText.h"
+#include "SampleShapes.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <string>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+namespace
+{
+using namespace pcbilateral_samples;
+
+struct Workload
+{
+  const char* Name;
+  std::size_t Points;
+  bool Cube;
+  double Radius, NormalRadius;
+  int Iterations;
+  int Runs; // 0: as given on the command line
+};
+
+std::vector<double> Generate(const Workload& workload)
+{
+  Random random(20171029);
+  const std::unique_ptr<Shape> shape =
+    workload.Cube ? Cube() : std::unique_ptr<Shape>(new Sphere());
+  const double sigma = 0.005 * shape->Diagonal();
+  std::vector<double> xyz(3 * workload.Points);
+  for (std::size_t i = 0; i < workload.Points; ++i)
+  {
+    const Vec3 p = shape->Sample(random);
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      xyz[3 * i + axis] = p[axis] + sigma * random.Gaussian();
+    }
+  }
+  return xyz;
+}
+
+double Seconds(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double Median(std::vector<double> values)
+{
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+/// What a child process reports back through a pipe.
+struct Measurement
+{
+  double Seconds = 0.0;
+  double NeighbourEvaluations = 0.0;
+  double RadiusUsed = 0.0;
+  int Ok = 0;
+};
+
+/// Runs the workload `runs` times in a child process; returns the median and the child's peak
+/// resident memory in MB.
+Measurement RunInChild(const Workload& workload, int threads, int runs, double& peakMegabytes)
+{
+  int channel[2];
+  if (pipe(channel) != 0)
+  {
+    std::perror("pipe");
+    std::exit(EXIT_FAILURE);
+  }
+  const pid_t child = fork();
+  if (child == 0)
+  {
+    close(channel[0]);
+    const std::vector<double> xyz = Generate(workload);
+    pcbilateral::PointCloudView cloud;
+    cloud.NumberOfPoints = workload.Points;
+    cloud.Positions = xyz.data();
+    pcbilateral::BilateralParameters parameters;
+    parameters.Radius = workload.Radius;
+    parameters.NormalRadius = workload.NormalRadius;
+    parameters.NumberOfIterations = workload.Iterations;
+    parameters.NumberOfThreads = threads;
+    std::vector<double> times;
+    Measurement measurement;
+    for (int run = 0; run < runs; ++run)
+    {
+      const auto start = std::chrono::steady_clock::now();
+      const pcbilateral::BilateralResult result =
+        pcbilateral::RunBilateralFilter(cloud, parameters);
+      times.push_back(Seconds(start));
+      measurement.Ok = result.Status == pcbilateral::BilateralStatus::Completed;
+      measurement.NeighbourEvaluations = static_cast<double>(result.NumberOfNeighbourEvaluations);
+      measurement.RadiusUsed = result.RadiusUsed;
+    }
+    measurement.Seconds = Median(times);
+    const ssize_t written = write(channel[1], &measurement, sizeof(measurement));
+    _exit(written == static_cast<ssize_t>(sizeof(measurement)) ? 0 : 1);
+  }
+  close(channel[1]);
+  Measurement measurement;
+  const ssize_t got = read(channel[0], &measurement, sizeof(measurement));
+  close(channel[0]);
+  int status = 0;
+  struct rusage usage;
+  wait4(child, &status, 0, &usage);
+  peakMegabytes = usage.ru_maxrss / 1024.0;
+  if (got != static_cast<ssize_t>(sizeof(measurement)) || status != 0)
+  {
+    measurement.Ok = 0;
+  }
+  return measurement;
+}
+
+int Benchmark(int runs, bool skipTenMillion)
+{
+  const Workload workloads[] = {
+    { "cube600k", 600000, true, 0.03, 0.05, 2, 0 },
+    { "sphere1M", 1000000, false, 0.0, 0.0, 1, 0 },
+    { "sphere10M", 10000000, false, 0.0, 0.0, 1, 1 },
+  };
+  std::printf("%-10s %9s %3s %9s %7s %11s %12s %15s %8s %8s\n",
+    "workload",
+    "points",
+    "N",
+    "radius",
+    "threads",
+    "seconds",
+    "points/s",
+    "evals/s/core",
+    "speedup",
+    "peak MB");
+  for (const Workload& workload : workloads)
+  {
+    if (skipTenMillion && workload.Points >= 10000000)
+    {
+      continue;
+    }
+    const int workloadRuns = workload.Runs > 0 ? workload.Runs : runs;
+    double oneThread = 0.0;
+    for (int threads : { 1, 2 })
+    {
+      double peak = 0.0;
+      const Measurement m = RunInChild(workload, threads, workloadRuns, peak);
+      if (!m.Ok)
+      {
+        std::printf("%-10s failed\n", workload.Name);
+        return EXIT_FAILURE;
+      }
+      oneThread = threads == 1 ? m.Seconds : oneThread;
+      const double pointsPerSecond = workload.Points * workload.Iterations / m.Seconds;
+      const double evaluationsPerCore = m.NeighbourEvaluations / m.Seconds / threads;
+      std::printf("%-10s %9zu %3d %9.4g %7d %11.3f %12.3g %15.3g %8s %8.0f\n",
+        workload.Name,
+        workload.Points,
+        workload.Iterations,
+        m.RadiusUsed,
+        threads,
+        m.Seconds,
+        pointsPerSecond,
+        evaluationsPerCore,
+        threads == 1 ? "" : std::to_string(oneThread / m.Seconds).substr(0, 4).c_str(),
+        peak);
+      std::fflush(stdout);
+    }
+  }
+  std::printf("(median of %d runs; sphere10M: 1 run; neighbour evaluations per second per "
+              "thread used)\n",
+    runs);
+  return EXIT_SUCCESS;
+}
+
+int WriteCube(const char* path)
+{
+  const Workload cube{ "cube600k", 600000, true, 0.03, 0.05, 2, 0 };
+  pcbilateral::PointCloudTable table;
+  table.NumberOfPoints = cube.Points;
+  table.Positions = Generate(cube);
+  const std::string error = pcbilateral::WritePointCloudText(path, table);
+  if (!error.empty())
+  {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return EXIT_FAILURE;
+  }
+  std::printf("wrote %s (600,000 points); the paper's parameters: -r 0.03 -n 0.05 -N 2\n", path);
+  return EXIT_SUCCESS;
+}
+
+int EndToEnd(int runs, char* command[])
+{
+  std::vector<double> times;
+  double peak = 0.0;
+  for (int run = 0; run < runs; ++run)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    const pid_t child = fork();
+    if (child == 0)
+    {
+      const int null = open("/dev/null", O_WRONLY);
+      dup2(null, STDOUT_FILENO);
+      execvp(command[0], command);
+      std::perror(command[0]);
+      _exit(127);
+    }
+    int status = 0;
+    struct rusage usage;
+    wait4(child, &status, 0, &usage);
+    times.push_back(Seconds(start));
+    peak = std::max(peak, usage.ru_maxrss / 1024.0);
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    {
+      std::fprintf(stderr, "%s failed (status %d)\n", command[0], status);
+      return EXIT_FAILURE;
+    }
+  }
+  std::printf("end to end: %s, median of %d runs: %.3f s (fastest %.3f s), peak %.0f MB\n",
+    command[0],
+    runs,
+    Median(times),
+    *std::min_element(times.begin(), times.end()),
+    peak);
+  return EXIT_SUCCESS;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  int runs = 3;
+  bool skipTenMillion = false;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string argument = argv[i];
+    if (argument == "--runs" && i + 1 < argc)
+    {
+      runs = std::max(1, std::atoi(argv[++i]));
+    }
+    else if (argument == "--skip-10m")
+    {
+      skipTenMillion = true;
+    }
+    else if (argument == "--write-cube600k" && i + 1 < argc)
+    {
+      return WriteCube(argv[i + 1]);
+    }
+    else if (argument == "--end-to-end" && i + 1 < argc)
+    {
+      return EndToEnd(runs, argv + i + 1);
+    }
+    else
+    {
+      std::fprintf(stderr,
+        "usage: %s [--runs N] [--skip-10m] | --write-cube600k FILE.xyz | [--runs N] "
+        "--end-to-end PROGRAM ARGUMENTS...\n",
+        argv[0]);
+      return EXIT_FAILURE;
+    }
+  }
+  return Benchmark(runs, skipTenMillion);
+}
