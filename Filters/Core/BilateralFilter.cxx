@@ -35,6 +35,12 @@ int ResolveThreadCount(int requested)
 #endif
 }
 
+/// The largest extent of a cloud, in radii, whose octree lattice coordinates stay far inside
+/// 64-bit integers.
+constexpr double MaximumExtentInRadii = 1e15;
+/// Positions stay below this magnitude, far from overflow.
+constexpr double MaximumMagnitude = 1e300;
+
 bool IsFinitePoint(const double* p)
 {
   return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
@@ -54,6 +60,16 @@ double CloudExtent::LargestExtent() const
 {
   return std::max(
     { this->Max[0] - this->Min[0], this->Max[1] - this->Min[1], this->Max[2] - this->Min[2] });
+}
+
+double CloudExtent::LargestMagnitude() const
+{
+  double largest = 0.0;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    largest = std::max({ largest, std::abs(this->Min[axis]), std::abs(this->Max[axis]) });
+  }
+  return largest;
 }
 
 CloudExtent MeasureCloud(const PointCloudView& cloud)
@@ -152,10 +168,44 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   {
     return result;
   }
+  const double largestExtent = extent.LargestExtent();
   if (!(result.RadiusUsed > 0.0))
   {
     result.Warnings.push_back("all points coincide, so no radius can be chosen automatically: "
                               "the points are left where they are");
+    return result;
+  }
+
+  // Limits of double precision: every position a run can reach must stay far from overflow,
+  // lattice coordinates (extent over radius) must fit in 64-bit integers with room to spare, and
+  // the Gaussians' scales must be finite.
+  const KernelConstants constants(result.RadiusUsed, result.NormalRadiusUsed);
+  std::ostringstream problem;
+  const double reach =
+    extent.LargestMagnitude() + 4.2 * (parameters.NumberOfIterations + 1.0) * result.RadiusUsed;
+  if (!(reach < MaximumMagnitude))
+  {
+    problem << "coordinates up to " << extent.LargestMagnitude() << " with a radius of "
+            << result.RadiusUsed << " come too close to the limits of double precision (keep "
+            << "coordinates and N x radius below " << MaximumMagnitude << ")";
+  }
+  else if (!std::isfinite(4.2 * result.RadiusUsed) || !std::isfinite(constants.DistanceScale) ||
+           !std::isfinite(constants.NormalScale))
+  {
+    problem << "the radius " << result.RadiusUsed << " or the normal radius "
+            << result.NormalRadiusUsed
+            << " is outside what double precision can compute with (about 1e-150 to 1e300)";
+  }
+  else if (largestExtent / result.RadiusUsed > MaximumExtentInRadii)
+  {
+    problem << "the radius " << result.RadiusUsed << " is too small for a cloud " << largestExtent
+            << " wide (it may be at most " << MaximumExtentInRadii
+            << " times smaller): give a larger radius";
+  }
+  if (!problem.str().empty())
+  {
+    result.Status = BilateralStatus::Failed;
+    result.Error = problem.str();
     return result;
   }
 
@@ -179,7 +229,6 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   state.Removed = std::move(result.Removed);
   state.OrientationNormals = cloud.OrientationNormals;
 
-  const KernelConstants constants(result.RadiusUsed, result.NormalRadiusUsed);
   CellColoringScheduler scheduler(
     octree, constants, result.RadiusUsed, parameters.RemoveIsolatedPoints, threads);
   const int iterations = parameters.NumberOfIterations;

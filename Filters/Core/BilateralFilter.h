@@ -93,6 +93,8 @@ struct CloudExtent
   double Min[3] = { 0.0, 0.0, 0.0 };
   double Max[3] = { 0.0, 0.0, 0.0 };
   double LargestExtent() const;
+  /// The largest absolute value of a coordinate.
+  double LargestMagnitude() const;
 };
 CloudExtent MeasureCloud(const PointCloudView& cloud);
 
