@@ -50,10 +50,12 @@ void AddAttributes(vtkPolyData* cloud, const std::vector<Vec3>& clean, Random& r
   {
     const double t = std::clamp((p[2] + 0.1) / 0.25, 0.0, 1.0);
     const unsigned char rgb[3] = { static_cast<unsigned char>(60 + 150 * t),
-      static_cast<unsigned char>(140 - 40 * t), static_cast<unsigned char>(60 + 60 * t) };
+      static_cast<unsigned char>(140 - 40 * t),
+      static_cast<unsigned char>(60 + 60 * t) };
     colours->InsertNextTypedTuple(rgb);
     const double dx = Terrain::Height(p[0] + 1e-4, p[1]) - Terrain::Height(p[0], p[1]);
-    intensity->InsertNextValue(static_cast<float>(0.8 - 500 * std::abs(dx) + 0.05 * random.Gaussian()));
+    intensity->InsertNextValue(
+      static_cast<float>(0.8 - 500 * std::abs(dx) + 0.05 * random.Gaussian()));
   }
   cloud->GetPointData()->SetScalars(colours);
   cloud->GetPointData()->AddArray(intensity);
@@ -77,7 +79,9 @@ bool Write(const std::string& path, vtkPolyData* cloud)
     writer->SetInputData(cloud);
     written = writer->Write();
   }
-  std::printf("%s: %lld points%s\n", path.c_str(), static_cast<long long>(cloud->GetNumberOfPoints()),
+  std::printf("%s: %lld points%s\n",
+    path.c_str(),
+    static_cast<long long>(cloud->GetNumberOfPoints()),
     written == 1 ? "" : " (FAILED)");
   return written == 1;
 }

@@ -18,15 +18,30 @@ namespace pcbilateral_samples
 {
 using Vec3 = std::array<double, 3>;
 
-inline Vec3 operator+(const Vec3& a, const Vec3& b) { return { a[0] + b[0], a[1] + b[1], a[2] + b[2] }; }
-inline Vec3 operator-(const Vec3& a, const Vec3& b) { return { a[0] - b[0], a[1] - b[1], a[2] - b[2] }; }
-inline Vec3 operator*(double s, const Vec3& a) { return { s * a[0], s * a[1], s * a[2] }; }
-inline double Dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 operator+(const Vec3& a, const Vec3& b)
+{
+  return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
+}
+inline Vec3 operator-(const Vec3& a, const Vec3& b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+inline Vec3 operator*(double s, const Vec3& a)
+{
+  return { s * a[0], s * a[1], s * a[2] };
+}
+inline double Dot(const Vec3& a, const Vec3& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 inline Vec3 Cross(const Vec3& a, const Vec3& b)
 {
   return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
 }
-inline double Norm(const Vec3& a) { return std::sqrt(Dot(a, a)); }
+inline double Norm(const Vec3& a)
+{
+  return std::sqrt(Dot(a, a));
+}
 
 /// A fixed-seed generator whose numbers do not depend on the standard library's distributions.
 class Random
@@ -83,8 +98,8 @@ public:
     this->V = Cross(this->Normal, this->U);
     for (const Vec3& vertex : this->Vertices)
     {
-      this->Planar.push_back({ Dot(vertex - this->Vertices[0], this->U),
-        Dot(vertex - this->Vertices[0], this->V) });
+      this->Planar.push_back(
+        { Dot(vertex - this->Vertices[0], this->U), Dot(vertex - this->Vertices[0], this->V) });
     }
     for (const auto& q : this->Planar)
     {
@@ -169,7 +184,8 @@ public:
   Vec3 Sample(Random& random) const override
   {
     const double pick = random.Uniform(0, this->CumulativeArea.back());
-    const auto face = std::upper_bound(this->CumulativeArea.begin(), this->CumulativeArea.end(), pick) -
+    const auto face =
+      std::upper_bound(this->CumulativeArea.begin(), this->CumulativeArea.end(), pick) -
       this->CumulativeArea.begin();
     return this->Faces[std::min<std::size_t>(face, this->Faces.size() - 1)].Sample(random);
   }
@@ -191,8 +207,9 @@ private:
 };
 
 /// A prism: a polygon in the x-z plane extruded along y from -halfDepth to halfDepth.
-inline std::unique_ptr<Polyhedron> Prism(
-  const std::vector<std::array<double, 2>>& profile, double halfDepth, bool closed = true)
+inline std::unique_ptr<Polyhedron> Prism(const std::vector<std::array<double, 2>>& profile,
+  double halfDepth,
+  bool closed = true)
 {
   std::vector<Polygon> faces;
   std::vector<Vec3> front, back;
@@ -274,8 +291,13 @@ inline std::unique_ptr<Shape> SharpEdge()
 /// slanted face meeting the top at an obtuse angle, and right-angled edges and corners.
 inline std::unique_ptr<Shape> CadPart()
 {
-  return Prism({ { -0.5, 0.0 }, { 0.5, 0.0 }, { 0.5, 0.25 }, { 0.15, 0.25 }, { 0.15, 0.45 },
-                 { -0.15, 0.45 }, { -0.5, 0.2 } },
+  return Prism({ { -0.5, 0.0 },
+                 { 0.5, 0.0 },
+                 { 0.5, 0.25 },
+                 { 0.15, 0.25 },
+                 { 0.15, 0.45 },
+                 { -0.15, 0.45 },
+                 { -0.5, 0.2 } },
     0.3);
 }
 
