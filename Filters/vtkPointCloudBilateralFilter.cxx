@@ -210,9 +210,22 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   this->ProcessingDepth = result.ProcessingDepth;
   this->NumberOfRemovedPoints = static_cast<vtkIdType>(result.NumberOfRemovedPoints);
   this->NumberOfNonFinitePoints = static_cast<vtkIdType>(result.NumberOfNonFinitePoints);
-  if (result.Status == pcbilateral::BilateralStatus::Aborted || numberOfPoints == 0)
+  if (result.Status == pcbilateral::BilateralStatus::Aborted)
   {
     return 1; // an empty output
+  }
+  if (numberOfPoints == 0)
+  {
+    // Nothing to filter; the output still has the input's (empty) arrays and field data.
+    if (input->GetPoints())
+    {
+      vtkNew<vtkPoints> none;
+      none->SetDataType(input->GetPoints()->GetDataType());
+      output->SetPoints(none);
+    }
+    output->GetPointData()->PassData(inPD);
+    output->GetFieldData()->PassData(input->GetFieldData());
+    return 1;
   }
   if (input->GetNumberOfLines() + input->GetNumberOfPolys() + input->GetNumberOfStrips() > 0)
   {

@@ -1,0 +1,322 @@
+// Degenerate and hostile inputs through vtkPointCloudBilateralFilter: each gives a sane result
+// (finite, no point moved by r or more per iteration, arrays intact) or a clear message.
+// Run as: TestRobustness CASE.
+#include "vtkPointCloudBilateralFilter.h"
+
+#include "vtkCommand.h"
+#include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace
+{
+int Failures = 0;
+#define CHECK(condition, ...)                                                                      \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(condition))                                                                              \
+    {                                                                                              \
+      std::fprintf(stderr, "line %d: check failed: %s: ", __LINE__, #condition);                   \
+      std::fprintf(stderr, __VA_ARGS__);                                                           \
+      std::fprintf(stderr, "\n");                                                                  \
+      ++Failures;                                                                                  \
+    }                                                                                              \
+  } while (false)
+
+/// Counts the filter's warnings and errors instead of printing them.
+class MessageCounter : public vtkCommand
+{
+public:
+  static MessageCounter* New() { return new MessageCounter; }
+  void Execute(vtkObject*, unsigned long event, void* text) override
+  {
+    (event == vtkCommand::ErrorEvent ? this->Errors : this->Warnings) += 1;
+    this->Last = text ? static_cast<const char*>(text) : "";
+  }
+  int Errors = 0;
+  int Warnings = 0;
+  std::string Last;
+};
+
+vtkSmartPointer<vtkPolyData> Cloud(const std::vector<double>& xyz, int type = VTK_DOUBLE)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataType(type);
+  points->SetNumberOfPoints(static_cast<vtkIdType>(xyz.size() / 3));
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    points->SetPoint(i, &xyz[3 * i]);
+  }
+  auto cloud = vtkSmartPointer<vtkPolyData>::New();
+  cloud->SetPoints(points);
+  vtkNew<vtkDoubleArray> tag;
+  tag->SetName("Tag");
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    tag->InsertNextValue(static_cast<double>(i));
+  }
+  cloud->GetPointData()->AddArray(tag);
+  return cloud;
+}
+
+struct Run
+{
+  vtkSmartPointer<vtkPolyData> Output;
+  int Errors = 0;
+  int Warnings = 0;
+  std::string Message;
+  double Radius = 0.0;
+};
+
+Run Filter(vtkPolyData* input, double radius, int iterations = 1, double normalRadius = 0.0)
+{
+  vtkNew<vtkPointCloudBilateralFilter> filter;
+  vtkNew<MessageCounter> counter;
+  filter->AddObserver(vtkCommand::ErrorEvent, counter);
+  filter->AddObserver(vtkCommand::WarningEvent, counter);
+  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, counter);
+  filter->SetInputData(input);
+  filter->SetRadius(radius);
+  filter->SetNormalRadius(normalRadius);
+  filter->SetNumberOfIterations(iterations);
+  filter->Update();
+  Run run;
+  run.Output = filter->GetOutput();
+  run.Errors = counter->Errors;
+  run.Warnings = counter->Warnings;
+  run.Message = counter->Last;
+  run.Radius = filter->GetRadiusUsed();
+  return run;
+}
+
+/// Every finite input point is finite in the output and moved less than `reach`.
+void CheckSane(const char* what, vtkPolyData* input, const Run& run, double reach)
+{
+  CHECK(run.Output->GetNumberOfPoints() == input->GetNumberOfPoints(),
+    "%s: %lld of %lld points",
+    what,
+    (long long)run.Output->GetNumberOfPoints(),
+    (long long)input->GetNumberOfPoints());
+  if (run.Output->GetNumberOfPoints() != input->GetNumberOfPoints())
+  {
+    return;
+  }
+  double largest = 0.0;
+  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
+  {
+    double a[3], b[3];
+    input->GetPoint(i, a);
+    run.Output->GetPoint(i, b);
+    if (!(std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2])))
+    {
+      CHECK(std::memcmp(a, b, sizeof(a)) == 0 || (std::isnan(a[0]) && std::isnan(b[0])),
+        "%s: a non-finite point %lld changed",
+        what,
+        (long long)i);
+      continue;
+    }
+    CHECK(std::isfinite(b[0]) && std::isfinite(b[1]) && std::isfinite(b[2]),
+      "%s: point %lld is no longer finite",
+      what,
+      (long long)i);
+    largest = std::max(largest,
+      std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                (a[2] - b[2]) * (a[2] - b[2])));
+  }
+  CHECK(largest < reach || largest == 0.0,
+    "%s: a point moved by %g (at most %g)",
+    what,
+    largest,
+    reach);
+  vtkDataArray* tag = run.Output->GetPointData()->GetArray("Tag");
+  CHECK(tag && tag->GetNumberOfTuples() == input->GetNumberOfPoints(), "%s: Tag array lost", what);
+  std::printf("%s: %lld points, largest move %.3g, %d warning(s)\n",
+    what,
+    (long long)input->GetNumberOfPoints(),
+    largest,
+    run.Warnings);
+}
+
+std::vector<double> NoisyPatch(std::size_t count, double offset, unsigned seed)
+{
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 0.003);
+  std::vector<double> xyz;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    xyz.push_back(offset + unit(random));
+    xyz.push_back(offset + unit(random));
+    xyz.push_back(offset + noise(random));
+  }
+  return xyz;
+}
+
+void TestSmallClouds()
+{
+  // No points, one point, four points: nothing can be filtered; no error, points unchanged.
+  for (std::size_t count : { 0, 1, 4 })
+  {
+    const std::vector<double> xyz = NoisyPatch(count, 0.0, 3);
+    auto input = Cloud(xyz);
+    for (double radius : { 0.0, 0.5 })
+    {
+      const Run run = Filter(input, radius);
+      CHECK(
+        run.Errors == 0, "%zu points, radius %g: error '%s'", count, radius, run.Message.c_str());
+      CheckSane(("small cloud of " + std::to_string(count)).c_str(), input, run, 1e-300);
+    }
+  }
+}
+
+void TestCoincidentAndDegenerate()
+{
+  // All points identical: automatic radius impossible (a warning, unchanged); given radius: sane.
+  auto same = Cloud(std::vector<double>(3 * 500, 0.25));
+  Run run = Filter(same, 0.0);
+  CHECK(run.Errors == 0 && run.Warnings == 1,
+    "identical points, automatic radius: %d errors, %d "
+    "warnings",
+    run.Errors,
+    run.Warnings);
+  CheckSane("identical points, automatic radius", same, run, 1e-300);
+  CheckSane("identical points, radius 0.1", same, Filter(same, 0.1, 3), 1e-300);
+
+  // Many duplicates of one point inside a noisy patch.
+  std::vector<double> duplicates = NoisyPatch(2000, 0.0, 4);
+  for (int i = 0; i < 2000; ++i)
+  {
+    duplicates.insert(duplicates.end(), { 0.5, 0.5, 0.0 });
+  }
+  auto withDuplicates = Cloud(duplicates);
+  CheckSane("2000 duplicates in a patch", withDuplicates, Filter(withDuplicates, 0.05, 2), 0.1);
+
+  // All points on a line; a very flat bounding box (a 2D scan with no z at all).
+  std::vector<double> line;
+  for (int i = 0; i < 3000; ++i)
+  {
+    const double t = i / 3000.0;
+    line.insert(line.end(), { t, 2 * t, -t });
+  }
+  auto lineCloud = Cloud(line);
+  CheckSane("points on a line", lineCloud, Filter(lineCloud, 0.02, 2), 0.04);
+  std::vector<double> flat = NoisyPatch(5000, 0.0, 5);
+  for (std::size_t i = 2; i < flat.size(); i += 3)
+  {
+    flat[i] = 0.0;
+  }
+  auto flatCloud = Cloud(flat);
+  const Run flatRun = Filter(flatCloud, 0.0, 2);
+  CheckSane("a flat 2D scan, automatic radius", flatCloud, flatRun, 2 * flatRun.Radius);
+}
+
+void TestNonFinitePoints()
+{
+  std::vector<double> xyz = NoisyPatch(4000, 0.0, 6);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 40; ++i)
+  {
+    xyz[30 * i + 3 * (i % 3)] = (i % 2) ? nan : (i % 4 ? inf : -inf);
+  }
+  auto input = Cloud(xyz);
+  const Run run = Filter(input, 0.05, 2);
+  CHECK(run.Errors == 0 && run.Warnings == 1,
+    "NaN/Inf points: %d errors, %d warnings (one "
+    "expected): %s",
+    run.Errors,
+    run.Warnings,
+    run.Message.c_str());
+  CHECK(run.Message.find("40 point(s)") != std::string::npos,
+    "the warning does not count 40 "
+    "points: %s",
+    run.Message.c_str());
+  CheckSane("40 NaN/Inf points in a patch", input, run, 0.1);
+  // The automatic radius ignores them too.
+  const Run automatic = Filter(input, 0.0);
+  CHECK(std::isfinite(automatic.Radius) && automatic.Radius > 0,
+    "automatic radius %g",
+    automatic.Radius);
+}
+
+void TestRadiusLargerThanCloud()
+{
+  auto input = Cloud(NoisyPatch(3000, 0.0, 7));
+  const Run run = Filter(input, 50.0, 1, 0.01);
+  CheckSane("radius 50 on a unit patch", input, run, 50.0);
+}
+
+void TestGeoreferencedOffset()
+{
+  // The same cloud at the origin and 1e6 away: the same result, shifted back, to the precision
+  // of the point type.
+  const std::vector<double> local = NoisyPatch(6000, 0.0, 8);
+  std::vector<double> shifted = local;
+  for (double& value : shifted)
+  {
+    value += 1e6;
+  }
+  for (int type : { VTK_DOUBLE, VTK_FLOAT })
+  {
+    const double tolerance = type == VTK_DOUBLE ? 1e-9 : 0.07; // a float ulp at 1e6 is 0.0625
+    auto atOrigin = Cloud(local, VTK_DOUBLE);
+    auto far = Cloud(shifted, type);
+    const Run a = Filter(atOrigin, 0.05, 2, 0.02);
+    const Run b = Filter(far, 0.05, 2, 0.02);
+    double largest = 0.0, moved = 0.0;
+    for (vtkIdType i = 0; i < atOrigin->GetNumberOfPoints(); ++i)
+    {
+      double p[3], q[3], before[3];
+      a.Output->GetPoint(i, p);
+      b.Output->GetPoint(i, q);
+      far->GetPoint(i, before);
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        largest = std::max(largest, std::abs((q[axis] - 1e6) - p[axis]));
+        moved = std::max(moved, std::abs(q[axis] - before[axis]));
+      }
+    }
+    std::printf("offset 1e6 (%s): largest difference from the cloud at the origin %.3g, moves "
+                "up to %.3g\n",
+      type == VTK_DOUBLE ? "double" : "float",
+      largest,
+      moved);
+    CHECK(largest < tolerance, "offset 1e6: difference %g", largest);
+    CHECK(type == VTK_FLOAT || moved > 1e-3, "offset 1e6: the points did not move (%g)", moved);
+  }
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  const std::map<std::string, std::function<void()>> cases = {
+    { "small-clouds", TestSmallClouds },
+    { "coincident-and-degenerate", TestCoincidentAndDegenerate },
+    { "non-finite-points", TestNonFinitePoints },
+    { "radius-larger-than-cloud", TestRadiusLargerThanCloud },
+    { "georeferenced-offset", TestGeoreferencedOffset },
+  };
+  const auto found = argc > 1 ? cases.find(argv[1]) : cases.end();
+  if (found == cases.end())
+  {
+    std::fprintf(stderr, "usage: %s CASE\n", argv[0]);
+    return EXIT_FAILURE;
+  }
+  found->second();
+  std::printf("%s: %s\n", found->first.c_str(), Failures == 0 ? "passed" : "FAILED");
+  return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
