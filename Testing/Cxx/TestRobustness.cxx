@@ -12,6 +12,8 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -20,6 +22,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace
@@ -299,6 +302,43 @@ void TestGeoreferencedOffset()
     CHECK(type == VTK_FLOAT || moved > 1e-3, "offset 1e6: the points did not move (%g)", moved);
   }
 }
+void TestAbortFromAnotherThread()
+{
+  // A long run (every point a neighbour of every other: the radius is larger than the cloud),
+  // aborted from another thread: the filter returns within 0.5 s, with an empty output.
+  auto input = Cloud(NoisyPatch(200000, 0.0, 9));
+  vtkNew<vtkPointCloudBilateralFilter> filter;
+  filter->SetInputData(input);
+  filter->SetRadius(5.0);
+  filter->SetNumberOfIterations(3);
+  std::atomic<bool> requested{ false };
+  std::chrono::steady_clock::time_point requestTime;
+  std::thread aborter(
+    [&]()
+    {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+      requestTime = std::chrono::steady_clock::now();
+      requested = true;
+      filter->AbortExecuteOn();
+    });
+  const auto start = std::chrono::steady_clock::now();
+  filter->Update();
+  const auto end = std::chrono::steady_clock::now();
+  aborter.join();
+  const double total = std::chrono::duration<double>(end - start).count();
+  const double afterRequest =
+    requested ? std::chrono::duration<double>(end - requestTime).count() : -1.0;
+  std::printf("abort: the run took %.2f s, %.3f s after the request; %lld output points\n",
+    total,
+    afterRequest,
+    (long long)filter->GetOutput()->GetNumberOfPoints());
+  CHECK(requested, "the run ended (%.2f s) before the abort was requested: make it longer", total);
+  CHECK(
+    afterRequest >= 0.0 && afterRequest < 0.5, "returned %.3f s after the request", afterRequest);
+  CHECK(filter->GetOutput()->GetNumberOfPoints() == 0,
+    "an aborted run output %lld points",
+    (long long)filter->GetOutput()->GetNumberOfPoints());
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -309,6 +349,7 @@ int main(int argc, char* argv[])
     { "non-finite-points", TestNonFinitePoints },
     { "radius-larger-than-cloud", TestRadiusLargerThanCloud },
     { "georeferenced-offset", TestGeoreferencedOffset },
+    { "abort-from-another-thread", TestAbortFromAnotherThread },
   };
   const auto found = argc > 1 ? cases.find(argv[1]) : cases.end();
   if (found == cases.end())
