@@ -4,6 +4,9 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
+#include <map>
+#include <string>
 
 namespace pcbilateral_testing
 {
@@ -32,6 +35,28 @@ inline int& FailureCount()
   (pcbilateral_testing::FailureCount() == 0                                                        \
       ? (std::printf("all checks passed\n"), EXIT_SUCCESS)                                         \
       : (std::printf("%d check(s) failed\n", pcbilateral_testing::FailureCount()), EXIT_FAILURE))
+
+/// Runs the case named by the first argument (a test program holding several ctest cases) and
+/// returns the exit status.
+inline int RunNamedCase(int argc,
+  char* argv[],
+  const std::map<std::string, std::function<void()>>& cases)
+{
+  const auto found = argc > 1 ? cases.find(argv[1]) : cases.end();
+  if (found == cases.end())
+  {
+    std::fprintf(stderr, "usage: %s CASE, one of:", argv[0]);
+    for (const auto& entry : cases)
+    {
+      std::fprintf(stderr, " %s", entry.first.c_str());
+    }
+    std::fprintf(stderr, "\n");
+    return EXIT_FAILURE;
+  }
+  found->second();
+  std::printf("%s: ", found->first.c_str());
+  return PCB_TEST_RESULT();
+}
 
 /// ctest counts a test that exits with this status as skipped (SKIP_RETURN_CODE).
 constexpr int PCB_SKIP_RETURN_CODE = 77;

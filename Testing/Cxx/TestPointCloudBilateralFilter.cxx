@@ -1,5 +1,6 @@
 // Tests of vtkPointCloudBilateralFilter on synthetic clouds with known surfaces.
 // Run as: TestPointCloudBilateralFilter CASE, CASE one of the names in main().
+#include "CoreTesting.h"
 #include "vtkPointCloudBilateralFilter.h"
 
 #include "vtkCallbackCommand.h"
@@ -28,19 +29,6 @@
 
 namespace
 {
-int Failures = 0;
-
-#define CHECK(condition, ...)                                                                      \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(condition))                                                                              \
-    {                                                                                              \
-      std::fprintf(stderr, "line %d: check failed: %s: ", __LINE__, #condition);                   \
-      std::fprintf(stderr, __VA_ARGS__);                                                           \
-      std::fprintf(stderr, "\n");                                                                  \
-      ++Failures;                                                                                  \
-    }                                                                                              \
-  } while (false)
 
 /// Deterministic Gaussian noise (Box-Muller on a fixed-seed generator).
 class Noise
@@ -188,7 +176,7 @@ void TestPlane()
     before,
     after,
     before / after);
-  CHECK(after < before / 8, "the plane became flatter only by %.2f", before / after);
+  PCB_CHECK(after < before / 8, "the plane became flatter only by %.2f", before / after);
 
   // An exact plane does not move at all: every neighbour has height 0 exactly.
   std::vector<double> flat = NoisyPlane(0.0, 2);
@@ -200,9 +188,10 @@ void TestPlane()
   auto unchanged = Filter(exact, 0.05, 0.05, 3);
   auto* in = vtkDoubleArray::SafeDownCast(exact->GetPoints()->GetData());
   auto* out = vtkDoubleArray::SafeDownCast(unchanged->GetPoints()->GetData());
-  CHECK(in && out && in->GetNumberOfValues() == out->GetNumberOfValues() &&
-          std::memcmp(
-            in->GetPointer(0), out->GetPointer(0), sizeof(double) * in->GetNumberOfValues()) == 0,
+  PCB_CHECK(
+    in && out && in->GetNumberOfValues() == out->GetNumberOfValues() &&
+      std::memcmp(
+        in->GetPointer(0), out->GetPointer(0), sizeof(double) * in->GetNumberOfValues()) == 0,
     "an exact plane moved");
 }
 
@@ -248,15 +237,15 @@ void TestCubeEdges()
     roundError,
     sharpOnSurface,
     roundOnSurface);
-  CHECK(sharpError < noisyError,
+  PCB_CHECK(sharpError < noisyError,
     "a small rn did not denoise the edges (%g vs %g)",
     sharpError,
     noisyError);
-  CHECK(roundError > 2.5 * sharpError,
+  PCB_CHECK(roundError > 2.5 * sharpError,
     "a large rn did not round the edges (%g vs %g)",
     roundError,
     sharpError);
-  CHECK(sharpOnSurface > 1.5 * roundOnSurface,
+  PCB_CHECK(sharpOnSurface > 1.5 * roundOnSurface,
     "edge points within 2 sigma of the cube: %zu with a small rn, %zu with a large one",
     sharpOnSurface,
     roundOnSurface);
@@ -297,7 +286,7 @@ void TestPassThrough()
     [&](vtkPolyData* output, const std::function<vtkIdType(vtkIdType)>& source, const char* what)
   {
     vtkPointData* pd = output->GetPointData();
-    CHECK(output->GetNumberOfVerts() == output->GetNumberOfPoints(),
+    PCB_CHECK(output->GetNumberOfVerts() == output->GetNumberOfPoints(),
       "%s: %lld vertices for %lld points",
       what,
       (long long)output->GetNumberOfVerts(),
@@ -305,23 +294,23 @@ void TestPassThrough()
     const char* names[] = { "Intensity", "RGB", "Velocity", "Label" };
     for (int a = 0; a < 4; ++a)
     {
-      CHECK(pd->GetArray(a) && pd->GetArray(a)->GetName() == std::string(names[a]),
+      PCB_CHECK(pd->GetArray(a) && pd->GetArray(a)->GetName() == std::string(names[a]),
         "%s: array %d is not %s",
         what,
         a,
         names[a]);
     }
-    CHECK(pd->GetScalars() && std::string(pd->GetScalars()->GetName()) == "Intensity",
+    PCB_CHECK(pd->GetScalars() && std::string(pd->GetScalars()->GetName()) == "Intensity",
       "%s: scalars not active",
       what);
-    CHECK(pd->GetVectors() && std::string(pd->GetVectors()->GetName()) == "Velocity",
+    PCB_CHECK(pd->GetVectors() && std::string(pd->GetVectors()->GetName()) == "Velocity",
       "%s: vectors not active",
       what);
     auto* outColours = vtkUnsignedCharArray::SafeDownCast(pd->GetArray("RGB"));
     auto* outVectors = vtkFloatArray::SafeDownCast(pd->GetArray("Velocity"));
     auto* outScalars = vtkDoubleArray::SafeDownCast(pd->GetArray("Intensity"));
     auto* outLabels = vtkIntArray::SafeDownCast(pd->GetArray("Label"));
-    CHECK(outColours && outVectors && outScalars && outLabels, "%s: array types changed", what);
+    PCB_CHECK(outColours && outVectors && outScalars && outLabels, "%s: array types changed", what);
     if (!(outColours && outVectors && outScalars && outLabels))
     {
       return;
@@ -338,7 +327,7 @@ void TestPassThrough()
         wrong += outVectors->GetTypedComponent(i, c) != vectors->GetTypedComponent(j, c);
       }
     }
-    CHECK(wrong == 0, "%s: %zu values differ from the input's", what, wrong);
+    PCB_CHECK(wrong == 0, "%s: %zu values differ from the input's", what, wrong);
   };
 
   vtkNew<vtkIntArray> scanId;
@@ -348,8 +337,8 @@ void TestPassThrough()
 
   auto output = Filter(cloud, 0.08, 0.08, 1);
   vtkDataArray* scanIdOut = output->GetFieldData()->GetArray("ScanId");
-  CHECK(scanIdOut && scanIdOut->GetComponent(0, 0) == 42, "the input's field data was lost");
-  CHECK(output->GetNumberOfPoints() == n,
+  PCB_CHECK(scanIdOut && scanIdOut->GetComponent(0, 0) == 42, "the input's field data was lost");
+  PCB_CHECK(output->GetNumberOfPoints() == n,
     "%lld points out of %lld",
     (long long)output->GetNumberOfPoints(),
     (long long)n);
@@ -372,16 +361,16 @@ void TestPassThrough()
     cloud, 0.08, 0.08, 1, 0, [](vtkPointCloudBilateralFilter* f) { f->RemoveIsolatedPointsOn(); });
   auto* ids =
     vtkIdTypeArray::SafeDownCast(removed->GetPointData()->GetArray("vtkOriginalPointIds"));
-  CHECK(ids != nullptr, "no vtkOriginalPointIds array");
+  PCB_CHECK(ids != nullptr, "no vtkOriginalPointIds array");
   if (ids)
   {
-    CHECK(removed->GetNumberOfPoints() > n * 0.99 && removed->GetNumberOfPoints() <= n,
+    PCB_CHECK(removed->GetNumberOfPoints() > n * 0.99 && removed->GetNumberOfPoints() <= n,
       "removal kept %lld of %lld points",
       (long long)removed->GetNumberOfPoints(),
       (long long)n);
     for (vtkIdType i = 0; i < ids->GetNumberOfValues(); ++i)
     {
-      CHECK(ids->GetValue(i) < n && (i == 0 || ids->GetValue(i) > ids->GetValue(i - 1)),
+      PCB_CHECK(ids->GetValue(i) < n && (i == 0 || ids->GetValue(i) > ids->GetValue(i - 1)),
         "original id %lld at %lld: out of order or a far point",
         (long long)ids->GetValue(i),
         (long long)i);
@@ -408,7 +397,7 @@ void TestThreadsGiveIdenticalBits()
   {
     for (int run = 0; run < 2; ++run)
     {
-      CHECK(PointBytes(Filter(cloud, 0.05, 0.03, 3, threads)) == reference,
+      PCB_CHECK(PointBytes(Filter(cloud, 0.05, 0.03, 3, threads)) == reference,
         "%d threads (run %d) differ from 1 thread",
         threads,
         run);
@@ -422,10 +411,10 @@ void TestPointTypes()
   const std::vector<double> xyz = NoisyCube(20000, 0.005, 13);
   auto asDouble = Filter(MakeCloud(xyz, VTK_DOUBLE), 0.06, 0.06, 1);
   auto asFloat = Filter(MakeCloud(xyz, VTK_FLOAT), 0.06, 0.06, 1);
-  CHECK(asDouble->GetPoints()->GetDataType() == VTK_DOUBLE,
+  PCB_CHECK(asDouble->GetPoints()->GetDataType() == VTK_DOUBLE,
     "double points became %s",
     asDouble->GetPoints()->GetData()->GetDataTypeAsString());
-  CHECK(asFloat->GetPoints()->GetDataType() == VTK_FLOAT,
+  PCB_CHECK(asFloat->GetPoints()->GetDataType() == VTK_FLOAT,
     "float points became %s",
     asFloat->GetPoints()->GetData()->GetDataTypeAsString());
   double largest = 0.0, moved = 0.0;
@@ -442,8 +431,8 @@ void TestPointTypes()
   }
   std::printf(
     "float vs double points: largest difference %.3g (points moved up to %.3g)\n", largest, moved);
-  CHECK(largest < 1e-5, "float and double inputs differ by %g", largest);
-  CHECK(moved > 1e-3, "the points did not move (%g)", moved);
+  PCB_CHECK(largest < 1e-5, "float and double inputs differ by %g", largest);
+  PCB_CHECK(moved > 1e-3, "the points did not move (%g)", moved);
 }
 
 void TestParametersAndNormals()
@@ -473,25 +462,25 @@ void TestParametersAndNormals()
     filter->GetRadiusUsed(),
     expected,
     filter->GetNormalRadiusUsed());
-  CHECK(std::abs(filter->GetRadiusUsed() - expected) < 0.02 * expected,
+  PCB_CHECK(std::abs(filter->GetRadiusUsed() - expected) < 0.02 * expected,
     "automatic radius %g",
     filter->GetRadiusUsed());
-  CHECK(filter->GetNormalRadiusUsed() == filter->GetRadiusUsed(),
+  PCB_CHECK(filter->GetNormalRadiusUsed() == filter->GetRadiusUsed(),
     "normal radius %g",
     filter->GetNormalRadiusUsed());
   vtkFieldData* fd = filter->GetOutput()->GetFieldData();
   vtkDataArray* radiusRecord = fd->GetArray("BilateralRadius");
   vtkDataArray* normalRadiusRecord = fd->GetArray("BilateralNormalRadius");
-  CHECK(radiusRecord && radiusRecord->GetComponent(0, 0) == filter->GetRadiusUsed() &&
-          normalRadiusRecord &&
-          normalRadiusRecord->GetComponent(0, 0) == filter->GetNormalRadiusUsed(),
+  PCB_CHECK(radiusRecord && radiusRecord->GetComponent(0, 0) == filter->GetRadiusUsed() &&
+              normalRadiusRecord &&
+              normalRadiusRecord->GetComponent(0, 0) == filter->GetNormalRadiusUsed(),
     "the output's field data does not record the radii used");
   vtkPointData* pd = filter->GetOutput()->GetPointData();
   vtkDataArray* normals = pd->GetArray("EstimatedNormals");
   vtkDataArray* lengths = pd->GetArray("DisplacementLength");
-  CHECK(normals && normals->GetNumberOfComponents() == 3, "no EstimatedNormals");
-  CHECK(lengths && lengths->GetNumberOfComponents() == 1, "no DisplacementLength");
-  CHECK(pd->GetNormals() && std::string(pd->GetNormals()->GetName()) == "Normals",
+  PCB_CHECK(normals && normals->GetNumberOfComponents() == 3, "no EstimatedNormals");
+  PCB_CHECK(lengths && lengths->GetNumberOfComponents() == 1, "no DisplacementLength");
+  PCB_CHECK(pd->GetNormals() && std::string(pd->GetNormals()->GetName()) == "Normals",
     "the input's normals are not the output's point normals");
   if (!normals || !lengths)
   {
@@ -518,15 +507,15 @@ void TestParametersAndNormals()
     faceInterior,
     disagreeing,
     notEstimated);
-  CHECK(disagreeing == 0,
+  PCB_CHECK(disagreeing == 0,
     "%zu of %zu face normals point against the input's",
     disagreeing,
     faceInterior);
-  CHECK(notEstimated < faceInterior / 100,
+  PCB_CHECK(notEstimated < faceInterior / 100,
     "%zu of %zu face normals not estimated",
     notEstimated,
     faceInterior);
-  CHECK(largestLength > 0.0 && largestLength < filter->GetRadiusUsed(),
+  PCB_CHECK(largestLength > 0.0 && largestLength < filter->GetRadiusUsed(),
     "displacement lengths up to %g, radius %g",
     largestLength,
     filter->GetRadiusUsed());
@@ -550,11 +539,11 @@ void TestProgressAndAbort()
     reported.size(),
     reported.empty() ? -1.0 : reported.front(),
     reported.empty() ? -1.0 : reported.back());
-  CHECK(reported.size() >= 20 && increasing && reported.back() == 1.0,
+  PCB_CHECK(reported.size() >= 20 && increasing && reported.back() == 1.0,
     "%zu progress reports, increasing: %d",
     reported.size(),
     int(increasing));
-  CHECK(filter->GetOutput()->GetNumberOfPoints() == cloud->GetNumberOfPoints(), "no output");
+  PCB_CHECK(filter->GetOutput()->GetNumberOfPoints() == cloud->GetNumberOfPoints(), "no output");
 
   // An observer that aborts a third of the way: the filter stops soon and outputs nothing.
   vtkNew<vtkPointCloudBilateralFilter> aborted;
@@ -582,10 +571,10 @@ void TestProgressAndAbort()
   std::printf("abort: %lld output points, %zu progress reports after the abort request\n",
     (long long)aborted->GetOutput()->GetNumberOfPoints(),
     reportsAfterAbort);
-  CHECK(aborted->GetOutput()->GetNumberOfPoints() == 0,
+  PCB_CHECK(aborted->GetOutput()->GetNumberOfPoints() == 0,
     "an aborted run output %lld points",
     (long long)aborted->GetOutput()->GetNumberOfPoints());
-  CHECK(
+  PCB_CHECK(
     reportsAfterAbort <= 2, "the run went on for %zu reports after the abort", reportsAfterAbort);
 }
 
@@ -637,9 +626,9 @@ void TestDegenerateNeighbourhoods()
       (long long)output->GetNumberOfPoints(),
       largestMove,
       c.Radius);
-    CHECK(output->GetNumberOfPoints() == input->GetNumberOfPoints(), "%s: points lost", c.Name);
-    CHECK(nonFinite == 0, "%s: %zu non-finite points", c.Name, nonFinite);
-    CHECK(largestMove < 3 * c.Radius, "%s: a point moved by %g", c.Name, largestMove);
+    PCB_CHECK(output->GetNumberOfPoints() == input->GetNumberOfPoints(), "%s: points lost", c.Name);
+    PCB_CHECK(nonFinite == 0, "%s: %zu non-finite points", c.Name, nonFinite);
+    PCB_CHECK(largestMove < 3 * c.Radius, "%s: a point moved by %g", c.Name, largestMove);
   }
 }
 } // namespace
@@ -656,13 +645,5 @@ int main(int argc, char* argv[])
     { "progress-and-abort", TestProgressAndAbort },
     { "degenerate-neighbourhoods", TestDegenerateNeighbourhoods },
   };
-  const auto found = argc > 1 ? cases.find(argv[1]) : cases.end();
-  if (found == cases.end())
-  {
-    std::fprintf(stderr, "usage: %s CASE (plane, cube-edges, ...)\n", argv[0]);
-    return EXIT_FAILURE;
-  }
-  found->second();
-  std::printf("%s: %s\n", found->first.c_str(), Failures == 0 ? "passed" : "FAILED");
-  return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return RunNamedCase(argc, argv, cases);
 }

@@ -1,6 +1,7 @@
 // Degenerate and hostile inputs through vtkPointCloudBilateralFilter: each gives a sane result
 // (finite, no point moved by r or more per iteration, arrays intact) or a clear message.
 // Run as: TestRobustness CASE.
+#include "CoreTesting.h"
 #include "vtkPointCloudBilateralFilter.h"
 
 #include "vtkCommand.h"
@@ -27,18 +28,6 @@
 
 namespace
 {
-int Failures = 0;
-#define CHECK(condition, ...)                                                                      \
-  do                                                                                               \
-  {                                                                                                \
-    if (!(condition))                                                                              \
-    {                                                                                              \
-      std::fprintf(stderr, "line %d: check failed: %s: ", __LINE__, #condition);                   \
-      std::fprintf(stderr, __VA_ARGS__);                                                           \
-      std::fprintf(stderr, "\n");                                                                  \
-      ++Failures;                                                                                  \
-    }                                                                                              \
-  } while (false)
 
 /// Counts the filter's warnings and errors instead of printing them.
 class MessageCounter : public vtkCommand
@@ -109,7 +98,7 @@ Run Filter(vtkPolyData* input, double radius, int iterations = 1, double normalR
 /// Every finite input point is finite in the output and moved less than `reach`.
 void CheckSane(const char* what, vtkPolyData* input, const Run& run, double reach)
 {
-  CHECK(run.Output->GetNumberOfPoints() == input->GetNumberOfPoints(),
+  PCB_CHECK(run.Output->GetNumberOfPoints() == input->GetNumberOfPoints(),
     "%s: %lld of %lld points",
     what,
     (long long)run.Output->GetNumberOfPoints(),
@@ -126,13 +115,13 @@ void CheckSane(const char* what, vtkPolyData* input, const Run& run, double reac
     run.Output->GetPoint(i, b);
     if (!(std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2])))
     {
-      CHECK(std::memcmp(a, b, sizeof(a)) == 0 || (std::isnan(a[0]) && std::isnan(b[0])),
+      PCB_CHECK(std::memcmp(a, b, sizeof(a)) == 0 || (std::isnan(a[0]) && std::isnan(b[0])),
         "%s: a non-finite point %lld changed",
         what,
         (long long)i);
       continue;
     }
-    CHECK(std::isfinite(b[0]) && std::isfinite(b[1]) && std::isfinite(b[2]),
+    PCB_CHECK(std::isfinite(b[0]) && std::isfinite(b[1]) && std::isfinite(b[2]),
       "%s: point %lld is no longer finite",
       what,
       (long long)i);
@@ -140,13 +129,14 @@ void CheckSane(const char* what, vtkPolyData* input, const Run& run, double reac
       std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
                 (a[2] - b[2]) * (a[2] - b[2])));
   }
-  CHECK(largest < reach || largest == 0.0,
+  PCB_CHECK(largest < reach || largest == 0.0,
     "%s: a point moved by %g (at most %g)",
     what,
     largest,
     reach);
   vtkDataArray* tag = run.Output->GetPointData()->GetArray("Tag");
-  CHECK(tag && tag->GetNumberOfTuples() == input->GetNumberOfPoints(), "%s: Tag array lost", what);
+  PCB_CHECK(
+    tag && tag->GetNumberOfTuples() == input->GetNumberOfPoints(), "%s: Tag array lost", what);
   std::printf("%s: %lld points, largest move %.3g, %d warning(s)\n",
     what,
     (long long)input->GetNumberOfPoints(),
@@ -179,7 +169,7 @@ void TestSmallClouds()
     for (double radius : { 0.0, 0.5 })
     {
       const Run run = Filter(input, radius);
-      CHECK(
+      PCB_CHECK(
         run.Errors == 0, "%zu points, radius %g: error '%s'", count, radius, run.Message.c_str());
       CheckSane(("small cloud of " + std::to_string(count)).c_str(), input, run, 1e-300);
     }
@@ -191,7 +181,7 @@ void TestCoincidentAndDegenerate()
   // All points identical: automatic radius impossible (a warning, unchanged); given radius: sane.
   auto same = Cloud(std::vector<double>(3 * 500, 0.25));
   Run run = Filter(same, 0.0);
-  CHECK(run.Errors == 0 && run.Warnings == 1,
+  PCB_CHECK(run.Errors == 0 && run.Warnings == 1,
     "identical points, automatic radius: %d errors, %d "
     "warnings",
     run.Errors,
@@ -238,20 +228,20 @@ void TestNonFinitePoints()
   }
   auto input = Cloud(xyz);
   const Run run = Filter(input, 0.05, 2);
-  CHECK(run.Errors == 0 && run.Warnings == 1,
+  PCB_CHECK(run.Errors == 0 && run.Warnings == 1,
     "NaN/Inf points: %d errors, %d warnings (one "
     "expected): %s",
     run.Errors,
     run.Warnings,
     run.Message.c_str());
-  CHECK(run.Message.find("40 point(s)") != std::string::npos,
+  PCB_CHECK(run.Message.find("40 point(s)") != std::string::npos,
     "the warning does not count 40 "
     "points: %s",
     run.Message.c_str());
   CheckSane("40 NaN/Inf points in a patch", input, run, 0.1);
   // The automatic radius ignores them too.
   const Run automatic = Filter(input, 0.0);
-  CHECK(std::isfinite(automatic.Radius) && automatic.Radius > 0,
+  PCB_CHECK(std::isfinite(automatic.Radius) && automatic.Radius > 0,
     "automatic radius %g",
     automatic.Radius);
 }
@@ -298,8 +288,8 @@ void TestGeoreferencedOffset()
       type == VTK_DOUBLE ? "double" : "float",
       largest,
       moved);
-    CHECK(largest < tolerance, "offset 1e6: difference %g", largest);
-    CHECK(type == VTK_FLOAT || moved > 1e-3, "offset 1e6: the points did not move (%g)", moved);
+    PCB_CHECK(largest < tolerance, "offset 1e6: difference %g", largest);
+    PCB_CHECK(type == VTK_FLOAT || moved > 1e-3, "offset 1e6: the points did not move (%g)", moved);
   }
 }
 void TestAbortFromAnotherThread()
@@ -332,10 +322,11 @@ void TestAbortFromAnotherThread()
     total,
     afterRequest,
     (long long)filter->GetOutput()->GetNumberOfPoints());
-  CHECK(requested, "the run ended (%.2f s) before the abort was requested: make it longer", total);
-  CHECK(
+  PCB_CHECK(
+    requested, "the run ended (%.2f s) before the abort was requested: make it longer", total);
+  PCB_CHECK(
     afterRequest >= 0.0 && afterRequest < 0.5, "returned %.3f s after the request", afterRequest);
-  CHECK(filter->GetOutput()->GetNumberOfPoints() == 0,
+  PCB_CHECK(filter->GetOutput()->GetNumberOfPoints() == 0,
     "an aborted run output %lld points",
     (long long)filter->GetOutput()->GetNumberOfPoints());
 }
@@ -351,13 +342,5 @@ int main(int argc, char* argv[])
     { "georeferenced-offset", TestGeoreferencedOffset },
     { "abort-from-another-thread", TestAbortFromAnotherThread },
   };
-  const auto found = argc > 1 ? cases.find(argv[1]) : cases.end();
-  if (found == cases.end())
-  {
-    std::fprintf(stderr, "usage: %s CASE\n", argv[0]);
-    return EXIT_FAILURE;
-  }
-  found->second();
-  std::printf("%s: %s\n", found->first.c_str(), Failures == 0 ? "passed" : "FAILED");
-  return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return RunNamedCase(argc, argv, cases);
 }
