@@ -12,7 +12,6 @@
 #include "vtkActor.h"
 #include "vtkAlgorithm.h"
 #include "vtkCamera.h"
-#include "vtkCellArray.h"
 #include "vtkCoordinate.h"
 #include "vtkNew.h"
 #include "vtkPLYReader.h"
@@ -25,6 +24,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkTextActor.h"
 #include "vtkTextProperty.h"
+#include "vtkVertexGlyphFilter.h"
 #include "vtkWindowToImageFilter.h"
 #include "vtkXMLPolyDataReader.h"
 
@@ -74,23 +74,12 @@ vtkSmartPointer<vtkRenderer> View(vtkPolyData* cloud,
   double right,
   vtkCamera* camera)
 {
+  // Points need vertex cells to be drawn, and PLY clouds have none.
+  vtkNew<vtkVertexGlyphFilter> vertices;
+  vertices->SetInputData(cloud);
   vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputData(cloud);
+  mapper->SetInputConnection(vertices->GetOutputPort());
   mapper->ScalarVisibilityOff();
-  // Points need vertex cells to be drawn; PLY clouds have none.
-  if (cloud->GetNumberOfVerts() == 0)
-  {
-    mapper->SetInputData(nullptr);
-    vtkNew<vtkPolyData> withVertices;
-    withVertices->ShallowCopy(cloud);
-    vtkNew<vtkCellArray> vertices;
-    for (vtkIdType id = 0; id < cloud->GetNumberOfPoints(); ++id)
-    {
-      vertices->InsertNextCell(1, &id);
-    }
-    withVertices->SetVerts(vertices);
-    mapper->SetInputData(withVertices);
-  }
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
   actor->GetProperty()->SetRepresentationToPoints();

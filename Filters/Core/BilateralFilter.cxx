@@ -223,8 +223,8 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   }
 
   PointState state;
-  state.Current = result.Positions;
-  state.Next = result.Positions;
+  state.Current = std::move(result.Positions); // given back when the run ends
+  state.Next = state.Current;
   state.Normals = std::move(result.Normals);
   state.Removed = std::move(result.Removed);
   state.OrientationNormals = cloud.OrientationNormals;

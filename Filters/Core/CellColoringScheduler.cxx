@@ -1,8 +1,10 @@
 #include "CellColoringScheduler.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <thread>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -194,6 +196,18 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
   }
 }
 
+void CellColoringScheduler::PollObserver()
+{
+  if (this->ShouldAbort && this->ShouldAbort())
+  {
+    this->Aborted.store(true, std::memory_order_relaxed);
+  }
+  if (this->ReportPoints)
+  {
+    this->ReportPoints(this->PointsDone.load(std::memory_order_relaxed));
+  }
+}
+
 bool CellColoringScheduler::RunIteration(PointState& state)
 {
   this->Aborted.store(false);
@@ -210,17 +224,26 @@ bool CellColoringScheduler::RunIteration(PointState& state)
   for (const auto& cells : classes)
   {
     const auto cellCount = static_cast<std::int64_t>(cells.size());
+    std::atomic<std::int64_t> cellsDone{ 0 };
 #pragma omp parallel num_threads(this->NumberOfThreads)
     {
       ThreadScratch& scratch = this->Scratch[CurrentThread()];
       const bool isMaster = CurrentThread() == 0;
-#pragma omp for schedule(dynamic, 1)
+#pragma omp for schedule(dynamic, 1) nowait
       for (std::int64_t k = 0; k < cellCount; ++k)
       {
         if (!this->Aborted.load(std::memory_order_relaxed))
         {
           this->ProcessCell(static_cast<std::size_t>(cells[k]), state, scratch, isMaster);
         }
+        cellsDone.fetch_add(1, std::memory_order_release);
+      }
+      // The hooks belong to the calling thread: once out of cells it keeps polling them while
+      // the other threads finish theirs (a class may hold a single, long cell).
+      while (isMaster && cellsDone.load(std::memory_order_acquire) < cellCount)
+      {
+        this->PollObserver();
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
       }
     }
     if (this->Aborted.load())

@@ -69,6 +69,8 @@ private:
   };
 
   void ProcessCell(std::size_t cell, PointState& state, ThreadScratch& scratch, bool isMaster);
+  /// Calling thread only: asks ShouldAbort and reports progress.
+  void PollObserver();
   void GatherCandidates(const LatticeCoord& cellCoord,
     const std::int32_t* neighbours,
     int localLeaf,

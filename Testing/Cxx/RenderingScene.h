@@ -20,6 +20,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkTextActor.h"
 #include "vtkTextProperty.h"
+#include "vtkVertexGlyphFilter.h"
 
 #include <string>
 #include <vector>
@@ -30,11 +31,9 @@ inline vtkSmartPointer<vtkPolyData> ReadSample(const std::string& name)
 {
   vtkNew<vtkPLYReader> reader;
   reader->SetFileName((std::string(PCB_DATA_DIR) + "/" + name).c_str());
-  reader->Update();
-  // PLY clouds have no vertex cells: one pass through the filter with 0 iterations adds them.
-  vtkNew<vtkPointCloudBilateralFilter> vertices;
+  // PLY clouds have no vertex cells, which points need to be drawn.
+  vtkNew<vtkVertexGlyphFilter> vertices;
   vertices->SetInputConnection(reader->GetOutputPort());
-  vertices->SetNumberOfIterations(0);
   vertices->Update();
   auto cloud = vtkSmartPointer<vtkPolyData>::New();
   cloud->ShallowCopy(vertices->GetOutput());
