@@ -45,6 +45,11 @@ bool IsFinitePoint(const double* p)
 {
   return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
 }
+
+bool IsFiniteExtent(const CloudExtent& extent)
+{
+  return IsFinitePoint(extent.Min) && IsFinitePoint(extent.Max);
+}
 } // namespace
 
 double AutomaticRadius(std::size_t numberOfPoints, double largestExtent)
@@ -135,6 +140,16 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
     result.Error = "the point cloud has no coordinates";
     return result;
   }
+  if (cloud.NumberOfGhostPoints > cloud.NumberOfPoints)
+  {
+    result.Error = "the point cloud has more ghost points than points";
+    return result;
+  }
+  if (parameters.GlobalExtent && !IsFiniteExtent(*parameters.GlobalExtent))
+  {
+    result.Error = "the global extent of the cloud is not finite";
+    return result;
+  }
   if (cloud.NumberOfPoints > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
   {
     result.Error = "the point cloud has more than 2^31 - 1 points";
@@ -150,8 +165,9 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   }
 
   // Non-finite points are passed through and never become neighbours.
-  const CloudExtent extent = MeasureCloud(cloud);
-  const std::size_t finiteCount = extent.NumberOfFinitePoints;
+  const CloudExtent localExtent = MeasureCloud(cloud);
+  const std::size_t finiteCount = localExtent.NumberOfFinitePoints;
+  const CloudExtent& extent = parameters.GlobalExtent ? *parameters.GlobalExtent : localExtent;
   result.NumberOfNonFinitePoints = n - finiteCount;
   if (result.NumberOfNonFinitePoints > 0)
   {
@@ -228,6 +244,7 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   state.Normals = std::move(result.Normals);
   state.Removed = std::move(result.Removed);
   state.OrientationNormals = cloud.OrientationNormals;
+  state.FirstGhost = n - cloud.NumberOfGhostPoints;
 
   CellColoringScheduler scheduler(
     octree, constants, result.RadiusUsed, parameters.RemoveIsolatedPoints, threads);

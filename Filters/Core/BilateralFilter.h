@@ -6,11 +6,23 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace pcbilateral
 {
+
+/// The finite points of a cloud and their bounding box (NaN and infinite points are left out).
+struct CloudExtent
+{
+  std::size_t NumberOfFinitePoints = 0;
+  double Min[3] = { 0.0, 0.0, 0.0 };
+  double Max[3] = { 0.0, 0.0, 0.0 };
+  double LargestExtent() const;
+  /// The largest absolute value of a coordinate.
+  double LargestMagnitude() const;
+};
 
 /// Parameters in the paper's terms (section 5).
 struct BilateralParameters
@@ -30,6 +42,10 @@ struct BilateralParameters
   int NumberOfThreads = 0;
   /// Also return the estimated normals of the last iteration.
   bool ComputeNormals = false;
+  /// Distributed runs: the extent of the whole cloud, all processes together. It fixes the
+  /// automatic radius and the octree's geometry, hence the order of every sum, so that each
+  /// process computes the bits a single process would. Empty: the extent of the given points.
+  std::optional<CloudExtent> GlobalExtent;
 };
 
 /// The points to filter. Arrays are interleaved x y z, NumberOfPoints triples.
@@ -39,6 +55,10 @@ struct PointCloudView
   const double* Positions = nullptr;
   /// Optional: each estimated normal is flipped to agree with this one.
   const double* OrientationNormals = nullptr;
+  /// The last NumberOfGhostPoints points are neighbours only: they are not filtered and keep
+  /// their positions. A distributed run passes here the points of other processes that lie
+  /// within reach of its own.
+  std::size_t NumberOfGhostPoints = 0;
 };
 
 /// Hooks called from the calling thread while the filter runs.
@@ -86,16 +106,6 @@ struct BilateralResult
 /// The automatic radius of the paper: sqrt(20 / numberOfPoints) * largestExtent.
 double AutomaticRadius(std::size_t numberOfPoints, double largestExtent);
 
-/// The finite points of a cloud and their bounding box (NaN and infinite points are left out).
-struct CloudExtent
-{
-  std::size_t NumberOfFinitePoints = 0;
-  double Min[3] = { 0.0, 0.0, 0.0 };
-  double Max[3] = { 0.0, 0.0, 0.0 };
-  double LargestExtent() const;
-  /// The largest absolute value of a coordinate.
-  double LargestMagnitude() const;
-};
 CloudExtent MeasureCloud(const PointCloudView& cloud);
 
 /// The radius and normal radius a run uses on a cloud of this extent, the automatic choices

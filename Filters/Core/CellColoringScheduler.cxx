@@ -131,6 +131,11 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
         return;
       }
       const std::uint32_t id = ids[i];
+      if (id >= state.FirstGhost)
+      {
+        this->Octree.Place(id, static_cast<std::int32_t>(cell), localLeaf);
+        continue;
+      }
       const double p[3] = { x[i], y[i], z[i] };
       const FilteredPoint filtered = FilterPoint(p, scratch.Candidates, this->Constants);
       scratch.NeighbourEvaluations += filtered.NeighbourCount;

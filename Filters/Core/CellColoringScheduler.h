@@ -23,6 +23,8 @@ struct PointState
   std::vector<double> Normals; // xyz, written when asked for
   std::vector<std::uint8_t> Removed;
   const double* OrientationNormals = nullptr;
+  /// Ids from this one on are ghosts: neighbours only, never filtered, never moved.
+  std::size_t FirstGhost = 0;
 };
 
 /**

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 
 namespace pcbilateral
@@ -13,6 +14,32 @@ namespace
 /// filter's guarantee) from one cell cannot reach a leaf reachable from a cell of the same
 /// colour (the paper's d = 2.1 r).
 constexpr double CellSizeInRadii = 2.1;
+
+/// The order of the points in a leaf: by coordinates, so that it depends on geometry alone and
+/// not on the point ids (a distributed run numbers its points differently). Points equal in all
+/// three coordinates are ordered by their bits, then by id: exact duplicates contribute the
+/// same terms to every sum, so their order among themselves changes no result.
+bool PrecedesInLeaf(const double* a, std::uint32_t idA, const double* b, std::uint32_t idB)
+{
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (a[axis] != b[axis])
+    {
+      return a[axis] < b[axis];
+    }
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    std::uint64_t bitsA, bitsB;
+    std::memcpy(&bitsA, a + axis, sizeof(bitsA));
+    std::memcpy(&bitsB, b + axis, sizeof(bitsB));
+    if (bitsA != bitsB)
+    {
+      return bitsA < bitsB;
+    }
+  }
+  return idA < idB;
+}
 
 std::int64_t FloorDivide(std::int64_t value, std::int64_t divisor)
 {
@@ -224,7 +251,13 @@ void ProcessingOctree::Compact(const double* positions, int numberOfThreads)
       {
         this->SortedIds[end++] = static_cast<std::uint32_t>(id);
       }
-      std::sort(this->SortedIds.begin() + begin, this->SortedIds.begin() + end);
+      std::sort(this->SortedIds.begin() + begin,
+        this->SortedIds.begin() + end,
+        [positions](std::uint32_t a, std::uint32_t b)
+        {
+          return PrecedesInLeaf(
+            positions + 3 * std::size_t{ a }, a, positions + 3 * std::size_t{ b }, b);
+        });
       for (std::size_t i = begin; i < end; ++i)
       {
         const double* p = positions + 3 * static_cast<std::size_t>(this->SortedIds[i]);

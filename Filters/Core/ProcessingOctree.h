@@ -35,8 +35,9 @@ struct LatticeCoordHash
  *   parities of their lattice coordinates) is their colour: two cells of one colour are at
  *   least one cell size apart, so their r-dilations share no leaf.
  * - leaves: each processing cell split LeavesPerAxis times per axis (two octree levels
- *   further down). A leaf holds the ids of its points, sorted, so that every traversal
- *   order is defined by geometry and ids alone.
+ *   further down). A leaf holds its points sorted by coordinates, so that every traversal
+ *   order is defined by geometry alone: a cloud gives the same sums however its points are
+ *   numbered.
  *
  * Only non-empty cells are stored. Each iteration reads the points from a compact layout
  * (ids and coordinates contiguous per leaf, leaves contiguous per cell) and places the
@@ -100,8 +101,9 @@ public:
 
   /**
    * Turns the placed points into the compact layout read by the next iteration: drops empty
-   * cells, sorts cells by lattice coordinates and each leaf's ids, copies the coordinates
-   * (interleaved xyz, indexed by id) next to the ids, and rebuilds the neighbour tables.
+   * cells, sorts cells by lattice coordinates and each leaf's points by coordinates, copies
+   * the coordinates (`positions`: interleaved xyz, indexed by id) next to the ids, and rebuilds
+   * the neighbour tables.
    */
   void Compact(const double* positions, int numberOfThreads);
 
