@@ -1,11 +1,54 @@
 #include "BilateralKernel.h"
 
-#include <Eigen/Eigenvalues>
-
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <utility>
 
 namespace pcbilateral
 {
+
+// The builds of the kernel body (BilateralKernelBody.h), one per instruction set.
+#define PCB_DECLARE_KERNEL_BUILD(variant)                                                          \
+  namespace variant                                                                                \
+  {                                                                                                \
+  void FilterPoint(const double p[3],                                                              \
+    const double* x,                                                                               \
+    const double* y,                                                                               \
+    const double* z,                                                                               \
+    std::size_t count,                                                                             \
+    const KernelConstants& constants,                                                              \
+    KernelScratch& scratch,                                                                        \
+    FilteredPoint& result);                                                                        \
+  void ExpOfNonPositive(const double* in, double* out, std::size_t count);                         \
+  }
+PCB_DECLARE_KERNEL_BUILD(generic)
+#if PCB_KERNEL_X86
+PCB_DECLARE_KERNEL_BUILD(avx2)
+PCB_DECLARE_KERNEL_BUILD(avx512)
+#endif
+#undef PCB_DECLARE_KERNEL_BUILD
+
+namespace
+{
+KernelInstructionSet BestInstructionSet()
+{
+  for (const auto candidate : { KernelInstructionSet::Avx512, KernelInstructionSet::Avx2 })
+  {
+    if (IsAvailable(candidate))
+    {
+      return candidate;
+    }
+  }
+  return KernelInstructionSet::Generic;
+}
+
+std::atomic<KernelInstructionSet>& CurrentInstructionSet()
+{
+  static std::atomic<KernelInstructionSet> current{ BestInstructionSet() };
+  return current;
+}
+} // namespace
 
 KernelConstants::KernelConstants(double radius, double normalRadius)
 {
@@ -33,19 +76,189 @@ void CandidateNeighbours::Append(const double* x,
   this->Z.insert(this->Z.end(), z, z + count);
 }
 
+KernelScratch CandidateNeighbours::Scratch()
+{
+  const std::size_t stride = this->Size() + KernelLanes;
+  if (this->ScratchStorage.size() < 5 * stride)
+  {
+    // Grow geometrically: candidate counts vary from leaf to leaf.
+    this->ScratchStorage.resize(std::max(5 * stride, 2 * this->ScratchStorage.size()));
+  }
+  const std::size_t capacity = this->ScratchStorage.size() / 5;
+  double* storage = this->ScratchStorage.data();
+  KernelScratch scratch;
+  scratch.Dx = storage;
+  scratch.Dy = storage + capacity;
+  scratch.Dz = storage + 2 * capacity;
+  scratch.DistanceSquared = storage + 3 * capacity;
+  scratch.DistanceWeight = storage + 4 * capacity;
+  return scratch;
+}
+
+const char* GetName(KernelInstructionSet instructionSet)
+{
+  switch (instructionSet)
+  {
+    case KernelInstructionSet::Avx512:
+      return "AVX-512";
+    case KernelInstructionSet::Avx2:
+      return "AVX2";
+    default:
+      return "generic";
+  }
+}
+
+bool IsAvailable(KernelInstructionSet instructionSet)
+{
+  switch (instructionSet)
+  {
+#if PCB_KERNEL_X86
+    case KernelInstructionSet::Avx512:
+      return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("popcnt");
+    case KernelInstructionSet::Avx2:
+      return __builtin_cpu_supports("avx2");
+#endif
+    case KernelInstructionSet::Generic:
+      return true;
+    default:
+      return false;
+  }
+}
+
+KernelInstructionSet GetKernelInstructionSet()
+{
+  return CurrentInstructionSet().load(std::memory_order_relaxed);
+}
+
+bool SetKernelInstructionSet(KernelInstructionSet instructionSet)
+{
+  if (!IsAvailable(instructionSet))
+  {
+    return false;
+  }
+  CurrentInstructionSet().store(instructionSet);
+  return true;
+}
+
+void KernelExp(const double* x, double* result, std::size_t count)
+{
+  switch (GetKernelInstructionSet())
+  {
+#if PCB_KERNEL_X86
+    case KernelInstructionSet::Avx512:
+      return avx512::ExpOfNonPositive(x, result, count);
+    case KernelInstructionSet::Avx2:
+      return avx2::ExpOfNonPositive(x, result, count);
+#endif
+    default:
+      return generic::ExpOfNonPositive(x, result, count);
+  }
+}
+
 void SmallestEigenvector(const double covariance[6], double eigenvector[3])
 {
-  Eigen::Matrix3d matrix;
-  matrix << covariance[0], covariance[1], covariance[2], //
-    covariance[1], covariance[3], covariance[4],         //
-    covariance[2], covariance[4], covariance[5];
-  // The iterative solver, not the closed form: it stays accurate when two eigenvalues are
-  // close or zero (flat patches, lines, repeated points), where the closed form loses digits.
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(matrix, Eigen::ComputeEigenvectors);
-  const Eigen::Vector3d smallest = solver.eigenvectors().col(0).normalized();
-  eigenvector[0] = smallest[0];
-  eigenvector[1] = smallest[1];
-  eigenvector[2] = smallest[2];
+  // The eigenvectors of C are those of B = (C - shift I) / scale, with the shift making B's
+  // trace zero and the scale its largest entry one: the closed form below then works on
+  // numbers of order one, whatever the units and the offset of the cloud.
+  const double shift = (covariance[0] + covariance[3] + covariance[5]) / 3.0;
+  double b[6] = { covariance[0] - shift,
+    covariance[1],
+    covariance[2],
+    covariance[3] - shift,
+    covariance[4],
+    covariance[5] - shift };
+  double scale = 0.0;
+  for (const double entry : b)
+  {
+    scale = std::max(scale, std::abs(entry));
+  }
+  eigenvector[0] = 0.0;
+  eigenvector[1] = 0.0;
+  eigenvector[2] = 1.0;
+  if (!(scale > 0.0) || !std::isfinite(scale))
+  {
+    return; // C = shift I: every direction is an eigenvector
+  }
+  for (double& entry : b)
+  {
+    entry /= scale;
+  }
+  const double b00 = b[0], b01 = b[1], b02 = b[2], b11 = b[3], b12 = b[4], b22 = b[5];
+
+  // B's eigenvalues are 2 p cos(phi + 2 pi j / 3) with p^2 = tr(B^2) / 6 and
+  // cos(3 phi) = det(B) / (2 p^3) (trigonometric solution of the characteristic cubic).
+  const double p = std::sqrt(
+    (b00 * b00 + b11 * b11 + b22 * b22 + 2.0 * (b01 * b01 + b02 * b02 + b12 * b12)) / 6.0);
+  const double determinant =
+    b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) + b02 * (b01 * b12 - b11 * b02);
+  const double cosine = std::min(1.0, std::max(-1.0, determinant / (2.0 * p * p * p)));
+  constexpr double TwoPiOverThree = 2.0943951023931954923;
+  const double smallest = 2.0 * p * std::cos(std::acos(cosine) / 3.0 + TwoPiOverThree);
+
+  // The eigenvector is orthogonal to the rows of B - smallest I: the cross product of two rows.
+  // The largest of the three cross products is the most accurate one.
+  const double rows[3][3] = {
+    { b00 - smallest, b01, b02 }, { b01, b11 - smallest, b12 }, { b02, b12, b22 - smallest }
+  };
+  double best[3] = { 0.0, 0.0, 0.0 };
+  double bestNorm = 0.0;
+  for (const auto& pair : { std::make_pair(0, 1), std::make_pair(0, 2), std::make_pair(1, 2) })
+  {
+    const double* u = rows[pair.first];
+    const double* v = rows[pair.second];
+    const double cross[3] = {
+      u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]
+    };
+    const double norm = cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2];
+    if (norm > bestNorm)
+    {
+      bestNorm = norm;
+      std::copy(cross, cross + 3, best);
+    }
+  }
+  // Below this, the rows are parallel to rounding: the smallest eigenvalue is double (points on
+  // a line) and any direction orthogonal to the rows is an eigenvector of it.
+  constexpr double ParallelRows = 1e-24;
+  if (!(bestNorm > ParallelRows))
+  {
+    int largestRow = 0;
+    double largestNorm = 0.0;
+    for (int row = 0; row < 3; ++row)
+    {
+      const double* u = rows[row];
+      const double norm = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+      if (norm > largestNorm)
+      {
+        largestNorm = norm;
+        largestRow = row;
+      }
+    }
+    if (!(largestNorm > 0.0))
+    {
+      return;
+    }
+    // Cross the row with the axis it is least aligned with.
+    const double* u = rows[largestRow];
+    int axis = 0;
+    for (int other = 1; other < 3; ++other)
+    {
+      if (std::abs(u[other]) < std::abs(u[axis]))
+      {
+        axis = other;
+      }
+    }
+    double unit[3] = { 0.0, 0.0, 0.0 };
+    unit[axis] = 1.0;
+    best[0] = u[1] * unit[2] - u[2] * unit[1];
+    best[1] = u[2] * unit[0] - u[0] * unit[2];
+    best[2] = u[0] * unit[1] - u[1] * unit[0];
+    bestNorm = best[0] * best[0] + best[1] * best[1] + best[2] * best[2];
+  }
+  const double length = std::sqrt(bestNorm);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    eigenvector[axis] = best[axis] / length;
+  }
 }
 
 FilteredPoint FilterPoint(const double p[3],
@@ -53,100 +266,24 @@ FilteredPoint FilterPoint(const double p[3],
   const KernelConstants& constants)
 {
   FilteredPoint result;
-  const std::size_t count = candidates.Size();
-  candidates.DistanceSquared.resize(count);
-  candidates.NeighbourIndex.resize(count);
-  candidates.DistanceWeight.resize(count);
+  KernelScratch scratch = candidates.Scratch();
   const double* x = candidates.X.data();
   const double* y = candidates.Y.data();
   const double* z = candidates.Z.data();
-  double* distanceSquared = candidates.DistanceSquared.data();
-  std::uint32_t* neighbour = candidates.NeighbourIndex.data();
-  double* distanceWeight = candidates.DistanceWeight.data();
-
-  // The neighbours, |q - p| < r, in candidate order, selected without a branch: most candidates
-  // are not neighbours, and a branch per candidate is mispredicted often. The distances come
-  // first, in a loop the compiler vectorises.
-  const double px = p[0], py = p[1], pz = p[2];
-  for (std::size_t j = 0; j < count; ++j)
+  const std::size_t count = candidates.Size();
+  switch (GetKernelInstructionSet())
   {
-    const double dx = x[j] - px;
-    const double dy = y[j] - py;
-    const double dz = z[j] - pz;
-    distanceSquared[j] = dx * dx + dy * dy + dz * dz;
+#if PCB_KERNEL_X86
+    case KernelInstructionSet::Avx512:
+      avx512::FilterPoint(p, x, y, z, count, constants, scratch, result);
+      break;
+    case KernelInstructionSet::Avx2:
+      avx2::FilterPoint(p, x, y, z, count, constants, scratch, result);
+      break;
+#endif
+    default:
+      generic::FilterPoint(p, x, y, z, count, constants, scratch, result);
   }
-  std::uint32_t neighbours = 0;
-  for (std::size_t j = 0; j < count; ++j)
-  {
-    neighbour[neighbours] = static_cast<std::uint32_t>(j);
-    neighbours += (distanceSquared[j] < constants.RadiusSquared) ? 1 : 0;
-  }
-  result.NeighbourCount = neighbours;
-
-  // Pass 1: distance weights, and the weighted first and second moments of the offsets q - p,
-  // for the regression plane.
-  double weightSum = 0.0;
-  double first[3] = { 0.0, 0.0, 0.0 };
-  double second[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
-  for (std::uint32_t k = 0; k < neighbours; ++k)
-  {
-    const std::uint32_t j = neighbour[k];
-    const double dx = x[j] - p[0];
-    const double dy = y[j] - p[1];
-    const double dz = z[j] - p[2];
-    const double w = std::exp(-distanceSquared[j] * constants.DistanceScale);
-    distanceWeight[k] = w;
-    weightSum += w;
-    first[0] += w * dx;
-    first[1] += w * dy;
-    first[2] += w * dz;
-    second[0] += w * dx * dx;
-    second[1] += w * dx * dy;
-    second[2] += w * dx * dz;
-    second[3] += w * dy * dy;
-    second[4] += w * dy * dz;
-    second[5] += w * dz * dz;
-  }
-  if (neighbours < MinimumNeighbourCount || !(weightSum > 0.0))
-  {
-    return result;
-  }
-
-  // Weighted covariance about the weighted mean; the offsets are small, so the one-pass form
-  // loses nothing that matters next to the noise it measures.
-  const double mean[3] = { first[0] / weightSum, first[1] / weightSum, first[2] / weightSum };
-  const double covariance[6] = {
-    second[0] / weightSum - mean[0] * mean[0],
-    second[1] / weightSum - mean[0] * mean[1],
-    second[2] / weightSum - mean[0] * mean[2],
-    second[3] / weightSum - mean[1] * mean[1],
-    second[4] / weightSum - mean[1] * mean[2],
-    second[5] / weightSum - mean[2] * mean[2],
-  };
-  double n[3];
-  SmallestEigenvector(covariance, n);
-
-  // Pass 2: the bilateral average of the heights h = <n, q - p> over the same neighbours.
-  double bilateralWeightSum = 0.0;
-  double weightedHeightSum = 0.0;
-  for (std::uint32_t k = 0; k < neighbours; ++k)
-  {
-    const std::uint32_t j = neighbour[k];
-    const double h = n[0] * (x[j] - p[0]) + n[1] * (y[j] - p[1]) + n[2] * (z[j] - p[2]);
-    const double w = distanceWeight[k] * std::exp(-h * h * constants.NormalScale);
-    bilateralWeightSum += w;
-    weightedHeightSum += w * h;
-  }
-  if (!(bilateralWeightSum > 0.0))
-  {
-    return result;
-  }
-
-  result.Displacement = weightedHeightSum / bilateralWeightSum;
-  result.Normal[0] = n[0];
-  result.Normal[1] = n[1];
-  result.Normal[2] = n[2];
-  result.Filtered = true;
   return result;
 }
 

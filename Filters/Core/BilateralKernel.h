@@ -25,23 +25,36 @@ struct KernelConstants
   double NormalScale;
 };
 
+/// Partial sums the kernel keeps per quantity; the result does not depend on the hardware's
+/// vector width (see BilateralKernelBody.h).
+constexpr std::size_t KernelLanes = 8;
+
+/// Per-neighbour scratch arrays of the kernel, each with room for every candidate and
+/// KernelLanes more.
+struct KernelScratch
+{
+  double* Dx = nullptr;
+  double* Dy = nullptr;
+  double* Dz = nullptr;
+  double* DistanceSquared = nullptr;
+  double* DistanceWeight = nullptr;
+};
+
 /// Candidate neighbours of a block of points, gathered once and read for each of them.
 /// Coordinates are absolute; the kernel subtracts the filtered point before any other
 /// arithmetic, so large offsets (georeferenced data) do not cost precision.
 struct CandidateNeighbours
 {
   std::vector<double> X, Y, Z;
-  ///@{
-  /// Scratch of the kernel: squared distances (one per candidate), then the neighbours'
-  /// candidate indices and distance weights (one per neighbour), shared by its two passes.
-  std::vector<double> DistanceSquared;
-  std::vector<std::uint32_t> NeighbourIndex;
-  std::vector<double> DistanceWeight;
-  ///@}
 
   std::size_t Size() const { return this->X.size(); }
   void Clear();
   void Append(const double* x, const double* y, const double* z, std::size_t count);
+  /// The kernel's scratch, with room for the current candidates.
+  KernelScratch Scratch();
+
+private:
+  std::vector<double> ScratchStorage;
 };
 
 /// What the kernel computed for one point.
@@ -59,12 +72,34 @@ struct FilteredPoint
 
 /**
  * Algorithm 1 for the point p against the candidates, which must contain every point q with
- * |q - p| < r (and may contain more: they are masked out). Sums run over the candidates in
- * their given order, so the result depends only on that order, never on threads.
+ * |q - p| < r (and may contain more: they are masked out). Sums run over the neighbours in
+ * candidate order, so the result depends only on that order, never on threads.
+ *
+ * Runs the build of the kernel for the best instruction set of the machine (see
+ * KernelInstructionSet); all builds give the same bits.
  */
 FilteredPoint FilterPoint(const double p[3],
   CandidateNeighbours& candidates,
   const KernelConstants& constants);
+
+/// The instruction sets the kernel is built for. Every one computes the same bits.
+enum class KernelInstructionSet
+{
+  Generic, ///< what the compiler targets by default (SSE2 on x86-64)
+  Avx2,
+  Avx512
+};
+const char* GetName(KernelInstructionSet instructionSet);
+/// Whether this build has the kernel for that instruction set and the machine can run it.
+bool IsAvailable(KernelInstructionSet instructionSet);
+/// The instruction set FilterPoint uses: the best available, unless set.
+KernelInstructionSet GetKernelInstructionSet();
+/// For tests and benchmarks; ignored (returns false) if that set is not available.
+bool SetKernelInstructionSet(KernelInstructionSet instructionSet);
+
+/// exp(x) as the kernel computes it, for x <= 0 (-inf included): within 1 ulp of the true
+/// value, 0 below x = -708. For tests.
+void KernelExp(const double* x, double* result, std::size_t count);
 
 /// Eigenvector of the smallest eigenvalue of a symmetric 3x3 matrix given by its upper
 /// triangle (xx, xy, xz, yy, yz, zz), as a unit vector.

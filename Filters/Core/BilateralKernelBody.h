@@ -1,0 +1,299 @@
+// The body of the per-point kernel (Algorithm 1), compiled once per instruction set by
+// BilateralKernelGeneric.cxx, BilateralKernelAvx2.cxx and BilateralKernelAvx512.cxx, each with
+// PCB_KERNEL_VARIANT naming its own namespace. Private to the core.
+//
+// Every build computes the same bits. What makes that true:
+// - arithmetic is element-wise IEEE double (+, -, *, /) on GCC/Clang vector types, with
+//   floating-point contraction off (no FMA), so a lane computes what a scalar would;
+// - every sum runs in Lanes partial sums (neighbour k goes to lane k % Lanes) that are added in a
+//   fixed tree at the end, whatever the hardware vector width;
+// - the exponential is this file's own (no libm call, whose last bit differs between libm
+//   versions and between its FMA and non-FMA code paths).
+// Nothing here may call out-of-line C++ library templates: this header is compiled with
+// instruction sets the machine may lack, and such a template instantiated here could be the
+// copy the linker keeps for the whole program.
+#ifndef PCB_KERNEL_VARIANT
+#error "define PCB_KERNEL_VARIANT (the namespace of this build) before including this file"
+#endif
+
+#include "BilateralKernel.h"
+
+#include <cstdint>
+#include <cstring>
+
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
+
+namespace pcbilateral
+{
+namespace PCB_KERNEL_VARIANT
+{
+
+constexpr std::size_t Lanes = KernelLanes;
+typedef double DoubleLanes __attribute__((vector_size(Lanes * sizeof(double))));
+typedef std::int64_t IntLanes __attribute__((vector_size(Lanes * sizeof(double))));
+typedef std::uint64_t BitsLanes __attribute__((vector_size(Lanes * sizeof(double))));
+
+inline DoubleLanes Load(const double* values)
+{
+  DoubleLanes lanes;
+  std::memcpy(&lanes, values, sizeof(lanes));
+  return lanes;
+}
+
+inline void Store(double* values, DoubleLanes lanes)
+{
+  std::memcpy(values, &lanes, sizeof(lanes));
+}
+
+/// a where the mask is set (all ones), b elsewhere.
+inline DoubleLanes Select(IntLanes mask, DoubleLanes a, DoubleLanes b)
+{
+  return (DoubleLanes)((mask & (IntLanes)a) | (~mask & (IntLanes)b));
+}
+
+/// The sum of the lanes, in a fixed tree: the same bits for any vector width.
+inline double SumLanes(DoubleLanes lanes)
+{
+  static_assert(Lanes == 8, "the tree below adds 8 lanes");
+  return ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])) +
+         ((lanes[4] + lanes[5]) + (lanes[6] + lanes[7]));
+}
+
+/**
+ * exp(x) for x <= 0, -inf included, within 1 ulp: exp(x) = 2^k exp(r) with r = x - k ln2 in
+ * [-ln2/2, ln2/2], exp(r) by its Taylor polynomial of degree 13 (remainder below 0.1 ulp), 2^k
+ * put in the exponent bits. Results below 2^-1021 (x < -708) are 0: the kernel's weights are
+ * summed with the point's own weight exp(0) = 1, next to which they vanish.
+ *
+ * Constants: 1/ln2 and 1/k! are the doubles nearest to them; ln2 = Ln2High + Ln2Low with
+ * Ln2High rounded to 28 significant bits, so that k * Ln2High is exact for any k here.
+ */
+inline DoubleLanes ExpOfNonPositive(DoubleLanes x)
+{
+  constexpr double InverseLn2 = 0x1.71547652b82fep+0;
+  constexpr double Ln2High = 0x1.62e42ffp-1;
+  constexpr double Ln2Low = -0x1.718432a1b0e26p-35;
+  // Adding 1.5 * 2^52 rounds to an integer and leaves it in the low bits of the mantissa.
+  constexpr double RoundingShift = 0x1.8p52;
+  constexpr double Lowest = -708.0;
+
+  const DoubleLanes zero = {};
+  const IntLanes underflows = (IntLanes)(x < Lowest);
+  x = Select(underflows, zero + Lowest, x); // also turns -inf into a finite number
+  const DoubleLanes shifted = x * InverseLn2 + RoundingShift;
+  const DoubleLanes k = shifted - RoundingShift;
+  const DoubleLanes r = (x - k * Ln2High) - k * Ln2Low;
+
+  // exp(r) = 1 + (r + tail), the tail (r^2/2! to r^13/13!) by Estrin's scheme: a tree four
+  // products deep instead of Horner's chain of thirteen, so that consecutive vectors overlap in
+  // the pipeline. Adding the large terms last keeps the rounding errors below one ulp.
+  const DoubleLanes r2 = r * r;
+  const DoubleLanes r4 = r2 * r2;
+  const DoubleLanes r8 = r4 * r4;
+  const DoubleLanes c23 = r * 0x1.5555555555555p-3 + 0.5;                      // 1/2!, 1/3!
+  const DoubleLanes c45 = r * 0x1.1111111111111p-7 + 0x1.5555555555555p-5;     // 1/4!, 1/5!
+  const DoubleLanes c67 = r * 0x1.a01a01a01a01ap-13 + 0x1.6c16c16c16c17p-10;   // 1/6!, 1/7!
+  const DoubleLanes c89 = r * 0x1.71de3a556c734p-19 + 0x1.a01a01a01a01ap-16;   // 1/8!, 1/9!
+  const DoubleLanes c1011 = r * 0x1.ae64567f544e4p-26 + 0x1.27e4fb7789f5cp-22; // 1/10!, 1/11!
+  const DoubleLanes c1213 = r * 0x1.6124613a86d09p-33 + 0x1.1eed8eff8d898p-29; // 1/12!, 1/13!
+  const DoubleLanes c47 = c67 * r2 + c45;
+  const DoubleLanes c813 = (c1213 * r4 + (c1011 * r2 + c89));
+  const DoubleLanes tail = c23 * r2 + (c47 * r4 + c813 * r8);
+  const DoubleLanes p = (r + tail) + 1.0;
+
+  // 2^k: k sits in the low bits of `shifted`; the biased exponent k + 1023 goes in bits 52-62.
+  constexpr std::int64_t ShiftBits = 0x4338000000000000LL; // the bits of RoundingShift
+  const IntLanes exponent = (IntLanes)shifted - ShiftBits + 1023;
+  const DoubleLanes scale = (DoubleLanes)((BitsLanes)exponent << 52);
+  return Select(underflows, zero, p * scale);
+}
+
+/**
+ * The candidates with |q - p|^2 < r^2, in candidate order: their offsets q - p and squared
+ * distances, packed at the front of the output arrays. Output arrays hold count + Lanes values.
+ * Returns the number of neighbours.
+ */
+inline std::size_t SelectNeighbours(const double p[3],
+  const double* x,
+  const double* y,
+  const double* z,
+  std::size_t count,
+  double radiusSquared,
+  double* dx,
+  double* dy,
+  double* dz,
+  double* distanceSquared)
+{
+  std::size_t neighbours = 0;
+#if defined(__AVX512F__)
+  // Eight candidates at a time, the neighbours among them packed with one compress each.
+  const __m512d px = _mm512_set1_pd(p[0]);
+  const __m512d py = _mm512_set1_pd(p[1]);
+  const __m512d pz = _mm512_set1_pd(p[2]);
+  const __m512d limit = _mm512_set1_pd(radiusSquared);
+  for (std::size_t j = 0; j < count; j += 8)
+  {
+    const std::size_t left = count - j;
+    const __mmask8 valid = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
+    const __m512d ox = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, x + j), px);
+    const __m512d oy = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, y + j), py);
+    const __m512d oz = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, z + j), pz);
+    const __m512d d2 = _mm512_add_pd(
+      _mm512_add_pd(_mm512_mul_pd(ox, ox), _mm512_mul_pd(oy, oy)), _mm512_mul_pd(oz, oz));
+    const __mmask8 inside = _mm512_mask_cmp_pd_mask(valid, d2, limit, _CMP_LT_OQ);
+    _mm512_storeu_pd(dx + neighbours, _mm512_maskz_compress_pd(inside, ox));
+    _mm512_storeu_pd(dy + neighbours, _mm512_maskz_compress_pd(inside, oy));
+    _mm512_storeu_pd(dz + neighbours, _mm512_maskz_compress_pd(inside, oz));
+    _mm512_storeu_pd(distanceSquared + neighbours, _mm512_maskz_compress_pd(inside, d2));
+    neighbours += static_cast<std::size_t>(__builtin_popcount(inside));
+  }
+#else
+  // Without a branch per candidate: most candidates are not neighbours, and a branch on that
+  // is mispredicted often.
+  const double px = p[0], py = p[1], pz = p[2];
+  for (std::size_t j = 0; j < count; ++j)
+  {
+    const double ox = x[j] - px;
+    const double oy = y[j] - py;
+    const double oz = z[j] - pz;
+    const double d2 = (ox * ox + oy * oy) + oz * oz;
+    dx[neighbours] = ox;
+    dy[neighbours] = oy;
+    dz[neighbours] = oz;
+    distanceSquared[neighbours] = d2;
+    neighbours += d2 < radiusSquared ? 1 : 0;
+  }
+#endif
+  return neighbours;
+}
+
+/// Algorithm 1 for the point p (see FilterPoint in BilateralKernel.h). `result` arrives
+/// zeroed: the point does not move unless this says so.
+inline void FilterPointBody(const double p[3],
+  const double* x,
+  const double* y,
+  const double* z,
+  std::size_t count,
+  const KernelConstants& constants,
+  KernelScratch& scratch,
+  FilteredPoint& result)
+{
+  double* dx = scratch.Dx;
+  double* dy = scratch.Dy;
+  double* dz = scratch.Dz;
+  double* distanceSquared = scratch.DistanceSquared;
+  double* distanceWeight = scratch.DistanceWeight;
+  const std::size_t neighbours =
+    SelectNeighbours(p, x, y, z, count, constants.RadiusSquared, dx, dy, dz, distanceSquared);
+  result.NeighbourCount = static_cast<std::uint32_t>(neighbours);
+  if (neighbours < MinimumNeighbourCount)
+  {
+    return;
+  }
+  // Pad to whole vectors with neighbours of weight exp(-inf) = 0: they add exact zeros.
+  const std::size_t padded = (neighbours + Lanes - 1) / Lanes * Lanes;
+  for (std::size_t k = neighbours; k < padded; ++k)
+  {
+    dx[k] = dy[k] = dz[k] = 0.0;
+    distanceSquared[k] = __builtin_inf();
+  }
+
+  // Pass 1: distance weights, and the weighted first and second moments of the offsets q - p,
+  // for the regression plane.
+  const DoubleLanes zero = {};
+  DoubleLanes weightSum = zero, firstX = zero, firstY = zero, firstZ = zero;
+  DoubleLanes xx = zero, xy = zero, xz = zero, yy = zero, yz = zero, zz = zero;
+  for (std::size_t k = 0; k < padded; k += Lanes)
+  {
+    const DoubleLanes ox = Load(dx + k);
+    const DoubleLanes oy = Load(dy + k);
+    const DoubleLanes oz = Load(dz + k);
+    const DoubleLanes w = ExpOfNonPositive(-Load(distanceSquared + k) * constants.DistanceScale);
+    Store(distanceWeight + k, w);
+    weightSum += w;
+    const DoubleLanes wx = w * ox, wy = w * oy, wz = w * oz;
+    firstX += wx;
+    firstY += wy;
+    firstZ += wz;
+    xx += wx * ox;
+    xy += wx * oy;
+    xz += wx * oz;
+    yy += wy * oy;
+    yz += wy * oz;
+    zz += wz * oz;
+  }
+  const double totalWeight = SumLanes(weightSum);
+  if (!(totalWeight > 0.0))
+  {
+    return;
+  }
+
+  // Weighted covariance about the weighted mean; the offsets are small, so the one-pass form
+  // loses nothing that matters next to the noise it measures.
+  const double mean[3] = {
+    SumLanes(firstX) / totalWeight, SumLanes(firstY) / totalWeight, SumLanes(firstZ) / totalWeight
+  };
+  const double covariance[6] = {
+    SumLanes(xx) / totalWeight - mean[0] * mean[0],
+    SumLanes(xy) / totalWeight - mean[0] * mean[1],
+    SumLanes(xz) / totalWeight - mean[0] * mean[2],
+    SumLanes(yy) / totalWeight - mean[1] * mean[1],
+    SumLanes(yz) / totalWeight - mean[1] * mean[2],
+    SumLanes(zz) / totalWeight - mean[2] * mean[2],
+  };
+  double n[3];
+  SmallestEigenvector(covariance, n);
+
+  // Pass 2: the bilateral average of the heights h = <n, q - p> over the same neighbours.
+  DoubleLanes bilateralWeightSum = zero, weightedHeightSum = zero;
+  for (std::size_t k = 0; k < padded; k += Lanes)
+  {
+    const DoubleLanes h = (Load(dx + k) * n[0] + Load(dy + k) * n[1]) + Load(dz + k) * n[2];
+    const DoubleLanes w =
+      Load(distanceWeight + k) * ExpOfNonPositive(-(h * h) * constants.NormalScale);
+    bilateralWeightSum += w;
+    weightedHeightSum += w * h;
+  }
+  const double totalBilateralWeight = SumLanes(bilateralWeightSum);
+  if (!(totalBilateralWeight > 0.0))
+  {
+    return;
+  }
+  result.Displacement = SumLanes(weightedHeightSum) / totalBilateralWeight;
+  result.Normal[0] = n[0];
+  result.Normal[1] = n[1];
+  result.Normal[2] = n[2];
+  result.Filtered = true;
+}
+
+/// The entry point of this build (declared in BilateralKernel.cxx).
+void FilterPoint(const double p[3],
+  const double* x,
+  const double* y,
+  const double* z,
+  std::size_t count,
+  const KernelConstants& constants,
+  KernelScratch& scratch,
+  FilteredPoint& result)
+{
+  FilterPointBody(p, x, y, z, count, constants, scratch, result);
+}
+
+/// The exponential of this build, for the tests: out[i] = exp(in[i]) for in[i] <= 0.
+void ExpOfNonPositive(const double* in, double* out, std::size_t count)
+{
+  for (std::size_t i = 0; i + Lanes <= count; i += Lanes)
+  {
+    Store(out + i, ExpOfNonPositive(Load(in + i)));
+  }
+  for (std::size_t i = count / Lanes * Lanes; i < count; ++i)
+  {
+    double lanes[Lanes] = { in[i], 0, 0, 0, 0, 0, 0, 0 };
+    out[i] = ExpOfNonPositive(Load(lanes))[0];
+  }
+}
+
+} // namespace PCB_KERNEL_VARIANT
+} // namespace pcbilateral

@@ -1,0 +1,3 @@
+// The kernel body built for the instruction set named in CMakeLists.txt's flags for this file.
+#define PCB_KERNEL_VARIANT generic
+#include "BilateralKernelBody.h"

@@ -1,0 +1,359 @@
+// The kernel's own numerics, against independent references:
+// - its exponential against long double expl, within 1 ulp, and 0 below -708;
+// - its closed-form smallest eigenvector against Eigen's iterative solver, on covariances of
+//   planes, noisy patches, edges, lines, repeated points and exact planes;
+// - FilterPoint against a plain transcription of Algorithm 1 (sequential sums, std::exp,
+//   Eigen), within 1e-12 of the radius;
+// - every instruction-set build of the kernel gives the same bits.
+#include "BilateralKernel.h"
+#include "CoreTesting.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
+
+namespace
+{
+using namespace pcbilateral;
+
+std::vector<KernelInstructionSet> AvailableInstructionSets()
+{
+  std::vector<KernelInstructionSet> sets;
+  for (const auto set :
+    { KernelInstructionSet::Generic, KernelInstructionSet::Avx2, KernelInstructionSet::Avx512 })
+  {
+    if (IsAvailable(set))
+    {
+      sets.push_back(set);
+    }
+  }
+  return sets;
+}
+
+double UlpsApart(double value, long double reference)
+{
+  const double nearest = static_cast<double>(reference);
+  const double ulp = std::nextafter(nearest, HUGE_VAL) - nearest;
+  return static_cast<double>(std::abs(static_cast<long double>(value) - reference) / ulp);
+}
+
+void TestExp()
+{
+  std::mt19937_64 random(1);
+  std::vector<double> x;
+  for (const double special : { 0.0,
+         -0.0,
+         -1e-300,
+         -1e-17,
+         -0.5,
+         -0.34657359027997264,
+         -1.0,
+         -4.5,
+         -700.0,
+         -708.0,
+         -708.0000001,
+         -745.0,
+         -1e300,
+         -HUGE_VAL })
+  {
+    x.push_back(special);
+  }
+  // Uniform over the weights' usual range, then over the whole range, then near the
+  // range-reduction boundaries (k ln2 / 2).
+  std::uniform_real_distribution<double> usual(-5.0, 0.0), whole(-708.0, 0.0), tiny(-1e-9, 1e-9);
+  for (int i = 0; i < 400000; ++i)
+  {
+    x.push_back(usual(random));
+    x.push_back(whole(random));
+    const int k = static_cast<int>(random() % 2000);
+    x.push_back(std::min(0.0, -0.34657359027997264 * k + tiny(random)));
+  }
+  std::vector<std::vector<double>> results;
+  for (const auto set : AvailableInstructionSets())
+  {
+    SetKernelInstructionSet(set);
+    std::vector<double> y(x.size());
+    KernelExp(x.data(), y.data(), x.size());
+    double worst = 0.0, worstAt = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i)
+    {
+      if (x[i] < -708.0)
+      {
+        PCB_CHECK(y[i] == 0.0, "%s: exp(%.17g) = %g, not 0", GetName(set), x[i], y[i]);
+        continue;
+      }
+      const double error = UlpsApart(y[i], std::exp(static_cast<long double>(x[i])));
+      if (error > worst)
+      {
+        worst = error;
+        worstAt = x[i];
+      }
+    }
+    PCB_CHECK(worst <= 1.0, "%s: exp is %.3f ulp off at %.17g", GetName(set), worst, worstAt);
+    std::printf("exp, %s: %zu values, largest error %.3f ulp (at %.17g)\n",
+      GetName(set),
+      x.size(),
+      worst,
+      worstAt);
+    PCB_CHECK(y[0] == 1.0 && y[1] == 1.0, "%s: exp(0) = %.17g", GetName(set), y[0]);
+    results.push_back(y);
+  }
+  for (std::size_t s = 1; s < results.size(); ++s)
+  {
+    PCB_CHECK(std::memcmp(results[0].data(), results[s].data(), x.size() * sizeof(double)) == 0,
+      "the exponential differs between instruction sets");
+  }
+}
+
+/// Weighted covariance (upper triangle) of offsets, as the kernel forms it.
+void Covariance(const std::vector<Eigen::Vector3d>& offsets, double covariance[6])
+{
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& o : offsets)
+  {
+    mean += o;
+  }
+  mean /= static_cast<double>(offsets.size());
+  Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
+  for (const auto& o : offsets)
+  {
+    c += (o - mean) * (o - mean).transpose();
+  }
+  c /= static_cast<double>(offsets.size());
+  const double upper[6] = { c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2), c(2, 2) };
+  std::copy(upper, upper + 6, covariance);
+}
+
+void TestEigenvector()
+{
+  std::mt19937_64 random(2);
+  std::normal_distribution<double> gaussian(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  double worstAngle = 0.0;
+  int cases = 0;
+  for (int trial = 0; trial < 20000; ++trial)
+  {
+    // A random frame, a shape in it, random units and offsets.
+    const Eigen::Matrix3d frame =
+      Eigen::Quaterniond(gaussian(random), gaussian(random), gaussian(random), gaussian(random))
+        .normalized()
+        .toRotationMatrix();
+    const int shape = trial % 5;
+    const double thickness = std::pow(10.0, -1.0 - 5.0 * (uniform(random) + 1.0) / 2.0);
+    const double units = std::pow(10.0, 6.0 * uniform(random));
+    std::vector<Eigen::Vector3d> offsets;
+    for (int i = 0; i < 40; ++i)
+    {
+      Eigen::Vector3d local(uniform(random), uniform(random), thickness * gaussian(random));
+      if (shape == 1) // an edge: two half-planes at an angle
+      {
+        local.z() += 0.5 * std::abs(local.x());
+      }
+      if (shape == 2) // an exact plane, axis-aligned
+      {
+        offsets.emplace_back(units * uniform(random), units * uniform(random), 0.0);
+        continue;
+      }
+      offsets.push_back(units * (frame * local));
+    }
+    double covariance[6];
+    Covariance(offsets, covariance);
+    double n[3];
+    SmallestEigenvector(covariance, n);
+    Eigen::Matrix3d c;
+    c << covariance[0], covariance[1], covariance[2], covariance[1], covariance[3], covariance[4],
+      covariance[2], covariance[4], covariance[5];
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(c);
+    const Eigen::Vector3d expected = solver.eigenvectors().col(0);
+    const Eigen::Vector3d found(n[0], n[1], n[2]);
+    PCB_CHECK(std::abs(found.norm() - 1.0) < 1e-14, "not a unit vector: %.17g", found.norm());
+    // How well the eigenvector is determined: the gap to the next eigenvalue.
+    const double gap =
+      (solver.eigenvalues()(1) - solver.eigenvalues()(0)) / solver.eigenvalues()(2);
+    // (The cross product, not acos of the dot product, which cannot resolve angles below 1e-8.)
+    const double angle = std::asin(std::min(1.0, found.cross(expected).norm()));
+    if (gap > 1e-6)
+    {
+      const double tolerance = 1e-13 / gap;
+      PCB_CHECK(
+        angle <= tolerance, "shape %d, gap %g: %g rad from Eigen's eigenvector", shape, gap, angle);
+      worstAngle = std::max(worstAngle, angle * gap);
+      ++cases;
+    }
+    if (shape == 2)
+    {
+      PCB_CHECK(n[0] == 0.0 && n[1] == 0.0 && std::abs(n[2]) == 1.0,
+        "exact plane: normal (%.17g, %.17g, %.17g), not exactly the z axis",
+        n[0],
+        n[1],
+        n[2]);
+    }
+  }
+  // Degenerate covariances: a line (double smallest eigenvalue), repeated points (zero), an
+  // isotropic blob (triple): any unit vector orthogonal to the line, or any unit vector.
+  const double line[6] = { 1.0, 2.0, 3.0, 4.0, 6.0, 9.0 }; // (1,2,3)(1,2,3)^T
+  const double zero[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
+  const double isotropic[6] = { 2.0, 0.0, 0.0, 2.0, 0.0, 2.0 };
+  double n[3];
+  SmallestEigenvector(line, n);
+  PCB_CHECK(std::abs(n[0] + 2 * n[1] + 3 * n[2]) < 1e-14 &&
+              std::abs(std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1.0) < 1e-14,
+    "line: normal (%g, %g, %g) is not a unit vector orthogonal to it",
+    n[0],
+    n[1],
+    n[2]);
+  for (const double* degenerate : { zero, isotropic })
+  {
+    SmallestEigenvector(degenerate, n);
+    PCB_CHECK(std::abs(std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1.0) < 1e-14,
+      "degenerate: (%g, %g, %g) is not a unit vector",
+      n[0],
+      n[1],
+      n[2]);
+  }
+  std::printf(
+    "eigenvector: %d well-determined cases, largest angle x gap %.3g\n", cases, worstAngle);
+}
+
+/// Algorithm 1 as the paper writes it, sequential sums, libm's exp and Eigen's solver.
+FilteredPoint ReferenceFilterPoint(const double p[3],
+  const CandidateNeighbours& candidates,
+  double radius,
+  double normalRadius)
+{
+  const double sd = radius / 3.0, sn = normalRadius / 3.0;
+  std::vector<Eigen::Vector3d> offsets;
+  std::vector<double> weights;
+  for (std::size_t j = 0; j < candidates.Size(); ++j)
+  {
+    const Eigen::Vector3d o(candidates.X[j] - p[0], candidates.Y[j] - p[1], candidates.Z[j] - p[2]);
+    if (o.squaredNorm() < radius * radius)
+    {
+      offsets.push_back(o);
+      weights.push_back(std::exp(-o.squaredNorm() / (2 * sd * sd)));
+    }
+  }
+  FilteredPoint result;
+  result.NeighbourCount = static_cast<std::uint32_t>(offsets.size());
+  if (offsets.size() < MinimumNeighbourCount)
+  {
+    return result;
+  }
+  double total = 0.0;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (std::size_t k = 0; k < offsets.size(); ++k)
+  {
+    total += weights[k];
+    mean += weights[k] * offsets[k];
+  }
+  mean /= total;
+  Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
+  for (std::size_t k = 0; k < offsets.size(); ++k)
+  {
+    c += weights[k] * (offsets[k] - mean) * (offsets[k] - mean).transpose();
+  }
+  const Eigen::Vector3d n =
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(c / total).eigenvectors().col(0).normalized();
+  double sum = 0.0, weighted = 0.0;
+  for (std::size_t k = 0; k < offsets.size(); ++k)
+  {
+    const double h = n.dot(offsets[k]);
+    const double w = weights[k] * std::exp(-h * h / (2 * sn * sn));
+    sum += w;
+    weighted += w * h;
+  }
+  result.Displacement = weighted / sum;
+  std::copy(n.data(), n.data() + 3, result.Normal);
+  result.Filtered = true;
+  return result;
+}
+
+void TestFilterPoint()
+{
+  std::mt19937_64 random(3);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  std::normal_distribution<double> gaussian(0.0, 1.0);
+  const double radius = 0.1;
+  int compared = 0;
+  for (int trial = 0; trial < 3000; ++trial)
+  {
+    // A noisy patch around a point far from the origin (georeferenced coordinates), with a
+    // candidate count that is not a multiple of the vector width.
+    const double origin[3] = { 6.5e5 + uniform(random), 4.1e6 + uniform(random), 250.0 };
+    const double noise = 0.002 + 0.02 * (trial % 7) / 7.0;
+    const std::size_t count = 1 + static_cast<std::size_t>(trial % 301);
+    CandidateNeighbours candidates;
+    for (std::size_t j = 0; j < count; ++j)
+    {
+      const double u = 1.5 * radius * uniform(random), v = 1.5 * radius * uniform(random);
+      const double z = noise * gaussian(random) + (trial % 2 ? 0.3 * std::abs(u) : 0.0);
+      const double q[3] = { origin[0] + u, origin[1] + v, origin[2] + z };
+      candidates.Append(q, q + 1, q + 2, 1);
+    }
+    const double p[3] = {
+      candidates.X[count / 2], candidates.Y[count / 2], candidates.Z[count / 2]
+    };
+    const double normalRadius = trial % 3 ? 0.03 : 10.0;
+    const KernelConstants constants(radius, normalRadius);
+    const FilteredPoint expected = ReferenceFilterPoint(p, candidates, radius, normalRadius);
+
+    std::vector<FilteredPoint> results;
+    for (const auto set : AvailableInstructionSets())
+    {
+      SetKernelInstructionSet(set);
+      results.push_back(FilterPoint(p, candidates, constants));
+    }
+    const FilteredPoint& found = results[0];
+    PCB_CHECK(
+      found.NeighbourCount == expected.NeighbourCount && found.Filtered == expected.Filtered,
+      "trial %d: %u neighbours (filtered %d), expected %u (%d)",
+      trial,
+      found.NeighbourCount,
+      found.Filtered,
+      expected.NeighbourCount,
+      expected.Filtered);
+    if (found.Filtered && expected.Filtered)
+    {
+      double difference = 0.0;
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        difference = std::max(difference,
+          std::abs(found.Displacement * found.Normal[axis] -
+                   expected.Displacement * expected.Normal[axis]));
+      }
+      PCB_CHECK(difference < 1e-12 * radius,
+        "trial %d: the move differs from the reference by %g",
+        trial,
+        difference);
+      ++compared;
+    }
+    for (std::size_t s = 1; s < results.size(); ++s)
+    {
+      PCB_CHECK(std::memcmp(&results[s].Displacement, &found.Displacement, sizeof(double)) == 0 &&
+                  std::memcmp(results[s].Normal, found.Normal, sizeof(found.Normal)) == 0,
+        "trial %d: %s and %s give different bits",
+        trial,
+        GetName(AvailableInstructionSets()[s]),
+        GetName(AvailableInstructionSets()[0]));
+    }
+  }
+  PCB_CHECK(compared > 2000, "only %d filtered points compared", compared);
+  std::printf("FilterPoint: %d points against the reference, %zu instruction set(s)\n",
+    compared,
+    AvailableInstructionSets().size());
+}
+} // namespace
+
+int main()
+{
+  const KernelInstructionSet best = GetKernelInstructionSet();
+  std::printf("best instruction set here: %s\n", GetName(best));
+  TestExp();
+  TestEigenvector();
+  TestFilterPoint();
+  SetKernelInstructionSet(best);
+  return PCB_TEST_RESULT();
+}
