@@ -228,19 +228,10 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   const int threads = ResolveThreadCount(parameters.NumberOfThreads);
   ProcessingOctree octree(extent.Min, extent.Max, result.RadiusUsed);
   result.ProcessingDepth = octree.GetProcessingDepth();
-  octree.Clear(n);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const double* p = cloud.Positions + 3 * i;
-    if (IsFinitePoint(p))
-    {
-      octree.PlaceSerially(static_cast<std::uint32_t>(i), octree.LeafOf(p));
-    }
-  }
+  octree.Load(cloud.Positions, n);
 
   PointState state;
-  state.Current = std::move(result.Positions); // given back when the run ends
-  state.Next = state.Current;
+  state.Positions = std::move(result.Positions); // given back when the run ends
   state.Normals = std::move(result.Normals);
   state.Removed = std::move(result.Removed);
   state.OrientationNormals = cloud.OrientationNormals;
@@ -269,20 +260,35 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   bool completed = true;
   for (; iteration < iterations; ++iteration)
   {
-    octree.Compact(state.Current.data(), threads);
+    octree.Compact(threads);
     if (!scheduler.RunIteration(state))
     {
       completed = false;
       break;
     }
     result.NumberOfNeighbourEvaluations += scheduler.GetNumberOfNeighbourEvaluations();
-    // Removed and non-finite points are not written by the iteration: carry them over.
-    state.Current.swap(state.Next);
-    state.Next = state.Current;
     report(static_cast<double>(iteration + 1) / iterations);
   }
 
-  result.Positions = std::move(state.Current);
+  // The points' last moves, from the octree's layout back to their ids.
+  if (completed)
+  {
+    const std::uint32_t* ids = octree.GetIds();
+    const double* moved[3] = { octree.GetMovedX(), octree.GetMovedY(), octree.GetMovedZ() };
+    const auto count = static_cast<std::int64_t>(octree.GetNumberOfPoints());
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (std::int64_t i = 0; i < count; ++i)
+    {
+      if (!state.Removed[ids[i]])
+      {
+        for (int axis = 0; axis < 3; ++axis)
+        {
+          state.Positions[3 * static_cast<std::size_t>(ids[i]) + axis] = moved[axis][i];
+        }
+      }
+    }
+  }
+  result.Positions = std::move(state.Positions);
   result.Normals = std::move(state.Normals);
   result.Removed = std::move(state.Removed);
   result.NumberOfRemovedPoints = static_cast<std::size_t>(

@@ -72,9 +72,9 @@ void CellColoringScheduler::GatherCandidates(const LatticeCoord& cellCoord,
   const LatticeCoord leaf{ perAxis * cellCoord.X + localLeaf % perAxis,
     perAxis * cellCoord.Y + (localLeaf / perAxis) % perAxis,
     perAxis * cellCoord.Z + localLeaf / (perAxis * perAxis) };
-  const double* x = this->Octree.GetSortedX();
-  const double* y = this->Octree.GetSortedY();
-  const double* z = this->Octree.GetSortedZ();
+  const double* x = this->Octree.GetX();
+  const double* y = this->Octree.GetY();
+  const double* z = this->Octree.GetZ();
   candidates.Clear();
   for (const auto& offset : this->ReachableLeafOffsets)
   {
@@ -103,10 +103,13 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
 {
   const LatticeCoord& cellCoord = this->Octree.GetCellCoord(cell);
   const std::int32_t* neighbours = this->Octree.GetNeighbourCells(cell);
-  const std::uint32_t* ids = this->Octree.GetSortedIds();
-  const double* x = this->Octree.GetSortedX();
-  const double* y = this->Octree.GetSortedY();
-  const double* z = this->Octree.GetSortedZ();
+  const std::uint32_t* ids = this->Octree.GetIds();
+  const double* x = this->Octree.GetX();
+  const double* y = this->Octree.GetY();
+  const double* z = this->Octree.GetZ();
+  double* movedX = this->Octree.GetMovedX();
+  double* movedY = this->Octree.GetMovedY();
+  double* movedZ = this->Octree.GetMovedZ();
   const bool orient = state.OrientationNormals != nullptr;
   const bool keepNormals = !state.Normals.empty();
 
@@ -131,19 +134,20 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
         return;
       }
       const std::uint32_t id = ids[i];
+      const double p[3] = { x[i], y[i], z[i] };
       if (id >= state.FirstGhost)
       {
-        this->Octree.Place(id, static_cast<std::int32_t>(cell), localLeaf);
+        movedX[i] = p[0];
+        movedY[i] = p[1];
+        movedZ[i] = p[2];
+        this->Octree.Place(i, static_cast<std::int32_t>(cell), localLeaf);
         continue;
       }
-      const double p[3] = { x[i], y[i], z[i] };
       const FilteredPoint filtered = FilterPoint(p, scratch.Candidates, this->Constants);
       scratch.NeighbourEvaluations += filtered.NeighbourCount;
-      double* next = state.Next.data() + 3 * static_cast<std::size_t>(id);
-      for (int axis = 0; axis < 3; ++axis)
-      {
-        next[axis] = p[axis] + filtered.Displacement * filtered.Normal[axis];
-      }
+      const double moved[3] = { p[0] + filtered.Displacement * filtered.Normal[0],
+        p[1] + filtered.Displacement * filtered.Normal[1],
+        p[2] + filtered.Displacement * filtered.Normal[2] };
       if (keepNormals)
       {
         // The orientation of n does not change p + d n: only the reported normal flips.
@@ -165,10 +169,14 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
       if (!filtered.Filtered && this->RemoveIsolatedPoints)
       {
         state.Removed[id] = 1;
+        std::copy(p, p + 3, state.Positions.data() + 3 * static_cast<std::size_t>(id));
         continue;
       }
+      movedX[i] = moved[0];
+      movedY[i] = moved[1];
+      movedZ[i] = moved[2];
 
-      const LatticeCoord leaf = this->Octree.LeafOf(next);
+      const LatticeCoord leaf = this->Octree.LeafOf(moved);
       const LatticeCoord destination = ProcessingOctree::CellOfLeaf(leaf);
       const std::int64_t dx = destination.X - cellCoord.X;
       const std::int64_t dy = destination.Y - cellCoord.Y;
@@ -181,11 +189,11 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
       }
       if (destinationCell != ProcessingOctree::NoCell)
       {
-        this->Octree.Place(id, destinationCell, ProcessingOctree::LocalLeafIndex(leaf));
+        this->Octree.Place(i, destinationCell, ProcessingOctree::LocalLeafIndex(leaf));
       }
       else
       {
-        scratch.Deferred.push_back(id);
+        scratch.Deferred.push_back(i);
       }
     }
     scratch.PointsSinceReport += end - begin;
@@ -217,7 +225,7 @@ bool CellColoringScheduler::RunIteration(PointState& state)
 {
   this->Aborted.store(false);
   this->PointsDone.store(0);
-  this->PointsProcessed = this->Octree.GetNumberOfSortedPoints();
+  this->PointsProcessed = this->Octree.GetNumberOfPoints();
 
   std::array<std::vector<std::int64_t>, 8> classes;
   for (std::size_t cell = 0; cell < this->Octree.GetNumberOfProcessingCells(); ++cell)
@@ -258,10 +266,9 @@ bool CellColoringScheduler::RunIteration(PointState& state)
     // Points that landed in a cell the octree did not hold yet: placed here, serially.
     for (auto& scratch : this->Scratch)
     {
-      for (const std::uint32_t id : scratch.Deferred)
+      for (const std::uint32_t index : scratch.Deferred)
       {
-        this->Octree.PlaceSerially(
-          id, this->Octree.LeafOf(state.Next.data() + 3 * static_cast<std::size_t>(id)));
+        this->Octree.PlaceSerially(index);
       }
       scratch.Deferred.clear();
     }

@@ -15,12 +15,13 @@
 namespace pcbilateral
 {
 
-/// Per-point state and storage of a run, indexed by point id.
+/// What a run keeps by point id, besides the octree's layout.
 struct PointState
 {
-  std::vector<double> Current; // xyz, read during an iteration
-  std::vector<double> Next;    // xyz, written during an iteration
-  std::vector<double> Normals; // xyz, written when asked for
+  /// Positions; a removed point's is set to where it stopped.
+  std::vector<double> Positions;
+  /// Estimated normals, when asked for (else empty).
+  std::vector<double> Normals;
   std::vector<std::uint8_t> Removed;
   const double* OrientationNormals = nullptr;
   /// Ids from this one on are ghosts: neighbours only, never filtered, never moved.
@@ -28,7 +29,7 @@ struct PointState
 };
 
 /**
- * Runs iterations of the filter. Before each one the octree is compacted and its processing
+ * Runs iterations of the filter on the octree's layout (compacted before each). The processing
  * cells are sorted into 8 classes by colour (child index). The classes run one after another;
  * the cells of one class run in parallel. Each filtered point is placed into the octree's
  * next-iteration lists right away, without locks: it moved by less than r, so it lands in a
@@ -51,8 +52,8 @@ public:
   std::function<void(std::size_t pointsDone)> ReportPoints;
   std::function<bool()> ShouldAbort;
 
-  /// Filters every placed point once: reads state.Current, writes state.Next (and normals),
-  /// and leaves the moved points placed in the octree for the next iteration.
+  /// Filters every point of the octree's layout once: writes their moved positions (and
+  /// normals), and leaves them placed in the octree for the next iteration.
   /// Returns false if aborted.
   bool RunIteration(PointState& state);
 

@@ -19,27 +19,37 @@ constexpr double CellSizeInRadii = 2.1;
 /// not on the point ids (a distributed run numbers its points differently). Points equal in all
 /// three coordinates are ordered by their bits, then by id: exact duplicates contribute the
 /// same terms to every sum, so their order among themselves changes no result.
-bool PrecedesInLeaf(const double* a, std::uint32_t idA, const double* b, std::uint32_t idB)
+struct LeafOrder
 {
-  for (int axis = 0; axis < 3; ++axis)
+  const double* X;
+  const double* Y;
+  const double* Z;
+  const std::uint32_t* Ids;
+
+  bool operator()(std::uint32_t a, std::uint32_t b) const
   {
-    if (a[axis] != b[axis])
+    const double ca[3] = { this->X[a], this->Y[a], this->Z[a] };
+    const double cb[3] = { this->X[b], this->Y[b], this->Z[b] };
+    for (int axis = 0; axis < 3; ++axis)
     {
-      return a[axis] < b[axis];
+      if (ca[axis] != cb[axis])
+      {
+        return ca[axis] < cb[axis];
+      }
     }
-  }
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    std::uint64_t bitsA, bitsB;
-    std::memcpy(&bitsA, a + axis, sizeof(bitsA));
-    std::memcpy(&bitsB, b + axis, sizeof(bitsB));
-    if (bitsA != bitsB)
+    for (int axis = 0; axis < 3; ++axis)
     {
-      return bitsA < bitsB;
+      std::uint64_t bitsA, bitsB;
+      std::memcpy(&bitsA, ca + axis, sizeof(bitsA));
+      std::memcpy(&bitsB, cb + axis, sizeof(bitsB));
+      if (bitsA != bitsB)
+      {
+        return bitsA < bitsB;
+      }
     }
+    return this->Ids[a] < this->Ids[b];
   }
-  return idA < idB;
-}
+};
 
 std::int64_t FloorDivide(std::int64_t value, std::int64_t divisor)
 {
@@ -91,10 +101,17 @@ ProcessingOctree::ProcessingOctree(const double boundsMin[3],
 
 LatticeCoord ProcessingOctree::LeafOf(const double p[3]) const
 {
+  // Floor by truncation and a correction: lattice coordinates are far inside 64-bit integers
+  // (the filter refuses clouds wider than 1e15 radii).
+  auto floorToInteger = [](double value)
+  {
+    const auto truncated = static_cast<std::int64_t>(value);
+    return truncated - (value < static_cast<double>(truncated) ? 1 : 0);
+  };
   LatticeCoord leaf;
-  leaf.X = static_cast<std::int64_t>(std::floor((p[0] - this->RootOrigin[0]) / this->LeafSize));
-  leaf.Y = static_cast<std::int64_t>(std::floor((p[1] - this->RootOrigin[1]) / this->LeafSize));
-  leaf.Z = static_cast<std::int64_t>(std::floor((p[2] - this->RootOrigin[2]) / this->LeafSize));
+  leaf.X = floorToInteger((p[0] - this->RootOrigin[0]) / this->LeafSize);
+  leaf.Y = floorToInteger((p[1] - this->RootOrigin[1]) / this->LeafSize);
+  leaf.Z = floorToInteger((p[2] - this->RootOrigin[2]) / this->LeafSize);
   return leaf;
 }
 
@@ -116,19 +133,33 @@ int ProcessingOctree::LocalLeafIndex(const LatticeCoord& leaf)
   return x + LeavesPerAxis * (y + LeavesPerAxis * z);
 }
 
-void ProcessingOctree::Clear(std::size_t numberOfPoints)
+void ProcessingOctree::Load(const double* positions, std::size_t count)
 {
   this->CellCoords.clear();
   this->CellIndex.clear();
   this->NeighbourTable.clear();
   this->NumberOfProcessingCells = 0;
   this->NextHead.clear();
-  this->NextLink.assign(numberOfPoints, -1);
-  this->LeafOffsets.assign(1, 0);
-  this->SortedIds.clear();
-  this->SortedX.clear();
-  this->SortedY.clear();
-  this->SortedZ.clear();
+  this->Ids.clear();
+  this->MovedX.clear();
+  this->MovedY.clear();
+  this->MovedZ.clear();
+  for (std::size_t id = 0; id < count; ++id)
+  {
+    const double* p = positions + 3 * id;
+    if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))
+    {
+      this->Ids.push_back(static_cast<std::uint32_t>(id));
+      this->MovedX.push_back(p[0]);
+      this->MovedY.push_back(p[1]);
+      this->MovedZ.push_back(p[2]);
+    }
+  }
+  this->NextLink.assign(this->Ids.size(), -1);
+  for (std::size_t index = 0; index < this->Ids.size(); ++index)
+  {
+    this->PlaceSerially(static_cast<std::uint32_t>(index));
+  }
 }
 
 std::int32_t ProcessingOctree::FindCell(const LatticeCoord& cell) const
@@ -168,12 +199,14 @@ std::int32_t ProcessingOctree::FindOrCreateCell(const LatticeCoord& cell)
   return index;
 }
 
-void ProcessingOctree::PlaceSerially(std::uint32_t pointId, const LatticeCoord& leaf)
+void ProcessingOctree::PlaceSerially(std::uint32_t index)
 {
-  this->Place(pointId, this->FindOrCreateCell(CellOfLeaf(leaf)), LocalLeafIndex(leaf));
+  const double moved[3] = { this->MovedX[index], this->MovedY[index], this->MovedZ[index] };
+  const LatticeCoord leaf = this->LeafOf(moved);
+  this->Place(index, this->FindOrCreateCell(CellOfLeaf(leaf)), LocalLeafIndex(leaf));
 }
 
-void ProcessingOctree::Compact(const double* positions, int numberOfThreads)
+void ProcessingOctree::Compact(int numberOfThreads)
 {
   const auto oldCellCount = static_cast<std::int64_t>(this->CellCoords.size());
   std::vector<std::uint32_t> leafCounts(this->NextHead.size(), 0);
@@ -185,8 +218,8 @@ void ProcessingOctree::Compact(const double* positions, int numberOfThreads)
     for (int leaf = 0; leaf < LeavesPerCell; ++leaf)
     {
       std::uint32_t count = 0;
-      for (std::int32_t id = this->NextHead[cell * LeavesPerCell + leaf]; id >= 0;
-           id = this->NextLink[id])
+      for (std::int32_t index = this->NextHead[cell * LeavesPerCell + leaf]; index >= 0;
+           index = this->NextLink[index])
       {
         ++count;
       }
@@ -233,40 +266,49 @@ void ProcessingOctree::Compact(const double* positions, int numberOfThreads)
       offsets[slot + 1] = offsets[slot] + leafCounts[kept[cell] * LeavesPerCell + leaf];
     }
   }
+
+  // The new layout from the placed points: their ids and moved positions. The coordinate
+  // arrays of the last iteration are free to take it.
   const std::size_t pointCount = offsets.back();
-  this->SortedIds.resize(pointCount);
-  this->SortedX.resize(pointCount);
-  this->SortedY.resize(pointCount);
-  this->SortedZ.resize(pointCount);
+  this->CompactedIds.resize(pointCount);
+  this->X.resize(pointCount);
+  this->Y.resize(pointCount);
+  this->Z.resize(pointCount);
+  const LeafOrder order{
+    this->MovedX.data(), this->MovedY.data(), this->MovedZ.data(), this->Ids.data()
+  };
   const auto signedNewCellCount = static_cast<std::int64_t>(newCellCount);
-#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
-  for (std::int64_t cell = 0; cell < signedNewCellCount; ++cell)
+#pragma omp parallel num_threads(numberOfThreads)
   {
-    for (int leaf = 0; leaf < LeavesPerCell; ++leaf)
+    std::vector<std::uint32_t> indices;
+#pragma omp for schedule(static)
+    for (std::int64_t cell = 0; cell < signedNewCellCount; ++cell)
     {
-      const std::size_t begin = offsets[cell * LeavesPerCell + leaf];
-      std::size_t end = begin;
-      for (std::int32_t id = this->NextHead[kept[cell] * LeavesPerCell + leaf]; id >= 0;
-           id = this->NextLink[id])
+      for (int leaf = 0; leaf < LeavesPerCell; ++leaf)
       {
-        this->SortedIds[end++] = static_cast<std::uint32_t>(id);
-      }
-      std::sort(this->SortedIds.begin() + begin,
-        this->SortedIds.begin() + end,
-        [positions](std::uint32_t a, std::uint32_t b)
+        indices.clear();
+        for (std::int32_t index = this->NextHead[kept[cell] * LeavesPerCell + leaf]; index >= 0;
+             index = this->NextLink[index])
         {
-          return PrecedesInLeaf(
-            positions + 3 * std::size_t{ a }, a, positions + 3 * std::size_t{ b }, b);
-        });
-      for (std::size_t i = begin; i < end; ++i)
-      {
-        const double* p = positions + 3 * static_cast<std::size_t>(this->SortedIds[i]);
-        this->SortedX[i] = p[0];
-        this->SortedY[i] = p[1];
-        this->SortedZ[i] = p[2];
+          indices.push_back(static_cast<std::uint32_t>(index));
+        }
+        std::sort(indices.begin(), indices.end(), order);
+        std::size_t to = offsets[cell * LeavesPerCell + leaf];
+        for (const std::uint32_t from : indices)
+        {
+          this->CompactedIds[to] = this->Ids[from];
+          this->X[to] = this->MovedX[from];
+          this->Y[to] = this->MovedY[from];
+          this->Z[to] = this->MovedZ[from];
+          ++to;
+        }
       }
     }
   }
+  this->Ids.swap(this->CompactedIds);
+  this->MovedX.resize(pointCount);
+  this->MovedY.resize(pointCount);
+  this->MovedZ.resize(pointCount);
   this->LeafOffsets = std::move(offsets);
 
   std::vector<LatticeCoord> newCoords(newCellCount);
@@ -280,7 +322,7 @@ void ProcessingOctree::Compact(const double* positions, int numberOfThreads)
   this->CellCoords = std::move(newCoords);
   this->NumberOfProcessingCells = newCellCount;
   this->NextHead.assign(newCellCount * LeavesPerCell, -1);
-  std::fill(this->NextLink.begin(), this->NextLink.end(), -1);
+  this->NextLink.assign(pointCount, -1);
   this->RebuildNeighbourTable(numberOfThreads);
 }
 

@@ -40,9 +40,11 @@ struct LatticeCoordHash
  *   numbered.
  *
  * Only non-empty cells are stored. Each iteration reads the points from a compact layout
- * (ids and coordinates contiguous per leaf, leaves contiguous per cell) and places the
- * filtered points into per-leaf lists for the next iteration. A leaf's list is written by one
- * thread at a time without locks: the caller guarantees it (the colouring invariant).
+ * (ids and coordinates contiguous per leaf, leaves contiguous per cell), writes their moved
+ * positions in the same order, and places them into per-leaf lists for the next iteration, so
+ * that the points stay sorted by place from one iteration to the next and are read and written
+ * in order. A leaf's list is written by one thread at a time without locks: the caller
+ * guarantees it (the colouring invariant).
  */
 class ProcessingOctree
 {
@@ -80,35 +82,40 @@ public:
     return static_cast<int>((cell.X & 1) | ((cell.Y & 1) << 1) | ((cell.Z & 1) << 2));
   }
 
-  /// Forgets all points; prepares the next-iteration lists for ids below numberOfPoints.
-  void Clear(std::size_t numberOfPoints);
+  /**
+   * Takes the points to filter: the finite ones among `count` interleaved xyz positions, which
+   * keep their index as id. They are placed into the next iteration's lists; Compact then
+   * builds the first layout.
+   */
+  void Load(const double* positions, std::size_t count);
 
   ///@{
-  /// Placement of points into the next iteration's leaf lists.
-  /// FindOrCreateCell and PlaceSerially may only be called while no thread places points.
+  /// Placement of points into the next iteration's leaf lists. A point is named by its index
+  /// in this iteration's layout (GetIds and the coordinate arrays); its place is that of its
+  /// moved position (GetMovedX...). FindOrCreateCell and PlaceSerially may only be called
+  /// while no thread places points.
   std::int32_t FindCell(const LatticeCoord& cell) const;
   std::int32_t FindOrCreateCell(const LatticeCoord& cell);
-  void PlaceSerially(std::uint32_t pointId, const LatticeCoord& leaf);
+  void PlaceSerially(std::uint32_t index);
   /// Lock-free placement into an existing cell: no other thread may place into the same leaf
   /// at the same time.
-  void Place(std::uint32_t pointId, std::int32_t cell, int localLeaf)
+  void Place(std::uint32_t index, std::int32_t cell, int localLeaf)
   {
     const std::size_t leaf = static_cast<std::size_t>(cell) * LeavesPerCell + localLeaf;
-    this->NextLink[pointId] = this->NextHead[leaf];
-    this->NextHead[leaf] = static_cast<std::int32_t>(pointId);
+    this->NextLink[index] = this->NextHead[leaf];
+    this->NextHead[leaf] = static_cast<std::int32_t>(index);
   }
   ///@}
 
   /**
-   * Turns the placed points into the compact layout read by the next iteration: drops empty
-   * cells, sorts cells by lattice coordinates and each leaf's points by coordinates, copies
-   * the coordinates (`positions`: interleaved xyz, indexed by id) next to the ids, and rebuilds
-   * the neighbour tables.
+   * Turns the placed points into the layout read by the next iteration: drops empty cells,
+   * sorts cells by lattice coordinates and each leaf's points by coordinates, lays out their
+   * ids and moved positions in that order, and rebuilds the neighbour tables.
    */
-  void Compact(const double* positions, int numberOfThreads);
+  void Compact(int numberOfThreads);
 
   ///@{
-  /// The compact layout (valid after Compact).
+  /// The layout of this iteration (valid after Compact).
   /// Cells that held points at the last Compact, numbered 0 to this count - 1. Cells created
   /// while placing come after them.
   std::size_t GetNumberOfProcessingCells() const { return this->NumberOfProcessingCells; }
@@ -118,7 +125,7 @@ public:
   {
     return this->NeighbourTable.data() + 27 * cell;
   }
-  /// Points of leaf `localLeaf` of `cell`: positions [begin, end) in the arrays below.
+  /// Points of leaf `localLeaf` of `cell`: indices [begin, end) in the arrays below.
   std::uint32_t LeafBegin(std::size_t cell, int localLeaf) const
   {
     return this->LeafOffsets[cell * LeavesPerCell + localLeaf];
@@ -127,11 +134,19 @@ public:
   {
     return this->LeafOffsets[cell * LeavesPerCell + localLeaf + 1];
   }
-  const std::uint32_t* GetSortedIds() const { return this->SortedIds.data(); }
-  const double* GetSortedX() const { return this->SortedX.data(); }
-  const double* GetSortedY() const { return this->SortedY.data(); }
-  const double* GetSortedZ() const { return this->SortedZ.data(); }
-  std::size_t GetNumberOfSortedPoints() const { return this->SortedIds.size(); }
+  const std::uint32_t* GetIds() const { return this->Ids.data(); }
+  const double* GetX() const { return this->X.data(); }
+  const double* GetY() const { return this->Y.data(); }
+  const double* GetZ() const { return this->Z.data(); }
+  std::size_t GetNumberOfPoints() const { return this->Ids.size(); }
+  ///@}
+
+  ///@{
+  /// Where the points of this iteration go, by index in its layout: written by the filter
+  /// before it places them, read by the next Compact.
+  double* GetMovedX() { return this->MovedX.data(); }
+  double* GetMovedY() { return this->MovedY.data(); }
+  double* GetMovedZ() { return this->MovedZ.data(); }
   ///@}
 
 private:
@@ -150,14 +165,17 @@ private:
   std::vector<std::int32_t> NeighbourTable;
   std::size_t NumberOfProcessingCells = 0;
 
-  // Next iteration: per leaf, the head of a list linked through NextLink (-1 ends it).
+  // Next iteration: per leaf, the head of a list of indices linked through NextLink (-1 ends
+  // it).
   std::vector<std::int32_t> NextHead;
   std::vector<std::int32_t> NextLink;
 
-  // This iteration: ids and coordinates sorted by cell, leaf, then id.
+  // This iteration: ids and coordinates sorted by cell, leaf, then coordinates; the moved
+  // positions by the same index.
   std::vector<std::uint32_t> LeafOffsets;
-  std::vector<std::uint32_t> SortedIds;
-  std::vector<double> SortedX, SortedY, SortedZ;
+  std::vector<std::uint32_t> Ids, CompactedIds;
+  std::vector<double> X, Y, Z;
+  std::vector<double> MovedX, MovedY, MovedZ;
 };
 
 } // namespace pcbilateral

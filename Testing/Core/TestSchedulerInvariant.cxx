@@ -94,16 +94,12 @@ int main()
       }
     }
     ProcessingOctree octree(boundsMin, boundsMax, radius);
-    octree.Clear(count);
-    for (std::size_t i = 0; i < count; ++i)
-    {
-      octree.PlaceSerially(static_cast<std::uint32_t>(i), octree.LeafOf(&points[3 * i]));
-    }
-    octree.Compact(points.data(), 1);
-    PCB_CHECK(octree.GetNumberOfSortedPoints() == count,
+    octree.Load(points.data(), count);
+    octree.Compact(1);
+    PCB_CHECK(octree.GetNumberOfPoints() == count,
       "trial %d: %zu of %zu points placed",
       trial,
-      octree.GetNumberOfSortedPoints(),
+      octree.GetNumberOfPoints(),
       count);
     cellsChecked += CheckDilationsShareNoLeaf(octree, radius);
 
