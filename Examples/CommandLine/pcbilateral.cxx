@@ -32,6 +32,7 @@
 #include <cstring>
 #include <string>
 #include <sys/stat.h>
+#include <unistd.h>
 
 namespace
 {
@@ -318,8 +319,29 @@ bool WriteOutput(const Options& options, vtkPolyData* cloud)
 }
 } // namespace
 
+/**
+ * Runs the program again with glibc's malloc asked to back its memory with transparent huge
+ * pages, unless the user set glibc's tunables already. A cloud of millions of points takes
+ * hundreds of megabytes, touched once each: with 4 KB pages that is a page fault every 4 KB,
+ * which costs more than reading and writing the text (measured on a virtual machine: 0.78 s
+ * against 0.28 s for reading and writing 600,000 points). The tunable can only be given at
+ * start-up, hence the new start; if it fails, the program goes on as it is.
+ */
+void RestartWithHugePages(char* argv[])
+{
+  if (std::getenv("GLIBC_TUNABLES") != nullptr)
+  {
+    return;
+  }
+  if (setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 0) == 0)
+  {
+    execv("/proc/self/exe", argv);
+  }
+}
+
 int main(int argc, char* argv[])
 {
+  RestartWithHugePages(argv);
   vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
   vtkNew<OneLineOutputWindow> messages;
   vtkOutputWindow::SetInstance(messages);
