@@ -1,0 +1,100 @@
+// The output's bits are part of the contract: the same input gives the same bits with any
+// number of threads, any instruction-set build of the kernel, and after any speed work. This
+// test pins them: a change to the numbers must change the expected hash below, on purpose, with
+// the reason in its commit. (Bits may differ on another C library: the eigensolver calls acos
+// and cos.)
+#include "BilateralFilter.h"
+#include "BilateralKernel.h"
+#include "CoreTesting.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <random>
+#include <vector>
+
+namespace
+{
+using namespace pcbilateral;
+
+/// A noisy cube surface, from the C++ standard's fully specified engine and uniform noise (the
+/// standard's distributions are not specified to the bit).
+std::vector<double> NoisyCube(std::size_t count)
+{
+  std::mt19937_64 engine(20261122);
+  auto uniform = [&engine]() { return static_cast<double>(engine() >> 11) * 0x1.0p-53; };
+  std::vector<double> xyz;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    double p[3] = { uniform() - 0.5, uniform() - 0.5, uniform() - 0.5 };
+    const int face = static_cast<int>(i % 6);
+    p[face / 2] = face % 2 ? 0.5 : -0.5;
+    for (const double coordinate : p)
+    {
+      xyz.push_back(coordinate + 0.02 * (uniform() - 0.5));
+    }
+  }
+  return xyz;
+}
+
+std::uint64_t Hash(const std::vector<double>& values)
+{
+  std::uint64_t hash = 14695981039346656037ULL; // FNV-1a
+  for (const double value : values)
+  {
+    unsigned char bytes[sizeof(double)];
+    std::memcpy(bytes, &value, sizeof(value));
+    for (const unsigned char byte : bytes)
+    {
+      hash = (hash ^ byte) * 1099511628211ULL;
+    }
+  }
+  return hash;
+}
+} // namespace
+
+int main()
+{
+  // Set when the numbers changed on purpose (last: the 8-lane kernel with its own exponential
+  // and the closed-form eigensolver).
+  constexpr std::uint64_t Expected = 0x55c9d6f1b24434ceULL;
+
+  const std::vector<double> xyz = NoisyCube(30000);
+  PointCloudView cloud;
+  cloud.NumberOfPoints = xyz.size() / 3;
+  cloud.Positions = xyz.data();
+  BilateralParameters parameters;
+  parameters.Radius = 0.06;
+  parameters.NormalRadius = 0.03;
+  parameters.NumberOfIterations = 3;
+
+  const KernelInstructionSet best = GetKernelInstructionSet();
+  for (const auto set :
+    { KernelInstructionSet::Generic, KernelInstructionSet::Avx2, KernelInstructionSet::Avx512 })
+  {
+    if (!SetKernelInstructionSet(set))
+    {
+      std::printf("%s: not available here\n", GetName(set));
+      continue;
+    }
+    for (const int threads : { 1, 2, 3 })
+    {
+      parameters.NumberOfThreads = threads;
+      const BilateralResult result = RunBilateralFilter(cloud, parameters);
+      PCB_CHECK(result.Status == BilateralStatus::Completed, "%s", result.Error.c_str());
+      const std::uint64_t hash = Hash(result.Positions);
+      std::printf("%s, %d thread(s): 0x%016llx\n",
+        GetName(set),
+        threads,
+        static_cast<unsigned long long>(hash));
+      PCB_CHECK(hash == Expected,
+        "%s, %d thread(s): output hash 0x%016llx, expected 0x%016llx",
+        GetName(set),
+        threads,
+        static_cast<unsigned long long>(hash),
+        static_cast<unsigned long long>(Expected));
+    }
+  }
+  SetKernelInstructionSet(best);
+  return PCB_TEST_RESULT();
+}
