@@ -89,9 +89,8 @@ void CellColoringScheduler::GatherCandidates(const LatticeCoord& cellCoord,
     {
       continue;
     }
-    const int otherLeaf = ProcessingOctree::LocalLeafIndex(other);
-    const std::uint32_t begin = this->Octree.LeafBegin(cell, otherLeaf);
-    const std::uint32_t end = this->Octree.LeafEnd(cell, otherLeaf);
+    std::uint32_t begin, end;
+    this->Octree.GetLeafRange(cell, ProcessingOctree::LocalLeafIndex(other), begin, end);
     candidates.Append(x + begin, y + begin, z + begin, end - begin);
   }
 }
@@ -113,14 +112,11 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
   const bool orient = state.OrientationNormals != nullptr;
   const bool keepNormals = !state.Normals.empty();
 
-  for (int localLeaf = 0; localLeaf < ProcessingOctree::LeavesPerCell; ++localLeaf)
+  for (std::uint64_t leaves = this->Octree.GetLeafMask(cell); leaves != 0; leaves &= leaves - 1)
   {
-    const std::uint32_t begin = this->Octree.LeafBegin(cell, localLeaf);
-    const std::uint32_t end = this->Octree.LeafEnd(cell, localLeaf);
-    if (begin == end)
-    {
-      continue;
-    }
+    const int localLeaf = __builtin_ctzll(leaves);
+    std::uint32_t begin, end;
+    this->Octree.GetLeafRange(cell, localLeaf, begin, end);
     this->GatherCandidates(cellCoord, neighbours, localLeaf, scratch.Candidates);
     for (std::uint32_t i = begin; i < end; ++i)
     {

@@ -140,6 +140,10 @@ void ProcessingOctree::Load(const double* positions, std::size_t count)
   this->NeighbourTable.clear();
   this->NumberOfProcessingCells = 0;
   this->NextHead.clear();
+  this->LeafMasks.clear();
+  this->CellBegins.assign(1, 0);
+  this->LeafSlots.clear();
+  this->LeafEnds.clear();
   this->Ids.clear();
   this->MovedX.clear();
   this->MovedY.clear();
@@ -156,6 +160,7 @@ void ProcessingOctree::Load(const double* positions, std::size_t count)
     }
   }
   this->NextLink.assign(this->Ids.size(), -1);
+  this->NextLeaf.assign(this->Ids.size(), 0);
   for (std::size_t index = 0; index < this->Ids.size(); ++index)
   {
     this->PlaceSerially(static_cast<std::uint32_t>(index));
@@ -178,7 +183,7 @@ std::int32_t ProcessingOctree::FindOrCreateCell(const LatticeCoord& cell)
     return index;
   }
   this->CellCoords.push_back(cell);
-  this->NextHead.resize(this->NextHead.size() + LeavesPerCell, -1);
+  this->NextHead.push_back(-1);
   // Processing cells next to the new one must see it, to place points into it.
   for (int dz = -1; dz <= 1; ++dz)
   {
@@ -208,25 +213,22 @@ void ProcessingOctree::PlaceSerially(std::uint32_t index)
 
 void ProcessingOctree::Compact(int numberOfThreads)
 {
+  // Each cell's points and occupied leaves.
   const auto oldCellCount = static_cast<std::int64_t>(this->CellCoords.size());
-  std::vector<std::uint32_t> leafCounts(this->NextHead.size(), 0);
   std::vector<std::uint32_t> cellCounts(this->CellCoords.size(), 0);
+  std::vector<std::uint64_t> cellMasks(this->CellCoords.size(), 0);
 #pragma omp parallel for schedule(static) num_threads(numberOfThreads)
   for (std::int64_t cell = 0; cell < oldCellCount; ++cell)
   {
-    std::uint32_t cellCount = 0;
-    for (int leaf = 0; leaf < LeavesPerCell; ++leaf)
+    std::uint32_t count = 0;
+    std::uint64_t mask = 0;
+    for (std::int32_t index = this->NextHead[cell]; index >= 0; index = this->NextLink[index])
     {
-      std::uint32_t count = 0;
-      for (std::int32_t index = this->NextHead[cell * LeavesPerCell + leaf]; index >= 0;
-           index = this->NextLink[index])
-      {
-        ++count;
-      }
-      leafCounts[cell * LeavesPerCell + leaf] = count;
-      cellCount += count;
+      ++count;
+      mask |= std::uint64_t{ 1 } << this->NextLeaf[index];
     }
-    cellCounts[cell] = cellCount;
+    cellCounts[cell] = count;
+    cellMasks[cell] = mask;
   }
 
   // Non-empty cells in lattice order (z, then y, then x), so that the layout does not depend
@@ -257,19 +259,23 @@ void ProcessingOctree::Compact(int numberOfThreads)
     });
 
   const std::size_t newCellCount = kept.size();
-  std::vector<std::uint32_t> offsets(newCellCount * LeavesPerCell + 1, 0);
+  this->LeafMasks.resize(newCellCount);
+  this->CellBegins.resize(newCellCount + 1);
+  this->LeafSlots.resize(newCellCount);
+  this->CellBegins[0] = 0;
+  std::uint32_t slots = 0;
   for (std::size_t cell = 0; cell < newCellCount; ++cell)
   {
-    for (int leaf = 0; leaf < LeavesPerCell; ++leaf)
-    {
-      const std::size_t slot = cell * LeavesPerCell + leaf;
-      offsets[slot + 1] = offsets[slot] + leafCounts[kept[cell] * LeavesPerCell + leaf];
-    }
+    this->LeafMasks[cell] = cellMasks[kept[cell]];
+    this->CellBegins[cell + 1] = this->CellBegins[cell] + cellCounts[kept[cell]];
+    this->LeafSlots[cell] = slots;
+    slots += static_cast<std::uint32_t>(Popcount(this->LeafMasks[cell]));
   }
+  this->LeafEnds.resize(slots);
 
-  // The new layout from the placed points: their ids and moved positions. The coordinate
-  // arrays of the last iteration are free to take it.
-  const std::size_t pointCount = offsets.back();
+  // The new layout from the placed points: their ids and moved positions, by leaf, each leaf
+  // sorted. The coordinate arrays of the last iteration are free to take it.
+  const std::size_t pointCount = this->CellBegins.back();
   this->CompactedIds.resize(pointCount);
   this->X.resize(pointCount);
   this->Y.resize(pointCount);
@@ -284,24 +290,45 @@ void ProcessingOctree::Compact(int numberOfThreads)
 #pragma omp for schedule(static)
     for (std::int64_t cell = 0; cell < signedNewCellCount; ++cell)
     {
+      // Bucket the cell's points by leaf, then sort each bucket.
+      std::uint32_t leafStarts[LeavesPerCell + 1] = {};
+      for (std::int32_t index = this->NextHead[kept[cell]]; index >= 0;
+           index = this->NextLink[index])
+      {
+        ++leafStarts[this->NextLeaf[index] + 1];
+      }
       for (int leaf = 0; leaf < LeavesPerCell; ++leaf)
       {
-        indices.clear();
-        for (std::int32_t index = this->NextHead[kept[cell] * LeavesPerCell + leaf]; index >= 0;
-             index = this->NextLink[index])
+        leafStarts[leaf + 1] += leafStarts[leaf];
+      }
+      indices.resize(leafStarts[LeavesPerCell]);
+      std::uint32_t fill[LeavesPerCell];
+      std::copy(leafStarts, leafStarts + LeavesPerCell, fill);
+      for (std::int32_t index = this->NextHead[kept[cell]]; index >= 0;
+           index = this->NextLink[index])
+      {
+        indices[fill[this->NextLeaf[index]]++] = static_cast<std::uint32_t>(index);
+      }
+      const std::uint32_t cellBegin = this->CellBegins[cell];
+      std::uint32_t slot = this->LeafSlots[cell];
+      for (int leaf = 0; leaf < LeavesPerCell; ++leaf)
+      {
+        if (leafStarts[leaf] == leafStarts[leaf + 1])
         {
-          indices.push_back(static_cast<std::uint32_t>(index));
+          continue;
         }
-        std::sort(indices.begin(), indices.end(), order);
-        std::size_t to = offsets[cell * LeavesPerCell + leaf];
-        for (const std::uint32_t from : indices)
-        {
-          this->CompactedIds[to] = this->Ids[from];
-          this->X[to] = this->MovedX[from];
-          this->Y[to] = this->MovedY[from];
-          this->Z[to] = this->MovedZ[from];
-          ++to;
-        }
+        std::sort(
+          indices.begin() + leafStarts[leaf], indices.begin() + leafStarts[leaf + 1], order);
+        this->LeafEnds[slot++] = cellBegin + leafStarts[leaf + 1];
+      }
+      std::uint32_t to = cellBegin;
+      for (const std::uint32_t from : indices)
+      {
+        this->CompactedIds[to] = this->Ids[from];
+        this->X[to] = this->MovedX[from];
+        this->Y[to] = this->MovedY[from];
+        this->Z[to] = this->MovedZ[from];
+        ++to;
       }
     }
   }
@@ -309,7 +336,6 @@ void ProcessingOctree::Compact(int numberOfThreads)
   this->MovedX.resize(pointCount);
   this->MovedY.resize(pointCount);
   this->MovedZ.resize(pointCount);
-  this->LeafOffsets = std::move(offsets);
 
   std::vector<LatticeCoord> newCoords(newCellCount);
   this->CellIndex.clear();
@@ -321,8 +347,9 @@ void ProcessingOctree::Compact(int numberOfThreads)
   }
   this->CellCoords = std::move(newCoords);
   this->NumberOfProcessingCells = newCellCount;
-  this->NextHead.assign(newCellCount * LeavesPerCell, -1);
+  this->NextHead.assign(newCellCount, -1);
   this->NextLink.assign(pointCount, -1);
+  this->NextLeaf.assign(pointCount, 0);
   this->RebuildNeighbourTable(numberOfThreads);
 }
 

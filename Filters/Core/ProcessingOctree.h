@@ -43,7 +43,7 @@ struct LatticeCoordHash
  * (ids and coordinates contiguous per leaf, leaves contiguous per cell), writes their moved
  * positions in the same order, and places them into per-leaf lists for the next iteration, so
  * that the points stay sorted by place from one iteration to the next and are read and written
- * in order. A leaf's list is written by one thread at a time without locks: the caller
+ * in order. A cell's list is written by one thread at a time without locks: the caller
  * guarantees it (the colouring invariant).
  */
 class ProcessingOctree
@@ -97,13 +97,13 @@ public:
   std::int32_t FindCell(const LatticeCoord& cell) const;
   std::int32_t FindOrCreateCell(const LatticeCoord& cell);
   void PlaceSerially(std::uint32_t index);
-  /// Lock-free placement into an existing cell: no other thread may place into the same leaf
+  /// Lock-free placement into an existing cell: no other thread may place into the same cell
   /// at the same time.
   void Place(std::uint32_t index, std::int32_t cell, int localLeaf)
   {
-    const std::size_t leaf = static_cast<std::size_t>(cell) * LeavesPerCell + localLeaf;
-    this->NextLink[index] = this->NextHead[leaf];
-    this->NextHead[leaf] = static_cast<std::int32_t>(index);
+    this->NextLeaf[index] = static_cast<std::uint8_t>(localLeaf);
+    this->NextLink[index] = this->NextHead[cell];
+    this->NextHead[cell] = static_cast<std::int32_t>(index);
   }
   ///@}
 
@@ -125,14 +125,17 @@ public:
   {
     return this->NeighbourTable.data() + 27 * cell;
   }
-  /// Points of leaf `localLeaf` of `cell`: indices [begin, end) in the arrays below.
-  std::uint32_t LeafBegin(std::size_t cell, int localLeaf) const
+  /// The leaves of a cell that hold points: bit l for leaf l.
+  std::uint64_t GetLeafMask(std::size_t cell) const { return this->LeafMasks[cell]; }
+  /// Points of leaf `localLeaf` of `cell`: indices [begin, end) in the arrays below (empty
+  /// when the leaf holds none).
+  void GetLeafRange(std::size_t cell, int localLeaf, std::uint32_t& begin, std::uint32_t& end) const
   {
-    return this->LeafOffsets[cell * LeavesPerCell + localLeaf];
-  }
-  std::uint32_t LeafEnd(std::size_t cell, int localLeaf) const
-  {
-    return this->LeafOffsets[cell * LeavesPerCell + localLeaf + 1];
+    const std::uint64_t mask = this->LeafMasks[cell];
+    const std::uint64_t below = mask & ((std::uint64_t{ 1 } << localLeaf) - 1);
+    const std::uint32_t slot = this->LeafSlots[cell] + static_cast<std::uint32_t>(Popcount(below));
+    begin = below ? this->LeafEnds[slot - 1] : this->CellBegins[cell];
+    end = (mask >> localLeaf) & 1 ? this->LeafEnds[slot] : begin;
   }
   const std::uint32_t* GetIds() const { return this->Ids.data(); }
   const double* GetX() const { return this->X.data(); }
@@ -165,14 +168,20 @@ private:
   std::vector<std::int32_t> NeighbourTable;
   std::size_t NumberOfProcessingCells = 0;
 
-  // Next iteration: per leaf, the head of a list of indices linked through NextLink (-1 ends
-  // it).
+  static int Popcount(std::uint64_t bits) { return __builtin_popcountll(bits); }
+
+  // Next iteration: per cell, the head of a list of indices linked through NextLink (-1 ends
+  // it), and each index's leaf in its cell.
   std::vector<std::int32_t> NextHead;
   std::vector<std::int32_t> NextLink;
+  std::vector<std::uint8_t> NextLeaf;
 
   // This iteration: ids and coordinates sorted by cell, leaf, then coordinates; the moved
-  // positions by the same index.
-  std::vector<std::uint32_t> LeafOffsets;
+  // positions by the same index. Only leaves that hold points are stored: a cell's points
+  // start at CellBegins[cell]; its occupied leaves, in order, end at LeafEnds[LeafSlots[cell]]
+  // and on.
+  std::vector<std::uint64_t> LeafMasks;
+  std::vector<std::uint32_t> CellBegins, LeafSlots, LeafEnds;
   std::vector<std::uint32_t> Ids, CompactedIds;
   std::vector<double> X, Y, Z;
   std::vector<double> MovedX, MovedY, MovedZ;
