@@ -192,6 +192,7 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   pcbilateral::BilateralObserver observer;
   observer.Progress = [this](double fraction) { this->UpdateProgress(fraction); };
   observer.ShouldAbort = [this]() { return this->GetAbortExecute() != 0; };
+  observer.Warning = [this](const std::string& warning) { vtkWarningMacro(<< warning); };
 
   this->UpdateProgress(0.0);
   const pcbilateral::BilateralResult result =
@@ -200,10 +201,6 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   {
     vtkErrorMacro(<< result.Error);
     return 0;
-  }
-  for (const std::string& warning : result.Warnings)
-  {
-    vtkWarningMacro(<< warning);
   }
   this->RadiusUsed = result.RadiusUsed;
   this->NormalRadiusUsed = result.NormalRadiusUsed;

@@ -40,6 +40,12 @@ int ResolveThreadCount(int requested)
 constexpr double MaximumExtentInRadii = 1e15;
 /// Positions stay below this magnitude, far from overflow.
 constexpr double MaximumMagnitude = 1e300;
+/// More iterations than this are refused: the paper uses a few, and each one may move the points
+/// by up to the radius, so that thousands would only collapse the cloud, slowly.
+constexpr int MaximumIterations = 1000;
+/// Above this mean number of neighbours per point, the run is warned about: it will be slow,
+/// and the radius was probably meant smaller (the paper's clouds have tens to hundreds).
+constexpr double ManyNeighbours = 10000.0;
 
 bool IsFinitePoint(const double* p)
 {
@@ -129,6 +135,13 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
       "the number of iterations must be >= 0, got " + std::to_string(parameters.NumberOfIterations);
     return result;
   }
+  if (parameters.NumberOfIterations > MaximumIterations)
+  {
+    result.Error = "the number of iterations must be at most " + std::to_string(MaximumIterations) +
+                   ", got " + std::to_string(parameters.NumberOfIterations) +
+                   " (each iteration moves the points by up to the radius: a few are enough)";
+    return result;
+  }
   if (parameters.NumberOfThreads < 0)
   {
     result.Error = "the number of threads must be >= 0 (0 means all cores), got " +
@@ -164,6 +177,15 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
     result.Normals.assign(3 * n, 0.0);
   }
 
+  auto warn = [&](const std::string& warning)
+  {
+    result.Warnings.push_back(warning);
+    if (observer.Warning)
+    {
+      observer.Warning(warning);
+    }
+  };
+
   // Non-finite points are passed through and never become neighbours.
   const CloudExtent localExtent = MeasureCloud(cloud);
   const std::size_t finiteCount = localExtent.NumberOfFinitePoints;
@@ -171,10 +193,9 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   result.NumberOfNonFinitePoints = n - finiteCount;
   if (result.NumberOfNonFinitePoints > 0)
   {
-    result.Warnings.push_back(
-      std::to_string(result.NumberOfNonFinitePoints) +
-      " point(s) have NaN or infinite coordinates: they are passed through unchanged and are "
-      "never used as neighbours");
+    warn(std::to_string(result.NumberOfNonFinitePoints) +
+         " point(s) have NaN or infinite coordinates: they are passed through unchanged and are "
+         "never used as neighbours");
   }
   const RadiiUsed radii = ResolveRadii(parameters, extent);
   result.RadiusUsed = radii.Radius;
@@ -187,8 +208,8 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   const double largestExtent = extent.LargestExtent();
   if (!(result.RadiusUsed > 0.0))
   {
-    result.Warnings.push_back("all points coincide, so no radius can be chosen automatically: "
-                              "the points are left where they are");
+    warn("all points coincide, so no radius can be chosen automatically: the points are left "
+         "where they are");
     return result;
   }
 
@@ -261,6 +282,19 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   for (; iteration < iterations; ++iteration)
   {
     octree.Compact(threads);
+    if (iteration == 0)
+    {
+      const double neighbours = scheduler.EstimateNeighboursPerPoint(32);
+      if (neighbours > ManyNeighbours)
+      {
+        std::ostringstream warning;
+        warning << "the radius " << result.RadiusUsed << " gives about "
+                << static_cast<long long>(neighbours)
+                << " neighbours per point, so the run will be slow (its time grows with that "
+                   "number): lower the radius, a few times the point spacing is usually enough";
+        warn(warning.str());
+      }
+    }
     if (!scheduler.RunIteration(state))
     {
       completed = false;

@@ -68,6 +68,8 @@ struct BilateralObserver
   std::function<void(double)> Progress;
   /// Polled often; returning true stops the run, which then reports Aborted.
   std::function<bool()> ShouldAbort;
+  /// Called with each warning as soon as it arises (they are also in BilateralResult::Warnings).
+  std::function<void(const std::string&)> Warning;
 };
 
 enum class BilateralStatus

@@ -129,6 +129,17 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
         this->Aborted.store(true, std::memory_order_relaxed);
         return;
       }
+      // Progress within the leaf: with a radius as large as the cloud, one leaf may hold every
+      // point.
+      if (++scratch.PointsSinceReport >= PointsPerReport)
+      {
+        this->PointsDone.fetch_add(scratch.PointsSinceReport, std::memory_order_relaxed);
+        scratch.PointsSinceReport = 0;
+        if (isMaster && this->ReportPoints)
+        {
+          this->ReportPoints(this->PointsDone.load(std::memory_order_relaxed));
+        }
+      }
       const std::uint32_t id = ids[i];
       const double p[3] = { x[i], y[i], z[i] };
       if (id >= state.FirstGhost)
@@ -192,17 +203,52 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
         scratch.Deferred.push_back(i);
       }
     }
-    scratch.PointsSinceReport += end - begin;
-    if (scratch.PointsSinceReport >= PointsPerReport)
+  }
+}
+
+double CellColoringScheduler::EstimateNeighboursPerPoint(std::size_t samples)
+{
+  const std::size_t count = this->Octree.GetNumberOfPoints();
+  samples = std::min(samples, count);
+  if (samples == 0)
+  {
+    return 0.0;
+  }
+  CandidateNeighbours& candidates = this->Scratch[0].Candidates;
+  std::uint64_t neighbours = 0;
+  std::size_t cell = 0;
+  for (std::size_t k = 0; k < samples; ++k)
+  {
+    const auto index = static_cast<std::uint32_t>(k * count / samples);
+    while (this->Octree.GetCellEnd(cell) <= index)
     {
-      this->PointsDone.fetch_add(scratch.PointsSinceReport, std::memory_order_relaxed);
-      scratch.PointsSinceReport = 0;
-      if (isMaster && this->ReportPoints)
+      ++cell;
+    }
+    int localLeaf = 0;
+    for (std::uint64_t leaves = this->Octree.GetLeafMask(cell); leaves != 0; leaves &= leaves - 1)
+    {
+      std::uint32_t begin, end;
+      localLeaf = __builtin_ctzll(leaves);
+      this->Octree.GetLeafRange(cell, localLeaf, begin, end);
+      if (index < end)
       {
-        this->ReportPoints(this->PointsDone.load(std::memory_order_relaxed));
+        break;
       }
     }
+    this->GatherCandidates(
+      this->Octree.GetCellCoord(cell), this->Octree.GetNeighbourCells(cell), localLeaf, candidates);
+    const double p[3] = {
+      this->Octree.GetX()[index], this->Octree.GetY()[index], this->Octree.GetZ()[index]
+    };
+    for (std::size_t j = 0; j < candidates.Size(); ++j)
+    {
+      const double dx = candidates.X[j] - p[0];
+      const double dy = candidates.Y[j] - p[1];
+      const double dz = candidates.Z[j] - p[2];
+      neighbours += (dx * dx + dy * dy) + dz * dz < this->Constants.RadiusSquared ? 1 : 0;
+    }
   }
+  return static_cast<double>(neighbours) / static_cast<double>(samples);
 }
 
 void CellColoringScheduler::PollObserver()

@@ -57,6 +57,10 @@ public:
   /// Returns false if aborted.
   bool RunIteration(PointState& state);
 
+  /// The mean number of neighbours (|q - p| < r) of up to `samples` points spread over the
+  /// octree's layout: a cheap look at what an iteration will cost.
+  double EstimateNeighboursPerPoint(std::size_t samples);
+
   /// Number of points filtered in the last iteration (those placed in the octree).
   std::size_t GetNumberOfPointsProcessed() const { return this->PointsProcessed; }
   /// Neighbours visited in the last iteration, summed over its points.

@@ -125,6 +125,8 @@ public:
   {
     return this->NeighbourTable.data() + 27 * cell;
   }
+  /// The end of a cell's points in the arrays below (they start at the previous cell's end).
+  std::uint32_t GetCellEnd(std::size_t cell) const { return this->CellBegins[cell + 1]; }
   /// The leaves of a cell that hold points: bit l for leaf l.
   std::uint64_t GetLeafMask(std::size_t cell) const { return this->LeafMasks[cell]; }
   /// Points of leaf `localLeaf` of `cell`: indices [begin, end) in the arrays below (empty

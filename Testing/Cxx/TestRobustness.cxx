@@ -4,6 +4,7 @@
 #include "CoreTesting.h"
 #include "vtkPointCloudBilateralFilter.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
@@ -37,11 +38,12 @@ public:
   void Execute(vtkObject*, unsigned long event, void* text) override
   {
     (event == vtkCommand::ErrorEvent ? this->Errors : this->Warnings) += 1;
-    this->Last = text ? static_cast<const char*>(text) : "";
+    this->Messages += text ? static_cast<const char*>(text) : "";
   }
   int Errors = 0;
   int Warnings = 0;
-  std::string Last;
+  /// All of them, one after the other.
+  std::string Messages;
 };
 
 vtkSmartPointer<vtkPolyData> Cloud(const std::vector<double>& xyz, int type = VTK_DOUBLE)
@@ -90,7 +92,7 @@ Run Filter(vtkPolyData* input, double radius, int iterations = 1, double normalR
   run.Output = filter->GetOutput();
   run.Errors = counter->Errors;
   run.Warnings = counter->Warnings;
-  run.Message = counter->Last;
+  run.Message = counter->Messages;
   run.Radius = filter->GetRadiusUsed();
   return run;
 }
@@ -248,9 +250,92 @@ void TestNonFinitePoints()
 
 void TestRadiusLargerThanCloud()
 {
-  auto input = Cloud(NoisyPatch(3000, 0.0, 7));
-  const Run run = Filter(input, 50.0, 1, 0.01);
+  // Every point a neighbour of every other: the run finishes, keeps reporting progress, and
+  // warns once about the neighbour count, naming the parameter to lower.
+  auto input = Cloud(NoisyPatch(12000, 0.0, 7));
+  vtkNew<vtkPointCloudBilateralFilter> filter;
+  vtkNew<MessageCounter> counter;
+  filter->AddObserver(vtkCommand::ErrorEvent, counter);
+  filter->AddObserver(vtkCommand::WarningEvent, counter);
+  int progressEvents = 0;
+  vtkNew<vtkCallbackCommand> progress;
+  progress->SetClientData(&progressEvents);
+  progress->SetCallback(
+    [](vtkObject*, unsigned long, void* count, void*) { ++*static_cast<int*>(count); });
+  filter->AddObserver(vtkCommand::ProgressEvent, progress);
+  filter->SetInputData(input);
+  filter->SetRadius(50.0);
+  filter->SetNormalRadius(0.01);
+  filter->Update();
+  Run run;
+  run.Output = filter->GetOutput();
+  run.Errors = counter->Errors;
+  run.Warnings = counter->Warnings;
+  run.Message = counter->Messages;
+  std::printf("radius 50: %d warning(s): %s; %d progress events\n",
+    run.Warnings,
+    run.Message.c_str(),
+    progressEvents);
   CheckSane("radius 50 on a unit patch", input, run, 50.0);
+  PCB_CHECK(
+    run.Errors == 0 && run.Warnings == 1, "%d errors, %d warnings", run.Errors, run.Warnings);
+  PCB_CHECK(run.Message.find("neighbours per point") != std::string::npos &&
+              run.Message.find("lower the radius") != std::string::npos,
+    "the warning does not say what to lower: %s",
+    run.Message.c_str());
+  PCB_CHECK(progressEvents >= 20, "only %d progress events", progressEvents);
+
+  // A radius of the right size does not warn.
+  const Run usual = Filter(input, 0.05, 1, 0.01);
+  PCB_CHECK(usual.Warnings == 0, "a usual radius warned: %s", usual.Message.c_str());
+}
+
+void TestBadParameters()
+{
+  // Each refused with one error and an empty output; 0 iterations give the input back.
+  auto input = Cloud(NoisyPatch(2000, 0.0, 10));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  struct Bad
+  {
+    const char* Name;
+    double Radius, NormalRadius;
+    int Iterations;
+    const char* Says;
+  };
+  for (const Bad& bad : { Bad{ "negative radius", -0.1, 0.0, 1, "radius" },
+         Bad{ "NaN radius", nan, 0.0, 1, "radius" },
+         Bad{ "infinite radius", inf, 0.0, 1, "radius" },
+         Bad{ "negative normal radius", 0.05, -1.0, 1, "normal radius" },
+         Bad{ "NaN normal radius", 0.05, nan, 1, "normal radius" },
+         Bad{ "infinite normal radius", 0.05, inf, 1, "normal radius" },
+         Bad{ "negative iterations", 0.05, 0.0, -1, "iterations" },
+         Bad{ "a huge number of iterations", 0.05, 0.0, 1000000, "at most 1000" } })
+  {
+    const Run run = Filter(input, bad.Radius, bad.Iterations, bad.NormalRadius);
+    PCB_CHECK(run.Errors >= 1 && run.Output->GetNumberOfPoints() == 0,
+      "%s: %d errors, %lld output points",
+      bad.Name,
+      run.Errors,
+      (long long)run.Output->GetNumberOfPoints());
+    PCB_CHECK(run.Message.find(bad.Says) != std::string::npos,
+      "%s: the message does not say '%s': %s",
+      bad.Name,
+      bad.Says,
+      run.Message.c_str());
+  }
+  const Run none = Filter(input, 0.05, 0);
+  PCB_CHECK(none.Errors == 0 && none.Output->GetNumberOfPoints() == input->GetNumberOfPoints(),
+    "0 iterations: %d errors, %lld points",
+    none.Errors,
+    (long long)none.Output->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < none.Output->GetNumberOfPoints(); ++i)
+  {
+    double a[3], b[3];
+    input->GetPoint(i, a);
+    none.Output->GetPoint(i, b);
+    PCB_CHECK(std::memcmp(a, b, sizeof(a)) == 0, "0 iterations moved point %lld", (long long)i);
+  }
 }
 
 void TestGeoreferencedOffset()
@@ -339,6 +424,7 @@ int main(int argc, char* argv[])
     { "coincident-and-degenerate", TestCoincidentAndDegenerate },
     { "non-finite-points", TestNonFinitePoints },
     { "radius-larger-than-cloud", TestRadiusLargerThanCloud },
+    { "bad-parameters", TestBadParameters },
     { "georeferenced-offset", TestGeoreferencedOffset },
     { "abort-from-another-thread", TestAbortFromAnotherThread },
   };
