@@ -279,6 +279,8 @@ bool WriteOutput(const Options& options, vtkPolyData* cloud)
   // The PLY writer appends ".ply" to a name without it: keep the extension last.
   const std::string temporary =
     options.Output.substr(0, options.Output.size() - extension.size()) + ".partial" + extension;
+  // The writers' own messages do not name the file: this program's one line below does.
+  vtkObject::GlobalWarningDisplayOff();
   int written = 0;
   if (extension == ".ply")
   {
@@ -310,10 +312,12 @@ bool WriteOutput(const Options& options, vtkPolyData* cloud)
     writer->SetInputData(cloud);
     written = writer->Write();
   }
+  vtkObject::GlobalWarningDisplayOn();
   if (written != 1 || std::rename(temporary.c_str(), options.Output.c_str()) != 0)
   {
+    const std::string reason = std::strerror(errno);
     std::remove(temporary.c_str());
-    Fail(options.Output + ": cannot be written");
+    Fail(options.Output + ": cannot be written (" + reason + ")");
   }
   return true;
 }
