@@ -9,10 +9,6 @@
 #include <sstream>
 #include <sys/stat.h>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 namespace pcbilateral
 {
 
@@ -169,7 +165,8 @@ std::string ParsePointCloudText(const char* text,
   std::size_t length,
   bool hasNormals,
   const std::string& sourceName,
-  PointCloudTable& table)
+  PointCloudTable& table,
+  std::size_t minimumPieceBytes)
 {
   table = PointCloudTable();
   const std::size_t leadingColumns = hasNormals ? 6 : 3;
@@ -231,12 +228,9 @@ std::string ParsePointCloudText(const char* text,
   }
 
   // The points, in pieces of whole lines parsed in parallel, then joined in order.
-  constexpr std::size_t MinimumPieceBytes = 1 << 20;
   const std::size_t bytes = static_cast<std::size_t>(end - line);
-  int pieceCount = static_cast<int>(std::min<std::size_t>(64, bytes / MinimumPieceBytes + 1));
-#ifdef _OPENMP
-  pieceCount = std::min(pieceCount, omp_get_max_threads());
-#endif
+  const int pieceCount = static_cast<int>(
+    std::min<std::size_t>(64, bytes / std::max<std::size_t>(1, minimumPieceBytes) + 1));
   std::vector<const char*> bounds{ line };
   for (int k = 1; k < pieceCount; ++k)
   {
@@ -245,7 +239,7 @@ std::string ParsePointCloudText(const char* text,
   }
   bounds.push_back(end);
   std::vector<ParsedPiece> pieces(static_cast<std::size_t>(pieceCount));
-#pragma omp parallel for schedule(static, 1) num_threads(pieceCount)
+#pragma omp parallel for schedule(dynamic, 1)
   for (int k = 0; k < pieceCount; ++k)
   {
     ParsePiece(

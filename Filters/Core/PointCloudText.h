@@ -33,12 +33,16 @@ struct PointCloudTable
  *
  * Returns an empty string on success, else a one-line message naming `sourceName`, the line
  * and the problem.
+ *
+ * The text is parsed in parallel, in pieces of whole lines of at least `minimumPieceBytes`
+ * (tests make them tiny, to check that the pieces join seamlessly).
  */
 std::string ParsePointCloudText(const char* text,
   std::size_t length,
   bool hasNormals,
   const std::string& sourceName,
-  PointCloudTable& table);
+  PointCloudTable& table,
+  std::size_t minimumPieceBytes = std::size_t{ 1 } << 20);
 
 /// Reads and parses a file (see ParsePointCloudText).
 std::string ReadPointCloudText(const std::string& path, bool hasNormals, PointCloudTable& table);

@@ -1,7 +1,9 @@
 // libFuzzer target for the core filter: arbitrary small clouds (NaN, infinities, duplicates,
 // huge and tiny coordinates) and parameters. Invalid parameters must be refused with a message;
-// otherwise every output point must be finite where its input was, and within N r of it.
+// otherwise every output point must be finite where its input was, and within N r of it, and
+// the generic build of the kernel must give the same bits as the best one of the machine.
 #include "BilateralFilter.h"
+#include "BilateralKernel.h"
 
 #include <cmath>
 #include <cstdint>
@@ -89,6 +91,24 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!validParameters || result.Positions.size() != xyz.size())
   {
     std::abort();
+  }
+  // The same run with the generic build of the kernel: the same bits.
+  const pcbilateral::KernelInstructionSet best = pcbilateral::GetKernelInstructionSet();
+  if (best != pcbilateral::KernelInstructionSet::Generic)
+  {
+    pcbilateral::SetKernelInstructionSet(pcbilateral::KernelInstructionSet::Generic);
+    const pcbilateral::BilateralResult generic = pcbilateral::RunBilateralFilter(cloud, parameters);
+    pcbilateral::SetKernelInstructionSet(best);
+    auto sameBits = [](const std::vector<double>& a, const std::vector<double>& b)
+    {
+      return a.size() == b.size() &&
+             (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+    };
+    if (!sameBits(generic.Positions, result.Positions) ||
+        !sameBits(generic.Normals, result.Normals))
+    {
+      std::abort(); // the instruction-set builds disagree
+    }
   }
   const double reach = parameters.NumberOfIterations * result.RadiusUsed;
   for (std::size_t i = 0; i < count; ++i)

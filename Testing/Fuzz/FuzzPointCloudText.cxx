@@ -1,10 +1,13 @@
 // libFuzzer target for the ASCII point reader: any bytes must give either a clear error or a
-// consistent table, never a crash, a hang or a sanitizer report.
+// consistent table, never a crash, a hang or a sanitizer report; and the same answer whether
+// the text is parsed in one piece or in many (the parallel parser's pieces must join seamlessly).
 #include "PointCloudText.h"
 
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <string>
+#include <vector>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
@@ -13,6 +16,28 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   pcbilateral::PointCloudTable table;
   const std::string error = pcbilateral::ParsePointCloudText(
     reinterpret_cast<const char*>(data), size, hasNormals, "fuzz", table);
+  pcbilateral::PointCloudTable pieces;
+  const std::size_t pieceBytes = 1 + (size > 1 ? data[1] % 16 : 0);
+  const std::string piecesError = pcbilateral::ParsePointCloudText(
+    reinterpret_cast<const char*>(data), size, hasNormals, "fuzz", pieces, pieceBytes);
+  auto sameBits = [](const std::vector<double>& a, const std::vector<double>& b)
+  {
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+  };
+  bool same = piecesError == error && pieces.NumberOfPoints == table.NumberOfPoints &&
+              sameBits(pieces.Positions, table.Positions) &&
+              sameBits(pieces.Normals, table.Normals) &&
+              pieces.ExtraColumnNames == table.ExtraColumnNames &&
+              pieces.ExtraColumns.size() == table.ExtraColumns.size();
+  for (std::size_t c = 0; same && c < table.ExtraColumns.size(); ++c)
+  {
+    same = sameBits(pieces.ExtraColumns[c], table.ExtraColumns[c]);
+  }
+  if (!same)
+  {
+    std::abort(); // parsing in pieces changed the answer
+  }
   if (!error.empty())
   {
     if (error.compare(0, 5, "fuzz:") != 0 || error.find('\n') != std::string::npos)
