@@ -41,56 +41,80 @@ CellColoringScheduler::CellColoringScheduler(ProcessingOctree& octree,
   , Scratch(static_cast<std::size_t>(numberOfThreads))
 {
   // A point of a leaf has its neighbours in the leaves whose boxes come closer than r to that
-  // leaf's box. The slack covers rounding in the point-to-leaf assignment.
+  // leaf's box. The slack covers rounding in the point-to-leaf assignment. Cells are at least
+  // 2.1 r wide, so these leaves lie in the 27 cells around the leaf's own.
   const double leafSize = octree.GetLeafSize();
   const int reach = static_cast<int>(std::floor(radius / leafSize)) + 1;
   const double reachSquared = radius * radius * (1.0 + 1e-6);
-  for (int z = -reach; z <= reach; ++z)
+  auto gap = [leafSize](int offset) { return std::max(0, std::abs(offset) - 1) * leafSize; };
+  // For each leaf of a cell, those leaves in z, y, x order, as runs along x within one cell
+  // (consecutive leaves of a cell are consecutive in the layout).
+  constexpr int perAxis = ProcessingOctree::LeavesPerAxis;
+  auto cellAndLeaf = [](int leaf, int& cell, int& local)
   {
-    for (int y = -reach; y <= reach; ++y)
+    cell = leaf < 0 ? -1 : leaf / perAxis;
+    local = leaf - perAxis * cell;
+  };
+  for (int localLeaf = 0; localLeaf < ProcessingOctree::LeavesPerCell; ++localLeaf)
+  {
+    this->RunsBegin[localLeaf] = static_cast<std::uint32_t>(this->LeafRuns.size());
+    const int lx = localLeaf % perAxis;
+    const int ly = (localLeaf / perAxis) % perAxis;
+    const int lz = localLeaf / (perAxis * perAxis);
+    for (int z = -reach; z <= reach; ++z)
     {
-      for (int x = -reach; x <= reach; ++x)
+      for (int y = -reach; y <= reach; ++y)
       {
-        const double gapX = std::max(0, std::abs(x) - 1) * leafSize;
-        const double gapY = std::max(0, std::abs(y) - 1) * leafSize;
-        const double gapZ = std::max(0, std::abs(z) - 1) * leafSize;
-        if (gapX * gapX + gapY * gapY + gapZ * gapZ < reachSquared)
+        for (int x = -reach; x <= reach; ++x)
         {
-          this->ReachableLeafOffsets.push_back({ x, y, z });
+          if (!(gap(x) * gap(x) + gap(y) * gap(y) + gap(z) * gap(z) < reachSquared))
+          {
+            continue;
+          }
+          int cellX, cellY, cellZ, leafX, leafY, leafZ;
+          cellAndLeaf(lx + x, cellX, leafX);
+          cellAndLeaf(ly + y, cellY, leafY);
+          cellAndLeaf(lz + z, cellZ, leafZ);
+          const auto slot =
+            static_cast<std::uint8_t>(ProcessingOctree::NeighbourSlot(cellX, cellY, cellZ));
+          const auto leaf = static_cast<std::uint8_t>(leafX + perAxis * (leafY + perAxis * leafZ));
+          LeafRun* last =
+            this->LeafRuns.size() > this->RunsBegin[localLeaf] ? &this->LeafRuns.back() : nullptr;
+          if (last && last->CellSlot == slot && last->LastLeaf + 1 == leaf && leafX > 0)
+          {
+            last->LastLeaf = leaf;
+          }
+          else
+          {
+            this->LeafRuns.push_back(LeafRun{ slot, leaf, leaf });
+          }
         }
       }
     }
   }
+  this->RunsBegin[ProcessingOctree::LeavesPerCell] =
+    static_cast<std::uint32_t>(this->LeafRuns.size());
 }
 
-void CellColoringScheduler::GatherCandidates(const LatticeCoord& cellCoord,
-  const std::int32_t* neighbours,
+void CellColoringScheduler::GatherCandidates(const std::int32_t* neighbours,
   int localLeaf,
   CandidateNeighbours& candidates) const
 {
-  constexpr int perAxis = ProcessingOctree::LeavesPerAxis;
-  const LatticeCoord leaf{ perAxis * cellCoord.X + localLeaf % perAxis,
-    perAxis * cellCoord.Y + (localLeaf / perAxis) % perAxis,
-    perAxis * cellCoord.Z + localLeaf / (perAxis * perAxis) };
   const double* x = this->Octree.GetX();
   const double* y = this->Octree.GetY();
   const double* z = this->Octree.GetZ();
+  const std::size_t storedCells = this->Octree.GetNumberOfProcessingCells();
   candidates.Clear();
-  for (const auto& offset : this->ReachableLeafOffsets)
+  for (std::uint32_t run = this->RunsBegin[localLeaf]; run < this->RunsBegin[localLeaf + 1]; ++run)
   {
-    const LatticeCoord other{ leaf.X + offset[0], leaf.Y + offset[1], leaf.Z + offset[2] };
-    const LatticeCoord otherCell = ProcessingOctree::CellOfLeaf(other);
-    const std::int32_t cell =
-      neighbours[ProcessingOctree::NeighbourSlot(static_cast<int>(otherCell.X - cellCoord.X),
-        static_cast<int>(otherCell.Y - cellCoord.Y),
-        static_cast<int>(otherCell.Z - cellCoord.Z))];
-    if (cell == ProcessingOctree::NoCell ||
-        static_cast<std::size_t>(cell) >= this->Octree.GetNumberOfProcessingCells())
+    const LeafRun& leaves = this->LeafRuns[run];
+    const std::int32_t cell = neighbours[leaves.CellSlot];
+    if (cell == ProcessingOctree::NoCell || static_cast<std::size_t>(cell) >= storedCells)
     {
       continue;
     }
     std::uint32_t begin, end;
-    this->Octree.GetLeafRange(cell, ProcessingOctree::LocalLeafIndex(other), begin, end);
+    this->Octree.GetLeavesRange(cell, leaves.FirstLeaf, leaves.LastLeaf, begin, end);
     candidates.Append(x + begin, y + begin, z + begin, end - begin);
   }
 }
@@ -117,7 +141,7 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
     const int localLeaf = __builtin_ctzll(leaves);
     std::uint32_t begin, end;
     this->Octree.GetLeafRange(cell, localLeaf, begin, end);
-    this->GatherCandidates(cellCoord, neighbours, localLeaf, scratch.Candidates);
+    this->GatherCandidates(neighbours, localLeaf, scratch.Candidates);
     for (std::uint32_t i = begin; i < end; ++i)
     {
       if (this->Aborted.load(std::memory_order_relaxed))
@@ -235,8 +259,7 @@ double CellColoringScheduler::EstimateNeighboursPerPoint(std::size_t samples)
         break;
       }
     }
-    this->GatherCandidates(
-      this->Octree.GetCellCoord(cell), this->Octree.GetNeighbourCells(cell), localLeaf, candidates);
+    this->GatherCandidates(this->Octree.GetNeighbourCells(cell), localLeaf, candidates);
     const double p[3] = {
       this->Octree.GetX()[index], this->Octree.GetY()[index], this->Octree.GetZ()[index]
     };

@@ -78,8 +78,9 @@ private:
   void ProcessCell(std::size_t cell, PointState& state, ThreadScratch& scratch, bool isMaster);
   /// Calling thread only: asks ShouldAbort and reports progress.
   void PollObserver();
-  void GatherCandidates(const LatticeCoord& cellCoord,
-    const std::int32_t* neighbours,
+  /// The points of the leaves within reach of a leaf of a cell (given the cell's neighbour
+  /// table), in an order fixed by geometry.
+  void GatherCandidates(const std::int32_t* neighbours,
     int localLeaf,
     CandidateNeighbours& candidates) const;
 
@@ -87,8 +88,17 @@ private:
   KernelConstants Constants;
   bool RemoveIsolatedPoints;
   int NumberOfThreads;
-  /// Leaf offsets whose leaves can hold a neighbour of a point of the centre leaf.
-  std::vector<std::array<int, 3>> ReachableLeafOffsets;
+  /// Leaves that can hold a neighbour of a point of a given leaf of a cell: runs of
+  /// consecutive leaves of one of the 27 cells around (CellSlot in the neighbour table).
+  struct LeafRun
+  {
+    std::uint8_t CellSlot;
+    std::uint8_t FirstLeaf;
+    std::uint8_t LastLeaf;
+  };
+  std::vector<LeafRun> LeafRuns;
+  /// The runs of leaf l of a cell are LeafRuns[RunsBegin[l]] to LeafRuns[RunsBegin[l + 1] - 1].
+  std::array<std::uint32_t, ProcessingOctree::LeavesPerCell + 1> RunsBegin{};
   std::vector<ThreadScratch> Scratch;
   std::atomic<bool> Aborted{ false };
   std::atomic<std::size_t> PointsDone{ 0 };

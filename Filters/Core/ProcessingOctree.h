@@ -129,15 +129,24 @@ public:
   std::uint32_t GetCellEnd(std::size_t cell) const { return this->CellBegins[cell + 1]; }
   /// The leaves of a cell that hold points: bit l for leaf l.
   std::uint64_t GetLeafMask(std::size_t cell) const { return this->LeafMasks[cell]; }
-  /// Points of leaf `localLeaf` of `cell`: indices [begin, end) in the arrays below (empty
-  /// when the leaf holds none).
-  void GetLeafRange(std::size_t cell, int localLeaf, std::uint32_t& begin, std::uint32_t& end) const
+  /// Points of leaves `first` to `last` of `cell`: indices [begin, end) in the arrays below
+  /// (empty when the leaves hold none).
+  void GetLeavesRange(std::size_t cell,
+    int first,
+    int last,
+    std::uint32_t& begin,
+    std::uint32_t& end) const
   {
     const std::uint64_t mask = this->LeafMasks[cell];
-    const std::uint64_t below = mask & ((std::uint64_t{ 1 } << localLeaf) - 1);
-    const std::uint32_t slot = this->LeafSlots[cell] + static_cast<std::uint32_t>(Popcount(below));
-    begin = below ? this->LeafEnds[slot - 1] : this->CellBegins[cell];
-    end = (mask >> localLeaf) & 1 ? this->LeafEnds[slot] : begin;
+    const int before = Popcount(mask & ((std::uint64_t{ 1 } << first) - 1));
+    const int upToLast = Popcount(mask & (~std::uint64_t{ 0 } >> (LeavesPerCell - 1 - last)));
+    const std::uint32_t* ends = this->LeafEnds.data() + this->LeafSlots[cell];
+    begin = before ? ends[before - 1] : this->CellBegins[cell];
+    end = upToLast ? ends[upToLast - 1] : this->CellBegins[cell];
+  }
+  void GetLeafRange(std::size_t cell, int localLeaf, std::uint32_t& begin, std::uint32_t& end) const
+  {
+    this->GetLeavesRange(cell, localLeaf, localLeaf, begin, end);
   }
   const std::uint32_t* GetIds() const { return this->Ids.data(); }
   const double* GetX() const { return this->X.data(); }
@@ -170,7 +179,15 @@ private:
   std::vector<std::int32_t> NeighbourTable;
   std::size_t NumberOfProcessingCells = 0;
 
-  static int Popcount(std::uint64_t bits) { return __builtin_popcountll(bits); }
+  /// Set bits, counted without the popcnt instruction, which x86-64's baseline lacks (the
+  /// builtin would call a slower library function).
+  static int Popcount(std::uint64_t bits)
+  {
+    bits = bits - ((bits >> 1) & 0x5555555555555555ULL);
+    bits = (bits & 0x3333333333333333ULL) + ((bits >> 2) & 0x3333333333333333ULL);
+    bits = (bits + (bits >> 4)) & 0x0F0F0F0F0F0F0F0FULL;
+    return static_cast<int>((bits * 0x0101010101010101ULL) >> 56);
+  }
 
   // Next iteration: per cell, the head of a list of indices linked through NextLink (-1 ends
   // it), and each index's leaf in its cell.
