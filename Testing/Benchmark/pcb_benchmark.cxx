@@ -1,7 +1,7 @@
 // pcb_benchmark: times the bilateral filter on generated workloads and prints a table.
 // Built with the project, not run by the tests (shared machines are too noisy for timed tests).
 //
-//   pcb_benchmark [--runs N] [--skip-10m]
+//   pcb_benchmark [--runs N] [--skip-10m] [--only WORKLOAD]
 //       the filter alone, through the core, with 1 and 2 threads, on:
 //       - cube600k: the unit cube's surface, 600,000 points, noise 0.5% of the diagonal,
 //         r = 0.03, rn = 0.05, N = 2 (the paper's Table 1);
@@ -14,6 +14,7 @@
 //       times a whole program run (reading, filtering and writing), e.g. pcbilateral or the
 //       authors' program on the same file, and reports its peak resident memory.
 #include "BilateralFilter.h"
+#include "BilateralKernel.h"
 #include "PointCloudText.h"
 #include "SampleShapes.h"
 
@@ -135,13 +136,14 @@ Measurement RunInChild(const Workload& workload, int threads, int runs, double& 
   return measurement;
 }
 
-int Benchmark(int runs, bool skipTenMillion)
+int Benchmark(int runs, bool skipTenMillion, const std::string& only)
 {
   const Workload workloads[] = {
     { "cube600k", 600000, true, 0.03, 0.05, 2, 0 },
     { "sphere1M", 1000000, false, 0.0, 0.0, 1, 0 },
     { "sphere10M", 10000000, false, 0.0, 0.0, 1, 1 },
   };
+  std::printf("kernel build: %s\n", pcbilateral::GetName(pcbilateral::GetKernelInstructionSet()));
   std::printf("%-10s %9s %3s %9s %7s %11s %12s %15s %8s %8s\n",
     "workload",
     "points",
@@ -155,7 +157,7 @@ int Benchmark(int runs, bool skipTenMillion)
     "peak MB");
   for (const Workload& workload : workloads)
   {
-    if (skipTenMillion && workload.Points >= 10000000)
+    if ((skipTenMillion && workload.Points >= 10000000) || (!only.empty() && only != workload.Name))
     {
       continue;
     }
@@ -250,6 +252,7 @@ int main(int argc, char* argv[])
 {
   int runs = 3;
   bool skipTenMillion = false;
+  std::string only;
   for (int i = 1; i < argc; ++i)
   {
     const std::string argument = argv[i];
@@ -260,6 +263,10 @@ int main(int argc, char* argv[])
     else if (argument == "--skip-10m")
     {
       skipTenMillion = true;
+    }
+    else if (argument == "--only" && i + 1 < argc)
+    {
+      only = argv[++i];
     }
     else if (argument == "--write-cube600k" && i + 1 < argc)
     {
@@ -272,11 +279,11 @@ int main(int argc, char* argv[])
     else
     {
       std::fprintf(stderr,
-        "usage: %s [--runs N] [--skip-10m] | --write-cube600k FILE.xyz | [--runs N] "
-        "--end-to-end PROGRAM ARGUMENTS...\n",
+        "usage: %s [--runs N] [--skip-10m] [--only cube600k|sphere1M|sphere10M] | "
+        "--write-cube600k FILE.xyz | [--runs N] --end-to-end PROGRAM ARGUMENTS...\n",
         argv[0]);
       return EXIT_FAILURE;
     }
   }
-  return Benchmark(runs, skipTenMillion);
+  return Benchmark(runs, skipTenMillion, only);
 }
