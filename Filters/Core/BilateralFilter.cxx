@@ -170,6 +170,7 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   }
 
   const std::size_t n = cloud.NumberOfPoints;
+  ReserveWithHugePages(3 * n, result.Positions);
   result.Positions.assign(cloud.Positions, cloud.Positions + 3 * n);
   result.Removed.assign(n, 0);
   if (parameters.ComputeNormals)

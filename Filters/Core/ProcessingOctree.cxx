@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 #include <numeric>
 
 namespace pcbilateral
@@ -57,6 +61,23 @@ std::int64_t FloorDivide(std::int64_t value, std::int64_t divisor)
   return (value % divisor < 0) ? quotient - 1 : quotient;
 }
 } // namespace
+
+void AdviseHugePages(void* data, std::size_t bytes)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  // Only whole 2 MB pages inside the buffer can be huge ones.
+  constexpr std::uintptr_t HugePage = std::uintptr_t{ 1 } << 21;
+  const auto begin = (reinterpret_cast<std::uintptr_t>(data) + HugePage - 1) & ~(HugePage - 1);
+  const auto end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(HugePage - 1);
+  if (end > begin)
+  {
+    madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE); // advice only
+  }
+#else
+  (void)data;
+  (void)bytes;
+#endif
+}
 
 std::size_t LatticeCoordHash::operator()(const LatticeCoord& c) const
 {
@@ -148,6 +169,9 @@ void ProcessingOctree::Load(const double* positions, std::size_t count)
   this->MovedX.clear();
   this->MovedY.clear();
   this->MovedZ.clear();
+  ReserveWithHugePages(count, this->Ids, this->CompactedIds, this->X, this->Y, this->Z);
+  ReserveWithHugePages(count, this->MovedX, this->MovedY, this->MovedZ);
+  ReserveWithHugePages(count, this->NextLink, this->NextLeaf);
   for (std::size_t id = 0; id < count; ++id)
   {
     const double* p = positions + 3 * id;
