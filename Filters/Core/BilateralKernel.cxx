@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <utility>
 
 namespace pcbilateral
@@ -59,21 +60,24 @@ KernelConstants::KernelConstants(double radius, double normalRadius)
   this->NormalScale = 1.0 / (2.0 * normalSigma * normalSigma);
 }
 
-void CandidateNeighbours::Clear()
-{
-  this->X.clear();
-  this->Y.clear();
-  this->Z.clear();
-}
-
 void CandidateNeighbours::Append(const double* x,
   const double* y,
   const double* z,
   std::size_t count)
 {
-  this->X.insert(this->X.end(), x, x + count);
-  this->Y.insert(this->Y.end(), y, y + count);
-  this->Z.insert(this->Z.end(), z, z + count);
+  const std::size_t size = this->Count + count;
+  if (this->X.size() < size)
+  {
+    // Grow geometrically: candidate counts vary from block to block.
+    const std::size_t capacity = std::max(size, 2 * this->X.size());
+    this->X.resize(capacity);
+    this->Y.resize(capacity);
+    this->Z.resize(capacity);
+  }
+  std::memcpy(this->X.data() + this->Count, x, count * sizeof(double));
+  std::memcpy(this->Y.data() + this->Count, y, count * sizeof(double));
+  std::memcpy(this->Z.data() + this->Count, z, count * sizeof(double));
+  this->Count = size;
 }
 
 KernelScratch CandidateNeighbours::Scratch()

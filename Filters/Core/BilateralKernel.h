@@ -45,15 +45,18 @@ struct KernelScratch
 /// arithmetic, so large offsets (georeferenced data) do not cost precision.
 struct CandidateNeighbours
 {
+  /// The candidates are the first Size() values of each (the arrays keep their size from one
+  /// block to the next, so that gathering never fills or frees memory).
   std::vector<double> X, Y, Z;
 
-  std::size_t Size() const { return this->X.size(); }
-  void Clear();
+  std::size_t Size() const { return this->Count; }
+  void Clear() { this->Count = 0; }
   void Append(const double* x, const double* y, const double* z, std::size_t count);
   /// The kernel's scratch, with room for the current candidates.
   KernelScratch Scratch();
 
 private:
+  std::size_t Count = 0;
   std::vector<double> ScratchStorage;
 };
 

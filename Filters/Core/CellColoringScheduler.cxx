@@ -83,10 +83,11 @@ CellColoringScheduler::CellColoringScheduler(ProcessingOctree& octree,
           if (last && last->CellSlot == slot && last->LastLeaf + 1 == leaf && leafX > 0)
           {
             last->LastLeaf = leaf;
+            last->Leaves |= std::uint64_t{ 1 } << leaf;
           }
           else
           {
-            this->LeafRuns.push_back(LeafRun{ slot, leaf, leaf });
+            this->LeafRuns.push_back(LeafRun{ std::uint64_t{ 1 } << leaf, slot, leaf, leaf });
           }
         }
       }
@@ -109,13 +110,17 @@ void CellColoringScheduler::GatherCandidates(const std::int32_t* neighbours,
   {
     const LeafRun& leaves = this->LeafRuns[run];
     const std::int32_t cell = neighbours[leaves.CellSlot];
-    if (cell == ProcessingOctree::NoCell || static_cast<std::size_t>(cell) >= storedCells)
+    if (cell == ProcessingOctree::NoCell || static_cast<std::size_t>(cell) >= storedCells ||
+        (this->Octree.GetLeafMask(cell) & leaves.Leaves) == 0)
     {
       continue;
     }
     std::uint32_t begin, end;
     this->Octree.GetLeavesRange(cell, leaves.FirstLeaf, leaves.LastLeaf, begin, end);
-    candidates.Append(x + begin, y + begin, z + begin, end - begin);
+    if (end > begin)
+    {
+      candidates.Append(x + begin, y + begin, z + begin, end - begin);
+    }
   }
 }
 

@@ -92,6 +92,8 @@ private:
   /// consecutive leaves of one of the 27 cells around (CellSlot in the neighbour table).
   struct LeafRun
   {
+    /// The run's leaves as bits of a cell's leaf mask: a run of empty leaves costs one test.
+    std::uint64_t Leaves;
     std::uint8_t CellSlot;
     std::uint8_t FirstLeaf;
     std::uint8_t LastLeaf;
