@@ -83,19 +83,18 @@ void CandidateNeighbours::Append(const double* x,
 KernelScratch CandidateNeighbours::Scratch()
 {
   const std::size_t stride = this->Size() + KernelLanes;
-  if (this->ScratchStorage.size() < 5 * stride)
+  if (this->ScratchStorage.size() < 4 * stride)
   {
     // Grow geometrically: candidate counts vary from leaf to leaf.
-    this->ScratchStorage.resize(std::max(5 * stride, 2 * this->ScratchStorage.size()));
+    this->ScratchStorage.resize(std::max(4 * stride, 2 * this->ScratchStorage.size()));
   }
-  const std::size_t capacity = this->ScratchStorage.size() / 5;
+  const std::size_t capacity = this->ScratchStorage.size() / 4;
   double* storage = this->ScratchStorage.data();
   KernelScratch scratch;
   scratch.Dx = storage;
   scratch.Dy = storage + capacity;
   scratch.Dz = storage + 2 * capacity;
-  scratch.DistanceSquared = storage + 3 * capacity;
-  scratch.DistanceWeight = storage + 4 * capacity;
+  scratch.DistanceWeight = storage + 3 * capacity;
   return scratch;
 }
 

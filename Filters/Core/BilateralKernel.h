@@ -36,7 +36,6 @@ struct KernelScratch
   double* Dx = nullptr;
   double* Dy = nullptr;
   double* Dz = nullptr;
-  double* DistanceSquared = nullptr;
   double* DistanceWeight = nullptr;
 };
 

@@ -111,8 +111,8 @@ inline DoubleLanes ExpOfNonPositive(DoubleLanes x)
 }
 
 /**
- * The candidates with |q - p|^2 < r^2, in candidate order: their offsets q - p and squared
- * distances, packed at the front of the output arrays. Output arrays hold count + Lanes values.
+ * The candidates with |q - p|^2 < r^2, in candidate order: their offsets q - p, packed at the
+ * front of the output arrays. Output arrays hold count + Lanes values.
  * Returns the number of neighbours.
  */
 inline std::size_t SelectNeighbours(const double p[3],
@@ -123,8 +123,7 @@ inline std::size_t SelectNeighbours(const double p[3],
   double radiusSquared,
   double* dx,
   double* dy,
-  double* dz,
-  double* distanceSquared)
+  double* dz)
 {
   std::size_t neighbours = 0;
 #if defined(__AVX512F__)
@@ -146,7 +145,6 @@ inline std::size_t SelectNeighbours(const double p[3],
     _mm512_storeu_pd(dx + neighbours, _mm512_maskz_compress_pd(inside, ox));
     _mm512_storeu_pd(dy + neighbours, _mm512_maskz_compress_pd(inside, oy));
     _mm512_storeu_pd(dz + neighbours, _mm512_maskz_compress_pd(inside, oz));
-    _mm512_storeu_pd(distanceSquared + neighbours, _mm512_maskz_compress_pd(inside, d2));
     neighbours += static_cast<std::size_t>(__builtin_popcount(inside));
   }
 #else
@@ -162,7 +160,6 @@ inline std::size_t SelectNeighbours(const double p[3],
     dx[neighbours] = ox;
     dy[neighbours] = oy;
     dz[neighbours] = oz;
-    distanceSquared[neighbours] = d2;
     neighbours += d2 < radiusSquared ? 1 : 0;
   }
 #endif
@@ -183,21 +180,21 @@ inline void FilterPointBody(const double p[3],
   double* dx = scratch.Dx;
   double* dy = scratch.Dy;
   double* dz = scratch.Dz;
-  double* distanceSquared = scratch.DistanceSquared;
   double* distanceWeight = scratch.DistanceWeight;
   const std::size_t neighbours =
-    SelectNeighbours(p, x, y, z, count, constants.RadiusSquared, dx, dy, dz, distanceSquared);
+    SelectNeighbours(p, x, y, z, count, constants.RadiusSquared, dx, dy, dz);
   result.NeighbourCount = static_cast<std::uint32_t>(neighbours);
   if (neighbours < MinimumNeighbourCount)
   {
     return;
   }
-  // Pad to whole vectors with neighbours of weight exp(-inf) = 0: they add exact zeros.
+  // Pad to whole vectors with neighbours so far away that their squared distance overflows to
+  // infinity: their weights are exp(-inf) = 0, and they add exact zeros to every sum (the
+  // offsets are finite, so no 0 x inf).
   const std::size_t padded = (neighbours + Lanes - 1) / Lanes * Lanes;
   for (std::size_t k = neighbours; k < padded; ++k)
   {
-    dx[k] = dy[k] = dz[k] = 0.0;
-    distanceSquared[k] = __builtin_inf();
+    dx[k] = dy[k] = dz[k] = 1e300;
   }
 
   // Pass 1: distance weights, and the weighted first and second moments of the offsets q - p,
@@ -210,7 +207,9 @@ inline void FilterPointBody(const double p[3],
     const DoubleLanes ox = Load(dx + k);
     const DoubleLanes oy = Load(dy + k);
     const DoubleLanes oz = Load(dz + k);
-    const DoubleLanes w = ExpOfNonPositive(-Load(distanceSquared + k) * constants.DistanceScale);
+    // The squared distance again, as SelectNeighbours computed it: cheaper than packing it.
+    const DoubleLanes distanceSquared = (ox * ox + oy * oy) + oz * oz;
+    const DoubleLanes w = ExpOfNonPositive(-distanceSquared * constants.DistanceScale);
     Store(distanceWeight + k, w);
     weightSum += w;
     const DoubleLanes wx = w * ox, wy = w * oy, wz = w * oz;
