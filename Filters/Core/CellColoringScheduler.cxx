@@ -140,6 +140,18 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
   double* movedZ = this->Octree.GetMovedZ();
   const bool orient = state.OrientationNormals != nullptr;
   const bool keepNormals = !state.Normals.empty();
+  // The points bound for each of the 27 cells around, listed here and handed over at the end.
+  std::int32_t first[27], last[27];
+  std::fill(first, first + 27, -1);
+  std::fill(last, last + 27, -1);
+  auto place = [&](std::uint32_t index, int slot, int localLeaf)
+  {
+    if (last[slot] < 0)
+    {
+      last[slot] = static_cast<std::int32_t>(index);
+    }
+    this->Octree.Link(index, localLeaf, first[slot]);
+  };
 
   for (std::uint64_t leaves = this->Octree.GetLeafMask(cell); leaves != 0; leaves &= leaves - 1)
   {
@@ -176,7 +188,7 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
         movedX[i] = p[0];
         movedY[i] = p[1];
         movedZ[i] = p[2];
-        this->Octree.Place(i, static_cast<std::int32_t>(cell), localLeaf);
+        place(i, ProcessingOctree::CentreSlot, localLeaf);
         continue;
       }
       const FilteredPoint filtered = FilterPoint(p, scratch.Candidates, this->Constants);
@@ -217,20 +229,25 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
       const std::int64_t dx = destination.X - cellCoord.X;
       const std::int64_t dy = destination.Y - cellCoord.Y;
       const std::int64_t dz = destination.Z - cellCoord.Z;
-      std::int32_t destinationCell = ProcessingOctree::NoCell;
-      if (std::abs(dx) <= 1 && std::abs(dy) <= 1 && std::abs(dz) <= 1)
+      const bool near = std::abs(dx) <= 1 && std::abs(dy) <= 1 && std::abs(dz) <= 1;
+      const int slot = near ? ProcessingOctree::NeighbourSlot(
+                                static_cast<int>(dx), static_cast<int>(dy), static_cast<int>(dz))
+                            : -1;
+      if (near && neighbours[slot] != ProcessingOctree::NoCell)
       {
-        destinationCell = neighbours[ProcessingOctree::NeighbourSlot(
-          static_cast<int>(dx), static_cast<int>(dy), static_cast<int>(dz))];
-      }
-      if (destinationCell != ProcessingOctree::NoCell)
-      {
-        this->Octree.Place(i, destinationCell, ProcessingOctree::LocalLeafIndex(leaf));
+        place(i, slot, ProcessingOctree::LocalLeafIndex(leaf));
       }
       else
       {
         scratch.Deferred.push_back(i);
       }
+    }
+  }
+  for (int slot = 0; slot < 27; ++slot)
+  {
+    if (first[slot] >= 0)
+    {
+      this->Octree.PlaceList(neighbours[slot], first[slot], last[slot]);
     }
   }
 }

@@ -67,7 +67,8 @@ public:
   std::uint64_t GetNumberOfNeighbourEvaluations() const { return this->NeighbourEvaluations; }
 
 private:
-  struct ThreadScratch
+  /// One per thread, a cache line apart: each thread writes its own counters for every point.
+  struct alignas(64) ThreadScratch
   {
     CandidateNeighbours Candidates;
     std::vector<std::uint32_t> Deferred;

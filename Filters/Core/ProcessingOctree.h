@@ -110,9 +110,24 @@ public:
   /// at the same time.
   void Place(std::uint32_t index, std::int32_t cell, int localLeaf)
   {
+    std::int32_t& head = this->NextHead[cell];
+    this->Link(index, localLeaf, head);
+  }
+  /// Puts point `index` (in leaf `localLeaf` of the cell it goes to) at the front of a list
+  /// whose head the caller keeps; PlaceList then hands the whole list to its cell. Threads that
+  /// place many points this way write the cells' shared heads once per list, not per point.
+  void Link(std::uint32_t index, int localLeaf, std::int32_t& head)
+  {
     this->NextLeaf[index] = static_cast<std::uint8_t>(localLeaf);
-    this->NextLink[index] = this->NextHead[cell];
-    this->NextHead[cell] = static_cast<std::int32_t>(index);
+    this->NextLink[index] = head;
+    head = static_cast<std::int32_t>(index);
+  }
+  /// Appends a list made with Link (first and last point) to an existing cell's list, under the
+  /// same rule as Place.
+  void PlaceList(std::int32_t cell, std::int32_t first, std::int32_t last)
+  {
+    this->NextLink[last] = this->NextHead[cell];
+    this->NextHead[cell] = first;
   }
   ///@}
 
