@@ -93,6 +93,68 @@ std::size_t LatticeCoordHash::operator()(const LatticeCoord& c) const
   return static_cast<std::size_t>(h);
 }
 
+void CellIndexMap::Clear(std::size_t expectedCells)
+{
+  std::size_t capacity = 16;
+  while (capacity < 2 * expectedCells)
+  {
+    capacity *= 2;
+  }
+  this->Slots.assign(capacity, Slot());
+  this->Count = 0;
+}
+
+std::int32_t CellIndexMap::Find(const LatticeCoord& cell) const
+{
+  const std::size_t mask = this->Slots.size() - 1;
+  for (std::size_t slot = LatticeCoordHash()(cell) & mask;; slot = (slot + 1) & mask)
+  {
+    const Slot& entry = this->Slots[slot];
+    if (entry.Index == Missing || entry.Cell == cell)
+    {
+      return entry.Index;
+    }
+  }
+}
+
+std::int32_t CellIndexMap::Insert(const LatticeCoord& cell, std::int32_t index)
+{
+  if (2 * (this->Count + 1) > this->Slots.size())
+  {
+    this->Grow();
+  }
+  const std::size_t mask = this->Slots.size() - 1;
+  for (std::size_t slot = LatticeCoordHash()(cell) & mask;; slot = (slot + 1) & mask)
+  {
+    Slot& entry = this->Slots[slot];
+    if (entry.Index == Missing)
+    {
+      entry.Cell = cell;
+      entry.Index = index;
+      ++this->Count;
+      return index;
+    }
+    if (entry.Cell == cell)
+    {
+      return entry.Index;
+    }
+  }
+}
+
+void CellIndexMap::Grow()
+{
+  std::vector<Slot> old;
+  old.swap(this->Slots);
+  this->Clear(std::max<std::size_t>(8, old.size()));
+  for (const Slot& entry : old)
+  {
+    if (entry.Index != Missing)
+    {
+      this->Insert(entry.Cell, entry.Index);
+    }
+  }
+}
+
 ProcessingOctree::ProcessingOctree(const double boundsMin[3],
   const double boundsMax[3],
   double radius)
@@ -157,7 +219,7 @@ int ProcessingOctree::LocalLeafIndex(const LatticeCoord& leaf)
 void ProcessingOctree::Load(const double* positions, std::size_t count)
 {
   this->CellCoords.clear();
-  this->CellIndex.clear();
+  this->CellIndex.Clear(count / 64);
   this->NeighbourTable.clear();
   this->NumberOfProcessingCells = 0;
   this->NextHead.clear();
@@ -193,21 +255,24 @@ void ProcessingOctree::Load(const double* positions, std::size_t count)
 
 std::int32_t ProcessingOctree::FindCell(const LatticeCoord& cell) const
 {
-  const auto found = this->CellIndex.find(cell);
-  return found == this->CellIndex.end() ? NoCell : found->second;
+  static_assert(CellIndexMap::Missing == NoCell, "a cell not found is NoCell");
+  return this->CellIndex.Find(cell);
 }
 
 std::int32_t ProcessingOctree::FindOrCreateCell(const LatticeCoord& cell)
 {
-  const auto inserted =
-    this->CellIndex.emplace(cell, static_cast<std::int32_t>(this->CellCoords.size()));
-  const std::int32_t index = inserted.first->second;
-  if (!inserted.second)
+  const auto created = static_cast<std::int32_t>(this->CellCoords.size());
+  const std::int32_t index = this->CellIndex.Insert(cell, created);
+  if (index != created)
   {
     return index;
   }
   this->CellCoords.push_back(cell);
   this->NextHead.push_back(-1);
+  if (this->NumberOfProcessingCells == 0)
+  {
+    return index; // no neighbour tables yet (the first placement)
+  }
   // Processing cells next to the new one must see it, to place points into it.
   for (int dz = -1; dz <= 1; ++dz)
   {
@@ -362,12 +427,11 @@ void ProcessingOctree::Compact(int numberOfThreads)
   this->MovedZ.resize(pointCount);
 
   std::vector<LatticeCoord> newCoords(newCellCount);
-  this->CellIndex.clear();
-  this->CellIndex.reserve(newCellCount);
+  this->CellIndex.Clear(newCellCount);
   for (std::size_t cell = 0; cell < newCellCount; ++cell)
   {
     newCoords[cell] = this->CellCoords[kept[cell]];
-    this->CellIndex.emplace(newCoords[cell], static_cast<std::int32_t>(cell));
+    this->CellIndex.Insert(newCoords[cell], static_cast<std::int32_t>(cell));
   }
   this->CellCoords = std::move(newCoords);
   this->NumberOfProcessingCells = newCellCount;
