@@ -4,6 +4,7 @@
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
+#include "vtkCellType.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -14,6 +15,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
@@ -82,9 +84,35 @@ vtkSmartPointer<vtkCellArray> OneVertexPerPoint(vtkIdType numberOfPoints)
   cells->SetData(offsets, connectivity);
   return cells;
 }
+
+bool HasCellsOtherThanVertices(vtkPointSet* input)
+{
+  if (auto* polyData = vtkPolyData::SafeDownCast(input))
+  {
+    return polyData->GetNumberOfLines() + polyData->GetNumberOfPolys() +
+             polyData->GetNumberOfStrips() >
+           0;
+  }
+  for (vtkIdType cell = 0; cell < input->GetNumberOfCells(); ++cell)
+  {
+    const int type = input->GetCellType(cell);
+    if (type != VTK_VERTEX && type != VTK_POLY_VERTEX)
+    {
+      return true;
+    }
+  }
+  return false;
+}
 } // namespace
 
 vtkPointCloudBilateralFilter::vtkPointCloudBilateralFilter() = default;
+
+int vtkPointCloudBilateralFilter::FillInputPortInformation(int, vtkInformation* info)
+{
+  // Any data set with explicit points; the output is a vtkPolyData point cloud.
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  return 1;
+}
 
 pcbilateral::BilateralParameters vtkPointCloudBilateralFilter::MakeParameters() const
 {
@@ -105,7 +133,7 @@ int vtkPointCloudBilateralFilter::RequestInformation(vtkInformation*,
   // ParaView reads the "used" values when the pipeline information is updated, before the data
   // is: resolve them here already, from the input as it is now. RequestData resolves them again
   // the same way.
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
   if (!input || input->GetNumberOfPoints() == 0 || !(this->Radius >= 0.0) ||
       !(this->NormalRadius >= 0.0))
   {
@@ -136,7 +164,7 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->RadiusUsed = 0.0;
   this->NormalRadiusUsed = 0.0;
@@ -146,7 +174,7 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   output->Initialize();
   if (!input)
   {
-    vtkErrorMacro(<< "the input is not a vtkPolyData");
+    vtkErrorMacro(<< "the input is not a vtkPointSet");
     return 0;
   }
 
@@ -224,10 +252,10 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     output->GetFieldData()->PassData(input->GetFieldData());
     return 1;
   }
-  if (input->GetNumberOfLines() + input->GetNumberOfPolys() + input->GetNumberOfStrips() > 0)
+  if (HasCellsOtherThanVertices(input))
   {
-    vtkWarningMacro(<< "the input's lines and polygons are not carried to the output, which is "
-                       "a point cloud");
+    vtkWarningMacro(<< "the input's cells (lines, polygons, volumes) are not carried to the "
+                       "output, which is a point cloud");
   }
 
   std::vector<vtkIdType> kept;

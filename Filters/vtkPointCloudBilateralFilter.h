@@ -34,11 +34,15 @@
  * points are removed instead (for the rest of the run, as the authors' program does), and the
  * output gets a "vtkOriginalPointIds" array giving, for each output point, its input id.
  *
+ * The input is any vtkPointSet: a vtkPolyData, a vtkUnstructuredGrid, a vtkStructuredGrid...
+ * Only its points matter. Data sets whose points are implicit (vtkImageData,
+ * vtkRectilinearGrid) are refused by the pipeline; convert them first if they are clouds.
+ *
  * The output is a point cloud: the input's points in the same order (less removed ones),
  * with the same point type, every point-data array passed through, and one vertex cell per
  * point. The input's field data passes through, with two more arrays: "BilateralRadius" and
- * "BilateralNormalRadius", the radii used. The input's lines and polygons are not carried
- * over. Optional arrays: the estimated
+ * "BilateralNormalRadius", the radii used. The input's other cells (lines, polygons,
+ * volumes) are not carried over, with one warning. Optional arrays: the estimated
  * normals ("EstimatedNormals", see GenerateEstimatedNormals) and the distance each point
  * moved ("DisplacementLength", see GenerateDisplacementLength).
  *
@@ -169,6 +173,7 @@ protected:
   vtkPointCloudBilateralFilter();
   ~vtkPointCloudBilateralFilter() override;
 
+  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 

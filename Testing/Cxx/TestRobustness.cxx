@@ -8,11 +8,13 @@
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
+#include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkUnstructuredGrid.h"
 
 #include <atomic>
 #include <chrono>
@@ -290,6 +292,71 @@ void TestRadiusLargerThanCloud()
   PCB_CHECK(usual.Warnings == 0, "a usual radius warned: %s", usual.Message.c_str());
 }
 
+void TestOtherPointSets()
+{
+  // Any vtkPointSet is a cloud: an unstructured grid gives exactly the points and arrays a
+  // polydata with the same points gives, and one warning that its cells are not carried.
+  // Data sets without explicit points (image data) are refused by the pipeline, with a message.
+  auto cloud = Cloud(NoisyPatch(3000, 0.0, 11));
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(cloud->GetPoints());
+  grid->GetPointData()->ShallowCopy(cloud->GetPointData());
+  grid->Allocate(1);
+  const vtkIdType tetra[4] = { 0, 1, 2, 3 };
+  grid->InsertNextCell(VTK_TETRA, 4, tetra);
+
+  vtkNew<vtkPointCloudBilateralFilter> fromPolyData, fromGrid;
+  vtkNew<MessageCounter> polyDataMessages, gridMessages;
+  fromPolyData->AddObserver(vtkCommand::WarningEvent, polyDataMessages);
+  fromGrid->AddObserver(vtkCommand::WarningEvent, gridMessages);
+  fromPolyData->SetInputData(cloud);
+  fromGrid->SetInputData(grid);
+  for (vtkPointCloudBilateralFilter* filter : { fromPolyData.Get(), fromGrid.Get() })
+  {
+    filter->SetRadius(0.05);
+    filter->SetNormalRadius(0.02);
+    filter->Update();
+  }
+  vtkPolyData* a = fromPolyData->GetOutput();
+  vtkPolyData* b = fromGrid->GetOutput();
+  PCB_CHECK(b->GetNumberOfPoints() == a->GetNumberOfPoints() && b->GetNumberOfVerts() == 3000,
+    "unstructured grid: %lld points, %lld vertices",
+    (long long)b->GetNumberOfPoints(),
+    (long long)b->GetNumberOfVerts());
+  PCB_CHECK(b->GetPointData()->GetArray("Tag") != nullptr, "unstructured grid: the array is lost");
+  bool same = b->GetNumberOfPoints() == a->GetNumberOfPoints();
+  for (vtkIdType i = 0; same && i < a->GetNumberOfPoints(); ++i)
+  {
+    double p[3], q[3];
+    a->GetPoint(i, p);
+    b->GetPoint(i, q);
+    same = std::memcmp(p, q, sizeof(p)) == 0;
+  }
+  PCB_CHECK(same, "unstructured grid: the points differ from the polydata's");
+  PCB_CHECK(polyDataMessages->Warnings == 0 && gridMessages->Warnings == 1 &&
+              gridMessages->Messages.find("cells") != std::string::npos,
+    "warnings: %d for the polydata, %d for the grid: %s",
+    polyDataMessages->Warnings,
+    gridMessages->Warnings,
+    gridMessages->Messages.c_str());
+
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(4, 4, 4);
+  vtkNew<vtkPointCloudBilateralFilter> fromImage;
+  vtkNew<MessageCounter> imageMessages;
+  fromImage->AddObserver(vtkCommand::ErrorEvent, imageMessages);
+  fromImage->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, imageMessages);
+  fromImage->SetInputData(image);
+  fromImage->Update();
+  PCB_CHECK(imageMessages->Errors >= 1 &&
+              imageMessages->Messages.find("vtkPointSet") != std::string::npos &&
+              fromImage->GetOutput()->GetNumberOfPoints() == 0,
+    "image data: %d errors, %lld points: %s",
+    imageMessages->Errors,
+    (long long)fromImage->GetOutput()->GetNumberOfPoints(),
+    imageMessages->Messages.c_str());
+}
+
 void TestBadParameters()
 {
   // Each refused with one error and an empty output; 0 iterations give the input back.
@@ -425,6 +492,7 @@ int main(int argc, char* argv[])
     { "non-finite-points", TestNonFinitePoints },
     { "radius-larger-than-cloud", TestRadiusLargerThanCloud },
     { "bad-parameters", TestBadParameters },
+    { "other-point-sets", TestOtherPointSets },
     { "georeferenced-offset", TestGeoreferencedOffset },
     { "abort-from-another-thread", TestAbortFromAnotherThread },
   };
