@@ -130,7 +130,8 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
   bool isMaster)
 {
   const LatticeCoord& cellCoord = this->Octree.GetCellCoord(cell);
-  const std::int32_t* neighbours = this->Octree.GetNeighbourCells(cell);
+  std::int32_t neighbours[27];
+  this->Octree.GetNeighbourCells(cell, neighbours);
   const std::uint32_t* ids = this->Octree.GetIds();
   const double* x = this->Octree.GetX();
   const double* y = this->Octree.GetY();
@@ -281,7 +282,9 @@ double CellColoringScheduler::EstimateNeighboursPerPoint(std::size_t samples)
         break;
       }
     }
-    this->GatherCandidates(this->Octree.GetNeighbourCells(cell), localLeaf, candidates);
+    std::int32_t around[27];
+    this->Octree.GetNeighbourCells(cell, around);
+    this->GatherCandidates(around, localLeaf, candidates);
     const double p[3] = {
       this->Octree.GetX()[index], this->Octree.GetY()[index], this->Octree.GetZ()[index]
     };

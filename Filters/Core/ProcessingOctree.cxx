@@ -220,7 +220,6 @@ void ProcessingOctree::Load(const double* positions, std::size_t count)
 {
   this->CellCoords.clear();
   this->CellIndex.Clear(count / 64);
-  this->NeighbourTable.clear();
   this->NumberOfProcessingCells = 0;
   this->NextHead.clear();
   this->LeafMasks.clear();
@@ -269,27 +268,6 @@ std::int32_t ProcessingOctree::FindOrCreateCell(const LatticeCoord& cell)
   }
   this->CellCoords.push_back(cell);
   this->NextHead.push_back(-1);
-  if (this->NumberOfProcessingCells == 0)
-  {
-    return index; // no neighbour tables yet (the first placement)
-  }
-  // Processing cells next to the new one must see it, to place points into it.
-  for (int dz = -1; dz <= 1; ++dz)
-  {
-    for (int dy = -1; dy <= 1; ++dy)
-    {
-      for (int dx = -1; dx <= 1; ++dx)
-      {
-        const std::int32_t neighbour =
-          this->FindCell(LatticeCoord{ cell.X + dx, cell.Y + dy, cell.Z + dz });
-        if (neighbour != NoCell &&
-            static_cast<std::size_t>(neighbour) < this->NumberOfProcessingCells)
-        {
-          this->NeighbourTable[27 * neighbour + NeighbourSlot(-dx, -dy, -dz)] = index;
-        }
-      }
-    }
-  }
   return index;
 }
 
@@ -438,26 +416,19 @@ void ProcessingOctree::Compact(int numberOfThreads)
   this->NextHead.assign(newCellCount, -1);
   this->NextLink.assign(pointCount, -1);
   this->NextLeaf.assign(pointCount, 0);
-  this->RebuildNeighbourTable(numberOfThreads);
 }
 
-void ProcessingOctree::RebuildNeighbourTable(int numberOfThreads)
+void ProcessingOctree::GetNeighbourCells(std::size_t cell, std::int32_t neighbours[27]) const
 {
-  const auto cellCount = static_cast<std::int64_t>(this->CellCoords.size());
-  this->NeighbourTable.assign(27 * this->CellCoords.size(), NoCell);
-#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
-  for (std::int64_t cell = 0; cell < cellCount; ++cell)
+  const LatticeCoord& c = this->CellCoords[cell];
+  for (int dz = -1; dz <= 1; ++dz)
   {
-    const LatticeCoord& c = this->CellCoords[cell];
-    for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
     {
-      for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
       {
-        for (int dx = -1; dx <= 1; ++dx)
-        {
-          this->NeighbourTable[27 * cell + NeighbourSlot(dx, dy, dz)] =
-            this->FindCell(LatticeCoord{ c.X + dx, c.Y + dy, c.Z + dz });
-        }
+        neighbours[NeighbourSlot(dx, dy, dz)] =
+          this->FindCell(LatticeCoord{ c.X + dx, c.Y + dy, c.Z + dz });
       }
     }
   }

@@ -159,7 +159,7 @@ public:
   /**
    * Turns the placed points into the layout read by the next iteration: drops empty cells,
    * sorts cells by lattice coordinates and each leaf's points by coordinates, lays out their
-   * ids and moved positions in that order, and rebuilds the neighbour tables.
+   * ids and moved positions in that order.
    */
   void Compact(int numberOfThreads);
 
@@ -169,11 +169,9 @@ public:
   /// while placing come after them.
   std::size_t GetNumberOfProcessingCells() const { return this->NumberOfProcessingCells; }
   const LatticeCoord& GetCellCoord(std::size_t cell) const { return this->CellCoords[cell]; }
-  /// The 27 cells around a cell (itself in CentreSlot), NoCell where none is stored.
-  const std::int32_t* GetNeighbourCells(std::size_t cell) const
-  {
-    return this->NeighbourTable.data() + 27 * cell;
-  }
+  /// The 27 cells around a cell (itself in CentreSlot), NoCell where none is stored. Looked up
+  /// rather than stored: clouds of sparse cells would spend more on such tables than on points.
+  void GetNeighbourCells(std::size_t cell, std::int32_t neighbours[27]) const;
   /// The end of a cell's points in the arrays below (they start at the previous cell's end).
   std::uint32_t GetCellEnd(std::size_t cell) const { return this->CellBegins[cell + 1]; }
   /// The leaves of a cell that hold points: bit l for leaf l.
@@ -213,8 +211,6 @@ public:
   ///@}
 
 private:
-  void RebuildNeighbourTable(int numberOfThreads);
-
   std::array<double, 3> RootOrigin;
   double RootSize;
   int ProcessingDepth;
@@ -225,7 +221,6 @@ private:
   // appended; Compact renumbers.
   std::vector<LatticeCoord> CellCoords;
   CellIndexMap CellIndex;
-  std::vector<std::int32_t> NeighbourTable;
   std::size_t NumberOfProcessingCells = 0;
 
   /// Set bits, counted without the popcnt instruction, which x86-64's baseline lacks (the
