@@ -32,12 +32,14 @@ struct PointState
  * Runs iterations of the filter on the octree's layout (compacted before each). The processing
  * cells are sorted into 8 classes by colour (child index). The classes run one after another;
  * the cells of one class run in parallel. Each filtered point is placed into the octree's
- * next-iteration lists right away, without locks: it moved by less than r, so it lands in a
- * leaf of its cell's r-dilation, and the dilations of two cells of one class share no leaf.
- * The rare point that lands in a cell not yet stored is placed after its class, serially.
+ * next-iteration lists without locks (gathered per destination while its cell runs, handed
+ * over when the cell is done): it moved by less than r, so it lands in a leaf of its cell's
+ * r-dilation, and the dilations of two cells of one class share no leaf. The rare point that
+ * lands in a cell not yet stored is placed after its class, serially.
  *
- * Every neighbour sum runs over the candidates in an order fixed by the octree's geometry and
- * the point ids, so the result does not depend on the number of threads.
+ * Every neighbour sum runs over the candidates in an order fixed by the octree's geometry
+ * alone, so the result depends neither on the number of threads nor on how the points are
+ * numbered.
  */
 class CellColoringScheduler
 {
@@ -79,8 +81,8 @@ private:
   void ProcessCell(std::size_t cell, PointState& state, ThreadScratch& scratch, bool isMaster);
   /// Calling thread only: asks ShouldAbort and reports progress.
   void PollObserver();
-  /// The points of the leaves within reach of a leaf of a cell (given the cell's neighbour
-  /// table), in an order fixed by geometry.
+  /// The points of the leaves within reach of a leaf of a cell (given the cell's 27
+  /// neighbours, GetNeighbourCells), in an order fixed by geometry.
   void GatherCandidates(const std::int32_t* neighbours,
     int localLeaf,
     CandidateNeighbours& candidates) const;
@@ -90,7 +92,7 @@ private:
   bool RemoveIsolatedPoints;
   int NumberOfThreads;
   /// Leaves that can hold a neighbour of a point of a given leaf of a cell: runs of
-  /// consecutive leaves of one of the 27 cells around (CellSlot in the neighbour table).
+  /// consecutive leaves of one of the 27 cells around (CellSlot: ProcessingOctree::NeighbourSlot).
   struct LeafRun
   {
     /// The run's leaves as bits of a cell's leaf mask: a run of empty leaves costs one test.

@@ -38,8 +38,9 @@ struct LatticeCoordHash
 
 /**
  * The index of each stored cell by its lattice coordinates: open addressing with linear
- * probing in one flat array, about 4 times faster than std::unordered_map here (no node per
- * cell, one cache line per lookup), which matters for clouds of millions of sparse cells.
+ * probing in one flat array (no node per cell, usually one cache line per lookup), which
+ * matters for clouds of millions of sparse cells: with it instead of std::unordered_map, the
+ * whole run on a 1M-point noisy sphere at the automatic radius went from 1.67 s to 1.11 s.
  * Lookups may run in parallel; insertions may not.
  */
 class CellIndexMap
