@@ -166,9 +166,10 @@ inline std::size_t SelectNeighbours(const double p[3],
   return neighbours;
 }
 
-/// Algorithm 1 for the point p (see FilterPoint in BilateralKernel.h). `result` arrives
-/// zeroed: the point does not move unless this says so.
-inline void FilterPointBody(const double p[3],
+/// Algorithm 1 for the point p (see FilterPoint in BilateralKernel.h), the entry point of this
+/// build (declared in BilateralKernel.cxx). `result` arrives zeroed: the point does not move
+/// unless this says so.
+void FilterPoint(const double p[3],
   const double* x,
   const double* y,
   const double* z,
@@ -265,19 +266,6 @@ inline void FilterPointBody(const double p[3],
   result.Normal[1] = n[1];
   result.Normal[2] = n[2];
   result.Filtered = true;
-}
-
-/// The entry point of this build (declared in BilateralKernel.cxx).
-void FilterPoint(const double p[3],
-  const double* x,
-  const double* y,
-  const double* z,
-  std::size_t count,
-  const KernelConstants& constants,
-  KernelScratch& scratch,
-  FilteredPoint& result)
-{
-  FilterPointBody(p, x, y, z, count, constants, scratch, result);
 }
 
 /// The exponential of this build, for the tests: out[i] = exp(in[i]) for in[i] <= 0.

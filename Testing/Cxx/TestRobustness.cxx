@@ -78,13 +78,26 @@ struct Run
   double Radius = 0.0;
 };
 
-Run Filter(vtkPolyData* input, double radius, int iterations = 1, double normalRadius = 0.0)
+/// Filters `input`; counts the progress events into `progressEvents` if given.
+Run Filter(vtkPolyData* input,
+  double radius,
+  int iterations = 1,
+  double normalRadius = 0.0,
+  int* progressEvents = nullptr)
 {
   vtkNew<vtkPointCloudBilateralFilter> filter;
   vtkNew<MessageCounter> counter;
   filter->AddObserver(vtkCommand::ErrorEvent, counter);
   filter->AddObserver(vtkCommand::WarningEvent, counter);
   filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, counter);
+  vtkNew<vtkCallbackCommand> progress;
+  if (progressEvents)
+  {
+    progress->SetClientData(progressEvents);
+    progress->SetCallback(
+      [](vtkObject*, unsigned long, void* count, void*) { ++*static_cast<int*>(count); });
+    filter->AddObserver(vtkCommand::ProgressEvent, progress);
+  }
   filter->SetInputData(input);
   filter->SetRadius(radius);
   filter->SetNormalRadius(normalRadius);
@@ -255,25 +268,8 @@ void TestRadiusLargerThanCloud()
   // Every point a neighbour of every other: the run finishes, keeps reporting progress, and
   // warns once about the neighbour count, naming the parameter to lower.
   auto input = Cloud(NoisyPatch(12000, 0.0, 7));
-  vtkNew<vtkPointCloudBilateralFilter> filter;
-  vtkNew<MessageCounter> counter;
-  filter->AddObserver(vtkCommand::ErrorEvent, counter);
-  filter->AddObserver(vtkCommand::WarningEvent, counter);
   int progressEvents = 0;
-  vtkNew<vtkCallbackCommand> progress;
-  progress->SetClientData(&progressEvents);
-  progress->SetCallback(
-    [](vtkObject*, unsigned long, void* count, void*) { ++*static_cast<int*>(count); });
-  filter->AddObserver(vtkCommand::ProgressEvent, progress);
-  filter->SetInputData(input);
-  filter->SetRadius(50.0);
-  filter->SetNormalRadius(0.01);
-  filter->Update();
-  Run run;
-  run.Output = filter->GetOutput();
-  run.Errors = counter->Errors;
-  run.Warnings = counter->Warnings;
-  run.Message = counter->Messages;
+  const Run run = Filter(input, 50.0, 1, 0.01, &progressEvents);
   std::printf("radius 50: %d warning(s): %s; %d progress events\n",
     run.Warnings,
     run.Message.c_str(),
