@@ -11,6 +11,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -24,6 +25,7 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkPointCloudBilateralFilter);
+vtkCxxSetObjectMacro(vtkPointCloudBilateralFilter, Controller, vtkMultiProcessController);
 
 namespace
 {
@@ -84,7 +86,10 @@ vtkSmartPointer<vtkCellArray> OneVertexPerPoint(vtkIdType numberOfPoints)
 }
 } // namespace
 
-vtkPointCloudBilateralFilter::vtkPointCloudBilateralFilter() = default;
+vtkPointCloudBilateralFilter::vtkPointCloudBilateralFilter()
+{
+  this->SetController(vtkMultiProcessController::GetGlobalController());
+}
 
 pcbilateral::BilateralParameters vtkPointCloudBilateralFilter::MakeParameters() const
 {
@@ -111,6 +116,12 @@ int vtkPointCloudBilateralFilter::RequestInformation(vtkInformation*,
   {
     return 1;
   }
+  if (this->Radius == 0.0 && this->IsDistributed())
+  {
+    // The automatic radius needs the whole cloud's extent, a collective reduction that
+    // RequestInformation must not start: RequestData resolves it.
+    return 1;
+  }
   pcbilateral::CloudExtent extent;
   if (this->Radius == 0.0 || this->NormalRadius == 0.0)
   {
@@ -130,6 +141,7 @@ int vtkPointCloudBilateralFilter::RequestInformation(vtkInformation*,
 vtkPointCloudBilateralFilter::~vtkPointCloudBilateralFilter()
 {
   this->SetOrientationArrayName(nullptr);
+  this->SetController(nullptr);
 }
 
 int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
@@ -147,6 +159,10 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   if (!input)
   {
     vtkErrorMacro(<< "the input is not a vtkPolyData");
+    if (this->IsDistributed())
+    {
+      this->RunDistributed({}, this->MakeParameters(), {}, true); // the others are waiting
+    }
     return 0;
   }
 
@@ -157,6 +173,7 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     ToDoubles(input->GetPoints()->GetData(), positions);
   }
 
+  const pcbilateral::BilateralParameters parameters = this->MakeParameters();
   vtkPointData* inPD = input->GetPointData();
   std::vector<double> orientation;
   if (this->OrientNormals && numberOfPoints > 0)
@@ -176,6 +193,10 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
       vtkErrorMacro(<< "the orientation array '"
                     << (reference->GetName() ? reference->GetName() : "(unnamed)") << "' has "
                     << reference->GetNumberOfComponents() << " components, not 3");
+      if (this->IsDistributed())
+      {
+        this->RunDistributed({}, parameters, {}, true); // the others are waiting
+      }
       return 0;
     }
     if (reference)
@@ -184,7 +205,6 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     }
   }
 
-  const pcbilateral::BilateralParameters parameters = this->MakeParameters();
   pcbilateral::PointCloudView cloud;
   cloud.NumberOfPoints = static_cast<std::size_t>(numberOfPoints);
   cloud.Positions = positions.data();
@@ -195,7 +215,8 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
 
   this->UpdateProgress(0.0);
   const pcbilateral::BilateralResult result =
-    pcbilateral::RunBilateralFilter(cloud, parameters, observer);
+    this->IsDistributed() ? this->RunDistributed(cloud, parameters, observer)
+                          : pcbilateral::RunBilateralFilter(cloud, parameters, observer);
   if (result.Status == pcbilateral::BilateralStatus::Failed)
   {
     vtkErrorMacro(<< result.Error);
@@ -338,6 +359,7 @@ void vtkPointCloudBilateralFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "GenerateEstimatedNormals: " << this->GenerateEstimatedNormals << "\n";
   os << indent << "GenerateDisplacementLength: " << this->GenerateDisplacementLength << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
   os << indent << "RadiusUsed: " << this->RadiusUsed << "\n";
   os << indent << "NormalRadiusUsed: " << this->NormalRadiusUsed << "\n";
   os << indent << "ProcessingDepth: " << this->ProcessingDepth << "\n";
