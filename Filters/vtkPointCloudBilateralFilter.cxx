@@ -12,6 +12,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -26,6 +27,7 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkPointCloudBilateralFilter);
+vtkCxxSetObjectMacro(vtkPointCloudBilateralFilter, Controller, vtkMultiProcessController);
 
 namespace
 {
@@ -105,7 +107,10 @@ bool HasCellsOtherThanVertices(vtkPointSet* input)
 }
 } // namespace
 
-vtkPointCloudBilateralFilter::vtkPointCloudBilateralFilter() = default;
+vtkPointCloudBilateralFilter::vtkPointCloudBilateralFilter()
+{
+  this->SetController(vtkMultiProcessController::GetGlobalController());
+}
 
 int vtkPointCloudBilateralFilter::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -139,6 +144,12 @@ int vtkPointCloudBilateralFilter::RequestInformation(vtkInformation*,
   {
     return 1;
   }
+  if (this->Radius == 0.0 && this->IsDistributed())
+  {
+    // The automatic radius needs the whole cloud's extent, a collective reduction that
+    // RequestInformation must not start: RequestData resolves it.
+    return 1;
+  }
   pcbilateral::CloudExtent extent;
   if (this->Radius == 0.0 || this->NormalRadius == 0.0)
   {
@@ -158,6 +169,7 @@ int vtkPointCloudBilateralFilter::RequestInformation(vtkInformation*,
 vtkPointCloudBilateralFilter::~vtkPointCloudBilateralFilter()
 {
   this->SetOrientationArrayName(nullptr);
+  this->SetController(nullptr);
 }
 
 int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
@@ -175,6 +187,10 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   if (!input)
   {
     vtkErrorMacro(<< "the input is not a vtkPointSet");
+    if (this->IsDistributed())
+    {
+      this->RunDistributed({}, this->MakeParameters(), {}, true); // the others are waiting
+    }
     return 0;
   }
 
@@ -185,6 +201,7 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     ToDoubles(input->GetPoints()->GetData(), positions);
   }
 
+  const pcbilateral::BilateralParameters parameters = this->MakeParameters();
   vtkPointData* inPD = input->GetPointData();
   std::vector<double> orientation;
   if (this->OrientNormals && numberOfPoints > 0)
@@ -204,6 +221,10 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
       vtkErrorMacro(<< "the orientation array '"
                     << (reference->GetName() ? reference->GetName() : "(unnamed)") << "' has "
                     << reference->GetNumberOfComponents() << " components, not 3");
+      if (this->IsDistributed())
+      {
+        this->RunDistributed({}, parameters, {}, true); // the others are waiting
+      }
       return 0;
     }
     if (reference)
@@ -212,7 +233,6 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     }
   }
 
-  const pcbilateral::BilateralParameters parameters = this->MakeParameters();
   pcbilateral::PointCloudView cloud;
   cloud.NumberOfPoints = static_cast<std::size_t>(numberOfPoints);
   cloud.Positions = positions.data();
@@ -224,7 +244,8 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
 
   this->UpdateProgress(0.0);
   const pcbilateral::BilateralResult result =
-    pcbilateral::RunBilateralFilter(cloud, parameters, observer);
+    this->IsDistributed() ? this->RunDistributed(cloud, parameters, observer)
+                          : pcbilateral::RunBilateralFilter(cloud, parameters, observer);
   if (result.Status == pcbilateral::BilateralStatus::Failed)
   {
     vtkErrorMacro(<< result.Error);
@@ -363,6 +384,7 @@ void vtkPointCloudBilateralFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "GenerateEstimatedNormals: " << this->GenerateEstimatedNormals << "\n";
   os << indent << "GenerateDisplacementLength: " << this->GenerateDisplacementLength << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
   os << indent << "RadiusUsed: " << this->RadiusUsed << "\n";
   os << indent << "NormalRadiusUsed: " << this->NormalRadiusUsed << "\n";
   os << indent << "ProcessingDepth: " << this->ProcessingDepth << "\n";

@@ -49,6 +49,17 @@
  * Points with NaN or infinite coordinates are passed through unchanged, are never used as
  * neighbours, and are reported in one warning.
  *
+ * @par Distributed runs:
+ * Under `mpirun pvbatch` (or any program with a vtkMPIController of several processes as the
+ * Controller), each process's input is its part of the cloud, split in any way (a reader's
+ * pieces, ParaView's Distribute Points, or empty on some processes). Each process filters its
+ * own points and outputs only them, in their order and with all their arrays; the union of
+ * the outputs is bit for bit the output of one process filtering the whole cloud. Before each
+ * iteration, the processes exchange the current positions of their points within one radius
+ * of each other's (with vtkDistributedPointCloudFilter::GetPointsInsideBounds); the automatic
+ * radius and the octree come from the whole cloud's point count and bounds. Every process must
+ * update the filter together, as with VTK's other parallel filters.
+ *
  * @warning
  * The filter runs in parallel with OpenMP (NumberOfThreads, 0 for all cores), scheduled by the
  * paper's octree cell colouring. Results are bit-for-bit identical whatever the number of
@@ -65,9 +76,13 @@
 #include "vtkFiltersPointCloudBilateralModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
+class vtkMultiProcessController;
 namespace pcbilateral
 {
+struct BilateralObserver;
 struct BilateralParameters;
+struct BilateralResult;
+struct PointCloudView;
 }
 
 class VTKFILTERSPOINTCLOUDBILATERAL_EXPORT vtkPointCloudBilateralFilter
@@ -159,8 +174,21 @@ public:
 
   ///@{
   /**
+   * The processes sharing the cloud; by default the global controller, so that ParaView's
+   * proxies in `mpirun pvbatch` (or pvserver) work on the distributed cloud with nothing to
+   * set. With no controller or a single process, the input is the whole cloud. With several,
+   * the controller must be a vtkMPIController, and every process must update the filter.
+   */
+  virtual void SetController(vtkMultiProcessController*);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
+  ///@{
+  /**
    * What the last update used and did: the radius and normal radius (after the automatic
    * choices), the octree's processing depth, and the numbers of removed and non-finite points.
+   * In a distributed run they are the same on every process: the numbers are totals over all
+   * processes.
    */
   vtkGetMacro(RadiusUsed, double);
   vtkGetMacro(NormalRadiusUsed, double);
@@ -193,8 +221,23 @@ protected:
   vtkIdType NumberOfRemovedPoints = 0;
   vtkIdType NumberOfNonFinitePoints = 0;
 
+  vtkMultiProcessController* Controller = nullptr;
+
 private:
   pcbilateral::BilateralParameters MakeParameters() const;
+
+  /// True when several processes share the cloud (see SetController).
+  bool IsDistributed() const;
+  /**
+   * The distributed counterpart of pcbilateral::RunBilateralFilter, for this process's part of
+   * the cloud (defined in vtkPointCloudBilateralFilterDistributed.cxx). Collective: every
+   * process calls it once per update, also when its own preparation failed (failedHere), so
+   * that the others return with an error instead of waiting for it.
+   */
+  pcbilateral::BilateralResult RunDistributed(const pcbilateral::PointCloudView& cloud,
+    const pcbilateral::BilateralParameters& parameters,
+    const pcbilateral::BilateralObserver& observer,
+    bool failedHere = false);
 
   vtkPointCloudBilateralFilter(const vtkPointCloudBilateralFilter&) = delete;
   void operator=(const vtkPointCloudBilateralFilter&) = delete;

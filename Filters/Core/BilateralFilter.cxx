@@ -114,6 +114,37 @@ RadiiUsed ResolveRadii(const BilateralParameters& parameters, const CloudExtent&
   return radii;
 }
 
+std::string CheckPrecisionLimits(const BilateralParameters& parameters, const CloudExtent& extent)
+{
+  // Every position a run can reach must stay far from overflow, lattice coordinates (extent
+  // over radius) must fit in 64-bit integers with room to spare, and the Gaussians' scales
+  // must be finite.
+  const RadiiUsed radii = ResolveRadii(parameters, extent);
+  const KernelConstants constants(radii.Radius, radii.NormalRadius);
+  std::ostringstream problem;
+  const double reach =
+    extent.LargestMagnitude() + 4.2 * (parameters.NumberOfIterations + 1.0) * radii.Radius;
+  if (!(reach < MaximumMagnitude))
+  {
+    problem << "coordinates up to " << extent.LargestMagnitude() << " with a radius of "
+            << radii.Radius << " come too close to the limits of double precision (keep "
+            << "coordinates and N x radius below " << MaximumMagnitude << ")";
+  }
+  else if (!std::isfinite(4.2 * radii.Radius) || !std::isfinite(constants.DistanceScale) ||
+           !std::isfinite(constants.NormalScale))
+  {
+    problem << "the radius " << radii.Radius << " or the normal radius " << radii.NormalRadius
+            << " is outside what double precision can compute with (about 1e-150 to 1e300)";
+  }
+  else if (extent.LargestExtent() / radii.Radius > MaximumExtentInRadii)
+  {
+    problem << "the radius " << radii.Radius << " is too small for a cloud "
+            << extent.LargestExtent() << " wide (it may be at most " << MaximumExtentInRadii
+            << " times smaller): give a larger radius";
+  }
+  return problem.str();
+}
+
 BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   const BilateralParameters& parameters,
   const BilateralObserver& observer)
@@ -206,7 +237,6 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   {
     return result;
   }
-  const double largestExtent = extent.LargestExtent();
   if (!(result.RadiusUsed > 0.0))
   {
     warn("all points coincide, so no radius can be chosen automatically: the points are left "
@@ -214,38 +244,14 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
     return result;
   }
 
-  // Limits of double precision: every position a run can reach must stay far from overflow,
-  // lattice coordinates (extent over radius) must fit in 64-bit integers with room to spare, and
-  // the Gaussians' scales must be finite.
-  const KernelConstants constants(result.RadiusUsed, result.NormalRadiusUsed);
-  std::ostringstream problem;
-  const double reach =
-    extent.LargestMagnitude() + 4.2 * (parameters.NumberOfIterations + 1.0) * result.RadiusUsed;
-  if (!(reach < MaximumMagnitude))
-  {
-    problem << "coordinates up to " << extent.LargestMagnitude() << " with a radius of "
-            << result.RadiusUsed << " come too close to the limits of double precision (keep "
-            << "coordinates and N x radius below " << MaximumMagnitude << ")";
-  }
-  else if (!std::isfinite(4.2 * result.RadiusUsed) || !std::isfinite(constants.DistanceScale) ||
-           !std::isfinite(constants.NormalScale))
-  {
-    problem << "the radius " << result.RadiusUsed << " or the normal radius "
-            << result.NormalRadiusUsed
-            << " is outside what double precision can compute with (about 1e-150 to 1e300)";
-  }
-  else if (largestExtent / result.RadiusUsed > MaximumExtentInRadii)
-  {
-    problem << "the radius " << result.RadiusUsed << " is too small for a cloud " << largestExtent
-            << " wide (it may be at most " << MaximumExtentInRadii
-            << " times smaller): give a larger radius";
-  }
-  if (!problem.str().empty())
+  const std::string problem = CheckPrecisionLimits(parameters, extent);
+  if (!problem.empty())
   {
     result.Status = BilateralStatus::Failed;
-    result.Error = problem.str();
+    result.Error = problem;
     return result;
   }
+  const KernelConstants constants(result.RadiusUsed, result.NormalRadiusUsed);
 
   const int threads = ResolveThreadCount(parameters.NumberOfThreads);
   ProcessingOctree octree(extent.Min, extent.Max, result.RadiusUsed);

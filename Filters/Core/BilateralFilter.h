@@ -119,6 +119,13 @@ struct RadiiUsed
 };
 RadiiUsed ResolveRadii(const BilateralParameters& parameters, const CloudExtent& extent);
 
+/// Why a run with these parameters on a cloud of this extent (radius > 0 once resolved) cannot
+/// be computed in double precision, or empty: coordinates and N x radius near overflow, radii
+/// whose Gaussians cannot be computed, a cloud too many radii wide. RunBilateralFilter checks
+/// it; a distributed run, which runs the core one iteration at a time, checks it for the whole
+/// run first.
+std::string CheckPrecisionLimits(const BilateralParameters& parameters, const CloudExtent& extent);
+
 /// Runs NumberOfIterations iterations of the bilateral filter on the cloud.
 BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   const BilateralParameters& parameters,
