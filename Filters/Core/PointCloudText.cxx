@@ -313,10 +313,10 @@ std::string WritePointCloudText(const std::string& path, const PointCloudTable& 
   const std::size_t columns = 3 + (withNormals ? 3 : 0) + table.ExtraColumns.size();
 
   // Blocks of lines formatted in parallel, written in order.
-  constexpr std::size_t PointsPerBlock = 1 << 15;
+  constexpr std::size_t PointsPerBlock = 1 << 13;
   const std::size_t blockCount = (table.NumberOfPoints + PointsPerBlock - 1) / PointsPerBlock;
   bool ok = true;
-  constexpr std::size_t BlocksAtOnce = 64;
+  constexpr std::size_t BlocksAtOnce = 16; // about 10 MB of text at a time
   std::vector<std::string> blocks(std::min(blockCount, BlocksAtOnce));
   for (std::size_t first = 0; first < blockCount && ok; first += BlocksAtOnce)
   {
