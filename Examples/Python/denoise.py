@@ -35,7 +35,8 @@ def load_plugin(explicit):
         paths += glob.glob(os.path.join(pattern, PLUGIN + ".so"))
     for path in paths:
         if os.path.isfile(path):
-            # Into paraview.simple's namespace, where an auto-loaded plugin's functions are too.
+            # Into paraview.simple's namespace, where an auto-loaded plugin's functions are too;
+            # remote=True: under mpirun, every process loads it, not only this one.
             simple.LoadPlugin(path, remote=True, ns=vars(simple))
             return os.path.normpath(path)
     sys.exit(f"error: the {PLUGIN} plugin was not found: give --plugin PATH or set PV_PLUGIN_PATH")
@@ -52,31 +53,41 @@ def open_cloud(path, oriented_normals):
     return reader
 
 
-def main():
-    parser = argparse.ArgumentParser(description="Denoise a point cloud with the bilateral filter.")
-    parser.add_argument("input")
-    parser.add_argument("output")
+def add_filter_arguments(parser, threads_help="0 (default): all cores"):
+    """The filter's options, shared with denoise_mpi.py."""
     parser.add_argument("--radius", type=float, default=0.0, help="0 (default): automatic")
     parser.add_argument("--normal-radius", type=float, default=0.0, help="0 (default): the radius")
     parser.add_argument("--iterations", type=int, default=1)
     parser.add_argument("--oriented-normals", action="store_true",
                         help="text files carry normals in columns 4-6")
     parser.add_argument("--remove-isolated", action="store_true")
-    parser.add_argument("--threads", type=int, default=0, help="0 (default): all cores")
+    parser.add_argument("--threads", type=int, default=0, help=threads_help)
     parser.add_argument("--plugin", help="path of PointCloudBilateral.so")
-    args = parser.parse_args()
 
-    where = load_plugin(args.plugin)
-    reader = open_cloud(args.input, args.oriented_normals)
-    reader.UpdatePipeline()
-    bilateral = simple.PointCloudBilateralFilter(
-        Input=reader,
+
+def make_filter(source, args):
+    """The bilateral filter on `source`, with the options of add_filter_arguments."""
+    return simple.PointCloudBilateralFilter(
+        Input=source,
         Radius=args.radius,
         NormalRadius=args.normal_radius,
         NumberOfIterations=args.iterations,
         RemoveIsolatedPoints=int(args.remove_isolated),
         NumberOfThreads=args.threads,
     )
+
+
+def main():
+    parser = argparse.ArgumentParser(description="Denoise a point cloud with the bilateral filter.")
+    parser.add_argument("input")
+    parser.add_argument("output")
+    add_filter_arguments(parser)
+    args = parser.parse_args()
+
+    where = load_plugin(args.plugin)
+    reader = open_cloud(args.input, args.oriented_normals)
+    reader.UpdatePipeline()
+    bilateral = make_filter(reader, args)
     bilateral.UpdatePipeline()
     bilateral.UpdatePropertyInformation()
     points = bilateral.GetDataInformation().GetNumberOfPoints()

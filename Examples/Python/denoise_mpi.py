@@ -18,7 +18,6 @@ plugin itself: from --plugin, from PV_PLUGIN_PATH (auto-loaded), or from the bui
 tree that holds this script.
 """
 import argparse
-import glob
 import os
 import sys
 import time
@@ -26,40 +25,9 @@ import time
 from paraview import simple
 from vtkmodules.vtkParallelCore import vtkMultiProcessController
 
-PLUGIN = "PointCloudBilateral"
-HERE = os.path.dirname(os.path.abspath(__file__))
-# Where the plugin is relative to this script: the source tree next to a build/ folder, and the
-# install tree (<prefix>/share/pointcloudbilateral/examples/).
-CANDIDATES = [
-    os.path.join(HERE, "..", "..", "build", "lib", "paraview-5.11", "plugins", PLUGIN),
-    os.path.join(HERE, "..", "..", "..", "lib", "paraview-5.11", "plugins", PLUGIN),
-    os.path.join(HERE, "..", "..", "..", "lib", "*", "paraview-5.11", "plugins", PLUGIN),
-]
-
-
-def load_plugin(explicit):
-    if hasattr(simple, "PointCloudBilateralFilter"):
-        return "already loaded (PV_PLUGIN_PATH)"
-    paths = [explicit] if explicit else []
-    for pattern in CANDIDATES:
-        paths += glob.glob(os.path.join(pattern, PLUGIN + ".so"))
-    for path in paths:
-        if os.path.isfile(path):
-            # remote=True: every process of the run loads it, not only this one.
-            simple.LoadPlugin(path, remote=True, ns=vars(simple))
-            return os.path.normpath(path)
-    sys.exit(f"error: the {PLUGIN} plugin was not found: give --plugin PATH or set PV_PLUGIN_PATH")
-
-
-def open_cloud(path, oriented_normals):
-    if not os.path.isfile(path):
-        sys.exit(f"error: {path}: no such file")
-    if path.endswith((".xyz", ".txt")):
-        return simple.PointCloudTextReader(FileName=path, HasNormals=int(oriented_normals))
-    reader = simple.OpenDataFile(path)
-    if reader is None:
-        sys.exit(f"error: {path}: no reader for this file type")
-    return reader
+# The plugin search, the reader choice and the filter's options are denoise.py's, beside this.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from denoise import add_filter_arguments, load_plugin, make_filter, open_cloud  # noqa: E402
 
 
 def main():
@@ -67,15 +35,8 @@ def main():
         description="Denoise a point cloud with the bilateral filter on several MPI processes.")
     parser.add_argument("input")
     parser.add_argument("output", help=".pvtp (one piece per process) or .ply")
-    parser.add_argument("--radius", type=float, default=0.0, help="0 (default): automatic")
-    parser.add_argument("--normal-radius", type=float, default=0.0, help="0 (default): the radius")
-    parser.add_argument("--iterations", type=int, default=1)
-    parser.add_argument("--oriented-normals", action="store_true",
-                        help="text files carry normals in columns 4-6")
-    parser.add_argument("--remove-isolated", action="store_true")
-    parser.add_argument("--threads", type=int, default=0,
-                        help="threads per process; 0 (default): all the cores it may use")
-    parser.add_argument("--plugin", help="path of PointCloudBilateral.so")
+    add_filter_arguments(
+        parser, threads_help="threads per process; 0 (default): all the cores it may use")
     args = parser.parse_args()
     if not args.output.endswith((".pvtp", ".ply")):
         sys.exit("error: the output must be a .pvtp file (one piece per process) or a .ply file")
@@ -87,14 +48,7 @@ def main():
     start = time.perf_counter()
     parts.UpdatePipeline()
     read = time.perf_counter()
-    bilateral = simple.PointCloudBilateralFilter(
-        Input=parts,
-        Radius=args.radius,
-        NormalRadius=args.normal_radius,
-        NumberOfIterations=args.iterations,
-        RemoveIsolatedPoints=int(args.remove_isolated),
-        NumberOfThreads=args.threads,
-    )
+    bilateral = make_filter(parts, args)
     bilateral.UpdatePipeline()
     filtered = time.perf_counter()
     bilateral.UpdatePropertyInformation()
