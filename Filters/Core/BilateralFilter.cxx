@@ -2,6 +2,7 @@
 
 #include "BilateralKernel.h"
 #include "CellColoringScheduler.h"
+#include "HugePages.h"
 #include "ProcessingOctree.h"
 
 #include <algorithm>

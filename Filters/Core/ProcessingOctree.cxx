@@ -1,12 +1,11 @@
 #include "ProcessingOctree.h"
 
+#include "HugePages.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
 #include <numeric>
 
 namespace pcbilateral
@@ -61,23 +60,6 @@ std::int64_t FloorDivide(std::int64_t value, std::int64_t divisor)
   return (value % divisor < 0) ? quotient - 1 : quotient;
 }
 } // namespace
-
-void AdviseHugePages(void* data, std::size_t bytes)
-{
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  // Only whole 2 MB pages inside the buffer can be huge ones.
-  constexpr std::uintptr_t HugePage = std::uintptr_t{ 1 } << 21;
-  const auto begin = (reinterpret_cast<std::uintptr_t>(data) + HugePage - 1) & ~(HugePage - 1);
-  const auto end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(HugePage - 1);
-  if (end > begin)
-  {
-    madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE); // advice only
-  }
-#else
-  (void)data;
-  (void)bytes;
-#endif
-}
 
 std::size_t LatticeCoordHash::operator()(const LatticeCoord& c) const
 {

@@ -11,15 +11,6 @@
 namespace pcbilateral
 {
 
-/**
- * Makes room for `count` elements in each vector, asking the kernel to back large ones with
- * transparent huge pages before they are first touched: a run touches tens of bytes per point
- * once, and with 4 KB pages the page faults cost as much as a filter iteration (measured on a
- * virtual machine). Without huge pages, or off Linux, it is a plain reserve.
- */
-template<typename... Vectors>
-void ReserveWithHugePages(std::size_t count, Vectors&... vectors);
-
 /// Integer coordinates of a cell or a leaf on the octree's lattice (may be negative: points
 /// that drift out of the root cube keep their place on the same lattice).
 struct LatticeCoord
@@ -250,23 +241,6 @@ private:
   std::vector<double> X, Y, Z;
   std::vector<double> MovedX, MovedY, MovedZ;
 };
-
-void AdviseHugePages(void* data, std::size_t bytes);
-
-template<typename... Vectors>
-void ReserveWithHugePages(std::size_t count, Vectors&... vectors)
-{
-  auto reserve = [count](auto& vector)
-  {
-    if (vector.capacity() < count)
-    {
-      vector.clear();
-      vector.reserve(count);
-      AdviseHugePages(vector.data(), count * sizeof(vector[0]));
-    }
-  };
-  (reserve(vectors), ...);
-}
 
 } // namespace pcbilateral
 
