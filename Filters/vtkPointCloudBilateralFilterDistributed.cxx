@@ -18,6 +18,7 @@
 #include "vtkPointCloudBilateralFilter.h"
 
 #include "BilateralFilter.h"
+#include "BilateralKernel.h"
 
 #include "vtkCommunicator.h"
 #include "vtkDistributedPointCloudFilter.h"
@@ -47,11 +48,6 @@ using pcbilateral::PointCloudView;
 /// Names of the arrays the ghost exchange carries; vtkPoints travel as float.
 constexpr const char* PositionArrayName = "vtkPointCloudBilateralPosition";
 constexpr const char* ProcessArrayName = "vtkPointCloudBilateralProcess";
-
-bool IsFinitePoint(const double* p)
-{
-  return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
-}
 
 struct SharedExtent
 {
@@ -317,7 +313,7 @@ pcbilateral::BilateralResult vtkPointCloudBilateralFilter::RunDistributed(
         const double* p = result.Positions.data() + 3 * i;
         active.push_back(i);
         view.insert(view.end(), p, p + 3);
-        if (IsFinitePoint(p))
+        if (pcbilateral::IsFinitePoint(p))
         {
           finite.insert(finite.end(), p, p + 3);
         }

@@ -48,11 +48,6 @@ constexpr int MaximumIterations = 1000;
 /// and the radius was probably meant smaller (the paper's clouds have tens to hundreds).
 constexpr double ManyNeighbours = 10000.0;
 
-bool IsFinitePoint(const double* p)
-{
-  return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
-}
-
 bool IsFiniteExtent(const CloudExtent& extent)
 {
   return IsFinitePoint(extent.Min) && IsFinitePoint(extent.Max);

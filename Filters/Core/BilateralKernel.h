@@ -3,12 +3,20 @@
 #ifndef pcbilateral_BilateralKernel_h
 #define pcbilateral_BilateralKernel_h
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
 namespace pcbilateral
 {
+
+/// Whether a point's three coordinates are finite: others (NaN, infinities) are passed through
+/// and never neighbours.
+inline bool IsFinitePoint(const double p[3])
+{
+  return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+}
 
 /// The paper's rule: a point with fewer neighbours than this (itself included) is not filtered.
 constexpr std::uint32_t MinimumNeighbourCount = 5;

@@ -288,13 +288,7 @@ double CellColoringScheduler::EstimateNeighboursPerPoint(std::size_t samples)
     const double p[3] = {
       this->Octree.GetX()[index], this->Octree.GetY()[index], this->Octree.GetZ()[index]
     };
-    for (std::size_t j = 0; j < candidates.Size(); ++j)
-    {
-      const double dx = candidates.X[j] - p[0];
-      const double dy = candidates.Y[j] - p[1];
-      const double dz = candidates.Z[j] - p[2];
-      neighbours += (dx * dx + dy * dy) + dz * dz < this->Constants.RadiusSquared ? 1 : 0;
-    }
+    neighbours += FilterPoint(p, candidates, this->Constants).NeighbourCount;
   }
   return static_cast<double>(neighbours) / static_cast<double>(samples);
 }

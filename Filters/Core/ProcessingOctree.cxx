@@ -1,5 +1,6 @@
 #include "ProcessingOctree.h"
 
+#include "BilateralKernel.h"
 #include "HugePages.h"
 
 #include <algorithm>
@@ -218,7 +219,7 @@ void ProcessingOctree::Load(const double* positions, std::size_t count)
   for (std::size_t id = 0; id < count; ++id)
   {
     const double* p = positions + 3 * id;
-    if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))
+    if (IsFinitePoint(p))
     {
       this->Ids.push_back(static_cast<std::uint32_t>(id));
       this->MovedX.push_back(p[0]);
