@@ -346,6 +346,10 @@ pcbilateral::BilateralResult vtkPointCloudBilateralFilter::RunDistributed(
     }
     BilateralObserver stepObserver;
     stepObserver.ShouldAbort = observer.ShouldAbort;
+    if (iteration == 0)
+    {
+      stepObserver.Warning = observer.Warning; // each step would repeat them
+    }
     if (observer.Progress)
     {
       stepObserver.Progress = [&](double fraction)
@@ -367,7 +371,7 @@ pcbilateral::BilateralResult vtkPointCloudBilateralFilter::RunDistributed(
     }
     if (iteration == 0)
     {
-      result.Warnings = partResult.Warnings; // the same in every iteration
+      result.Warnings = partResult.Warnings; // the same in every step
     }
     result.ProcessingDepth = std::max(result.ProcessingDepth, partResult.ProcessingDepth);
     result.NumberOfNeighbourEvaluations += partResult.NumberOfNeighbourEvaluations;
