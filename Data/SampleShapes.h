@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <random>
 #include <string>
@@ -76,7 +77,18 @@ public:
   virtual double Distance(const Vec3& p) const = 0;
   /// Diagonal of the surface's bounding box (noise levels are fractions of it).
   virtual double Diagonal() const = 0;
+  /// Distance from p to the nearest sharp edge (where two faces meet at an angle); infinite
+  /// for smooth shapes. Quality measures restrict errors to points near edges with it.
+  virtual double EdgeDistance(const Vec3&) const { return std::numeric_limits<double>::infinity(); }
 };
+
+/// Distance from p to the segment [a, b].
+inline double SegmentDistance(const Vec3& p, const Vec3& a, const Vec3& b)
+{
+  const Vec3 edge = b - a;
+  const double along = std::clamp(Dot(p - a, edge) / Dot(edge, edge), 0.0, 1.0);
+  return Norm(p - (a + along * edge));
+}
 
 /// A planar polygon (vertices in order, any simple polygon).
 class Polygon
@@ -111,6 +123,8 @@ public:
   }
 
   double GetArea() const { return this->Area; }
+  const std::vector<Vec3>& GetVertices() const { return this->Vertices; }
+  const Vec3& GetNormal() const { return this->Normal; }
 
   bool Contains(double s, double t) const
   {
@@ -201,9 +215,57 @@ public:
   double Diagonal() const override { return this->BoxDiagonal; }
   double BoxDiagonal = 1.0;
 
+  /// The sharp edges are the sides shared by two faces that are not coplanar (open borders
+  /// are not edges: nothing meets there).
+  double EdgeDistance(const Vec3& p) const override
+  {
+    if (!this->SharpEdgesFound)
+    {
+      this->FindSharpEdges();
+    }
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& edge : this->SharpEdges)
+    {
+      best = std::min(best, SegmentDistance(p, edge[0], edge[1]));
+    }
+    return best;
+  }
+
 private:
+  void FindSharpEdges() const
+  {
+    // Faces built from the same profile share vertices bit for bit, so sides match exactly.
+    for (std::size_t f = 0; f < this->Faces.size(); ++f)
+    {
+      const auto& a = this->Faces[f].GetVertices();
+      for (std::size_t i = 0; i < a.size(); ++i)
+      {
+        const Vec3& a0 = a[i];
+        const Vec3& a1 = a[(i + 1) % a.size()];
+        for (std::size_t g = f + 1; g < this->Faces.size(); ++g)
+        {
+          const auto& b = this->Faces[g].GetVertices();
+          for (std::size_t j = 0; j < b.size(); ++j)
+          {
+            const Vec3& b0 = b[j];
+            const Vec3& b1 = b[(j + 1) % b.size()];
+            const bool shared = (a0 == b0 && a1 == b1) || (a0 == b1 && a1 == b0);
+            if (shared &&
+                std::abs(Dot(this->Faces[f].GetNormal(), this->Faces[g].GetNormal())) < 0.9999)
+            {
+              this->SharpEdges.push_back({ a0, a1 });
+            }
+          }
+        }
+      }
+    }
+    this->SharpEdgesFound = true;
+  }
+
   std::vector<Polygon> Faces;
   std::vector<double> CumulativeArea;
+  mutable std::vector<std::array<Vec3, 2>> SharpEdges;
+  mutable bool SharpEdgesFound = false;
 };
 
 /// A prism: a polygon in the x-z plane extruded along y from -halfDepth to halfDepth.
@@ -299,6 +361,163 @@ inline std::unique_ptr<Shape> CadPart()
                  { -0.15, 0.45 },
                  { -0.5, 0.2 } },
     0.3);
+}
+
+/// The square [-0.5, 0.5]^2 in the plane z = 0 (open: its border is not an edge).
+class Plane : public Shape
+{
+public:
+  Vec3 Sample(Random& random) const override
+  {
+    const double x = random.Uniform(-0.5, 0.5);
+    const double y = random.Uniform(-0.5, 0.5);
+    return { x, y, 0.0 };
+  }
+  double Distance(const Vec3& p) const override
+  {
+    const double dx = std::max(0.0, std::abs(p[0]) - 0.5);
+    const double dy = std::max(0.0, std::abs(p[1]) - 0.5);
+    return std::sqrt(dx * dx + dy * dy + p[2] * p[2]);
+  }
+  double Diagonal() const override { return std::sqrt(2.0); }
+};
+
+/// The side of a cylinder of radius 0.4 around the z axis, z in [-0.5, 0.5], open at both ends,
+/// cut by the plane x = Cut: the part with x > Cut is replaced by a flat strip, which meets the
+/// round part at two sharp edges (lines parallel to z). Cut >= 0.4 gives the whole cylinder.
+class CutCylinder : public Shape
+{
+public:
+  explicit CutCylinder(double cut = 1.0)
+    : Cut(std::min(cut, Radius))
+    , HalfWidth(std::sqrt(Radius * Radius - std::min(cut, Radius) * std::min(cut, Radius)))
+    , ArcAngle(std::acos(std::min(cut, Radius) / Radius))
+  {
+  }
+  Vec3 Sample(Random& random) const override
+  {
+    const double arcLength = Radius * (2.0 * M_PI - 2.0 * this->ArcAngle);
+    const double stripWidth = 2.0 * this->HalfWidth;
+    const double pick = random.Uniform(0.0, arcLength + stripWidth);
+    const double z = random.Uniform(-0.5, 0.5);
+    if (pick < arcLength)
+    {
+      const double angle = this->ArcAngle + pick / Radius;
+      return { Radius * std::cos(angle), Radius * std::sin(angle), z };
+    }
+    return { this->Cut, pick - arcLength - this->HalfWidth, z };
+  }
+  double Distance(const Vec3& p) const override
+  {
+    // An extrusion along z: the distance in the cross-section, combined with the overshoot in z.
+    const double dz = std::max(0.0, std::abs(p[2]) - 0.5);
+    const double d = this->CrossSectionDistance(p[0], p[1]);
+    return std::sqrt(d * d + dz * dz);
+  }
+  double EdgeDistance(const Vec3& p) const override
+  {
+    if (this->HalfWidth == 0.0)
+    {
+      return std::numeric_limits<double>::infinity();
+    }
+    const double dz = std::max(0.0, std::abs(p[2]) - 0.5);
+    const double d = std::hypot(p[0] - this->Cut, std::abs(p[1]) - this->HalfWidth);
+    return std::sqrt(d * d + dz * dz);
+  }
+  double Diagonal() const override
+  {
+    const double width = Radius + this->Cut;
+    return std::sqrt(width * width + 4.0 * Radius * Radius + 1.0);
+  }
+
+private:
+  double CrossSectionDistance(double x, double y) const
+  {
+    const double corner = std::hypot(x - this->Cut, std::abs(y) - this->HalfWidth);
+    // The arc covers the angles outside (-ArcAngle, ArcAngle).
+    const double angle = std::abs(std::atan2(y, x));
+    const double toArc = angle >= this->ArcAngle ? std::abs(std::hypot(x, y) - Radius) : corner;
+    const double toStrip = this->HalfWidth > 0.0
+                             ? (std::abs(y) <= this->HalfWidth ? std::abs(x - this->Cut) : corner)
+                             : std::numeric_limits<double>::infinity();
+    return std::min(toArc, toStrip);
+  }
+
+  static constexpr double Radius = 0.4;
+  double Cut, HalfWidth, ArcAngle;
+};
+
+/// Uneven, scan-line-like density: a point of the shape's uniform sampling is kept with a
+/// probability that varies in bands across x (scan lines, 4:1 from densest to sparsest, period
+/// 0.15) and falls off with the squared distance to a scanner at (1.5, -2, 1.5), as in a
+/// terrestrial scan.
+inline Vec3 SampleScanLines(const Shape& shape, Random& random)
+{
+  const Vec3 scanner{ 1.5, -2.0, 1.5 };
+  for (;;)
+  {
+    const Vec3 p = shape.Sample(random);
+    const double band = 0.25 + 0.75 * 0.5 * (1.0 + std::cos(2.0 * M_PI * p[0] / 0.15));
+    const Vec3 d = p - scanner;
+    const double falloff = std::min(1.0, 4.0 / Dot(d, d));
+    if (random.Uniform() < band * falloff)
+    {
+      return p;
+    }
+  }
+}
+
+/// A generated noisy cloud with its ground truth, for tests and benchmarks.
+struct NoisyCloud
+{
+  std::vector<double> Positions; // x y z per point, with noise and outliers
+  std::vector<double> Clean;     // the same points before noise (outliers: where they were)
+  std::vector<std::uint8_t> Outlier;
+  double Sigma = 0.0; // the noise's standard deviation per coordinate
+  std::size_t NumberOfPoints() const { return this->Outlier.size(); }
+};
+
+/// n points of the shape (uniform or scan-line density) with Gaussian noise of standard
+/// deviation noiseFraction x diagonal on each coordinate; a fraction of them, picked at random,
+/// are then replaced by outliers drawn uniformly in the clean cloud's bounding box grown by 10%.
+inline NoisyCloud MakeNoisyCloud(const Shape& shape,
+  std::size_t n,
+  double noiseFraction,
+  bool scanLines,
+  double outlierFraction,
+  std::uint64_t seed)
+{
+  Random random(seed);
+  NoisyCloud cloud;
+  cloud.Sigma = noiseFraction * shape.Diagonal();
+  cloud.Positions.resize(3 * n);
+  cloud.Clean.resize(3 * n);
+  cloud.Outlier.assign(n, 0);
+  double low[3] = { 1e300, 1e300, 1e300 }, high[3] = { -1e300, -1e300, -1e300 };
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Vec3 p = scanLines ? SampleScanLines(shape, random) : shape.Sample(random);
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      cloud.Clean[3 * i + axis] = p[axis];
+      cloud.Positions[3 * i + axis] = p[axis] + cloud.Sigma * random.Gaussian();
+      low[axis] = std::min(low[axis], p[axis]);
+      high[axis] = std::max(high[axis], p[axis]);
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (random.Uniform() < outlierFraction)
+    {
+      cloud.Outlier[i] = 1;
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        const double margin = 0.1 * (high[axis] - low[axis]);
+        cloud.Positions[3 * i + axis] = random.Uniform(low[axis] - margin, high[axis] + margin);
+      }
+    }
+  }
+  return cloud;
 }
 
 /// The samples: shape, file stem, number of points, noise as a fraction of the diagonal.
