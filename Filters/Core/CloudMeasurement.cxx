@@ -120,6 +120,26 @@ public:
         std::floor((centre[axis] + radius - this->Origin[axis]) / this->CellSize));
     }
     const double radius2 = radius * radius;
+    // A ball spanning more cells than there are points (a radius far above the cells' size,
+    // e.g. while a degenerate cloud is probed) is cheaper to answer by looking at every point.
+    double cellsInRange = 1.0;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      cellsInRange *= static_cast<double>(high[axis] - low[axis] + 1);
+    }
+    if (cellsInRange > static_cast<double>(this->Entries.size()))
+    {
+      for (const std::size_t index : this->Entries)
+      {
+        const double* p = this->Positions + 3 * index;
+        const double dx = p[0] - centre[0], dy = p[1] - centre[1], dz = p[2] - centre[2];
+        if (dx * dx + dy * dy + dz * dz <= radius2)
+        {
+          visit(index);
+        }
+      }
+      return;
+    }
     std::int64_t cell[3], own[3];
     for (cell[0] = low[0]; cell[0] <= high[0]; ++cell[0])
     {
@@ -588,7 +608,9 @@ CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOpt
     extent.Max[0] - extent.Min[0], extent.Max[1] - extent.Min[1], extent.Max[2] - extent.Min[2]
   };
   const double boxArea = 2.0 * (size[0] * size[1] + size[1] * size[2] + size[2] * size[0]);
-  double density = static_cast<double>(n) / std::max(boxArea, 1e-300);
+  // (A flat box, e.g. points on a line, would give cells of no size.)
+  const double largest = extent.LargestExtent();
+  double density = static_cast<double>(n) / std::max(boxArea, 1e-4 * largest * largest);
 
   // Grids: level l's cells are about two of its point spacings wide.
   std::vector<HashedGrid> grids;

@@ -199,9 +199,97 @@ void Accuracy()
   std::printf("worst relative error: spacing %.3f, sigma %.3f\n", worstSpacing, worstSigma);
 }
 
+bool SameScales(const pcbilateral::CloudScales& a, const pcbilateral::CloudScales& b)
+{
+  return a.Valid == b.Valid && a.PointSpacing == b.PointSpacing && a.NoiseSigma == b.NoiseSigma &&
+    a.SurfaceDensity == b.SurfaceDensity && a.NeighbourhoodRadius == b.NeighbourhoodRadius &&
+    a.NumberOfFittedSamples == b.NumberOfFittedSamples && a.NumberOfRounds == b.NumberOfRounds;
+}
+
+void Determinism()
+{
+  const auto cube = Cube();
+  const NoisyCloud cloud = MakeNoisyCloud(*cube, 100000, 0.005, true, 0.01, 42);
+  pcbilateral::ScaleMeasurementOptions options;
+  options.NumberOfThreads = 1;
+  const pcbilateral::CloudScales one = pcbilateral::MeasureScales(View(cloud), options);
+  PCB_CHECK(one.Valid, "%s", one.Problem.c_str());
+  for (int threads : { 2, 4 })
+  {
+    options.NumberOfThreads = threads;
+    const pcbilateral::CloudScales other = pcbilateral::MeasureScales(View(cloud), options);
+    PCB_CHECK(SameScales(one, other), "%d threads: spacing %.17g vs %.17g, sigma %.17g vs %.17g",
+      threads, other.PointSpacing, one.PointSpacing, other.NoiseSigma, one.NoiseSigma);
+  }
+
+  // Given sample indices: every 97th point, a different sample that measures the same scales.
+  options.NumberOfThreads = 1;
+  for (std::size_t i = 0; i < cloud.NumberOfPoints(); i += 97)
+  {
+    options.SampleIndices.push_back(i);
+  }
+  const pcbilateral::CloudScales given = pcbilateral::MeasureScales(View(cloud), options);
+  PCB_CHECK(given.NumberOfSamples == options.SampleIndices.size(), "%zu samples",
+    given.NumberOfSamples);
+  PCB_CHECK(!SameScales(one, given), "the given samples were not used");
+  PCB_CHECK(std::abs(given.PointSpacing / one.PointSpacing - 1) < 0.05 &&
+      std::abs(given.NoiseSigma / one.NoiseSigma - 1) < 0.05,
+    "given samples: spacing %g vs %g, sigma %g vs %g", given.PointSpacing, one.PointSpacing,
+    given.NoiseSigma, one.NoiseSigma);
+
+  // A quarter of the cloud, as a distributed run would gather it, with PointFraction = 0.25:
+  // the whole cloud's spacing.
+  std::vector<double> quarter;
+  for (std::size_t i = 0; i < cloud.NumberOfPoints(); ++i)
+  {
+    if (i % 4 == 1)
+    {
+      quarter.insert(quarter.end(), cloud.Positions.begin() + 3 * i,
+        cloud.Positions.begin() + 3 * i + 3);
+    }
+  }
+  pcbilateral::PointCloudView quarterView;
+  quarterView.NumberOfPoints = quarter.size() / 3;
+  quarterView.Positions = quarter.data();
+  pcbilateral::ScaleMeasurementOptions quarterOptions;
+  quarterOptions.PointFraction = 0.25;
+  const pcbilateral::CloudScales part = pcbilateral::MeasureScales(quarterView, quarterOptions);
+  PCB_CHECK(std::abs(part.PointSpacing / one.PointSpacing - 1) < 0.05 &&
+      std::abs(part.NoiseSigma / one.NoiseSigma - 1) < 0.10,
+    "a quarter: spacing %g vs %g, sigma %g vs %g", part.PointSpacing, one.PointSpacing,
+    part.NoiseSigma, one.NoiseSigma);
+
+  // Non-finite points are skipped, a degenerate cloud is reported, not measured.
+  std::vector<double> withNaN = cloud.Positions;
+  for (std::size_t i = 0; i < withNaN.size(); i += 3 * 1000)
+  {
+    withNaN[i] = std::nan("");
+  }
+  pcbilateral::PointCloudView nanView;
+  nanView.NumberOfPoints = withNaN.size() / 3;
+  nanView.Positions = withNaN.data();
+  const pcbilateral::CloudScales skipped = pcbilateral::MeasureScales(nanView);
+  PCB_CHECK(skipped.Valid && std::abs(skipped.NoiseSigma / one.NoiseSigma - 1) < 0.05,
+    "with NaN points: sigma %g vs %g", skipped.NoiseSigma, one.NoiseSigma);
+  std::vector<double> line;
+  for (int i = 0; i < 1000; ++i)
+  {
+    line.insert(line.end(), { 0.001 * i, 0.0, 0.0 });
+  }
+  pcbilateral::PointCloudView lineView;
+  lineView.NumberOfPoints = 1000;
+  lineView.Positions = line.data();
+  PCB_CHECK(!pcbilateral::MeasureScales(lineView).Valid, "a straight line measured as a surface");
+  std::vector<double> few(30, 0.5);
+  pcbilateral::PointCloudView fewView;
+  fewView.NumberOfPoints = 10;
+  fewView.Positions = few.data();
+  PCB_CHECK(!pcbilateral::MeasureScales(fewView).Valid, "10 points measured");
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
 {
-  return RunNamedCase(argc, argv, { { "Accuracy", Accuracy } });
+  return RunNamedCase(argc, argv, { { "Accuracy", Accuracy }, { "Determinism", Determinism } });
 }

@@ -1,0 +1,359 @@
+// pcb_quality: how well the filter denoises generated clouds with exact ground truth, for the
+// automatic parameters against a grid search, the paper's heuristic and the old default.
+// Built with the project (core only), run by hand (see README.md, "Automatic parameters"):
+//
+//   pcb_quality [--quick] [--only SUBSTRING] [--csv FILE]
+//       each case: a shape (cube, sharp edge, cylinder with a planar cut, sphere, CAD part,
+//       terrain), noise 0.1%, 0.5% or 1% of the diagonal, 20k to 1M points, uniform or
+//       scan-line density, with or without 1% outliers. Prints a Markdown table of the RMS
+//       distance to the true surface (outliers left out) and the same near sharp edges (the
+//       points whose noise-free position is within 3 sigma + 3% of the diagonal of an edge),
+//       for: the best of a grid over r, rn and N (judged by each measure separately), the
+//       paper's heuristic (r = sqrt(20/n) x extent, rn = r, N = 1), the old ParaView default
+//       (r = 2.5% of the largest extent, rn = r, N = 1) and the automatic mode. --csv writes
+//       every grid point; --quick runs the small cases only.
+//   pcb_quality --cost
+//       times MeasureScales against one filter iteration with the automatic radius, 1 thread,
+//       on a 600k-point cube and a 1M-point sphere (noise 0.5%).
+#include "BilateralFilter.h"
+#include "CloudMeasurement.h"
+#include "SampleShapes.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace
+{
+using namespace pcbilateral_samples;
+
+struct Case
+{
+  std::string ShapeName;
+  std::function<std::unique_ptr<Shape>()> Make;
+  std::size_t Points;
+  double Noise; // fraction of the diagonal
+  bool ScanLines;
+  double Outliers;
+  bool Big; // left out by --quick; coarser grid
+};
+
+struct Quality
+{
+  double Rms = 0.0;
+  double EdgeRms = 0.0;
+};
+
+double Seconds(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// The ground truth a case is judged against.
+struct Truth
+{
+  const Shape* Surface = nullptr;
+  const NoisyCloud* Cloud = nullptr;
+  std::vector<std::uint8_t> NearEdge;
+  std::size_t EdgePoints = 0;
+
+  Quality Measure(const std::vector<double>& positions) const
+  {
+    double sum = 0.0, edgeSum = 0.0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < this->Cloud->NumberOfPoints(); ++i)
+    {
+      if (this->Cloud->Outlier[i])
+      {
+        continue;
+      }
+      const double d = this->Surface->Distance(
+        { positions[3 * i], positions[3 * i + 1], positions[3 * i + 2] });
+      sum += d * d;
+      ++count;
+      if (this->NearEdge[i])
+      {
+        edgeSum += d * d;
+      }
+    }
+    Quality quality;
+    quality.Rms = std::sqrt(sum / static_cast<double>(count));
+    quality.EdgeRms =
+      this->EdgePoints ? std::sqrt(edgeSum / static_cast<double>(this->EdgePoints)) : 0.0;
+    return quality;
+  }
+};
+
+pcbilateral::PointCloudView View(const std::vector<double>& positions)
+{
+  pcbilateral::PointCloudView view;
+  view.NumberOfPoints = positions.size() / 3;
+  view.Positions = positions.data();
+  return view;
+}
+
+/// N iterations with radius r and normal radius rn, one at a time so that every N up to the
+/// last is measured on the way (the same as a run of N iterations but for the order of sums).
+std::vector<Quality> RunChain(const Truth& truth, double r, double rn, int iterations)
+{
+  std::vector<Quality> qualities;
+  std::vector<double> positions = truth.Cloud->Positions;
+  pcbilateral::BilateralParameters parameters;
+  parameters.Radius = r;
+  parameters.NormalRadius = rn;
+  parameters.NumberOfIterations = 1;
+  parameters.NumberOfThreads = 1;
+  for (int k = 0; k < iterations; ++k)
+  {
+    const pcbilateral::BilateralResult result =
+      pcbilateral::RunBilateralFilter(View(positions), parameters);
+    if (result.Status != pcbilateral::BilateralStatus::Completed)
+    {
+      std::fprintf(stderr, "run failed: %s\n", result.Error.c_str());
+      std::exit(EXIT_FAILURE);
+    }
+    positions = result.Positions;
+    qualities.push_back(truth.Measure(positions));
+  }
+  return qualities;
+}
+
+Quality RunOnce(const Truth& truth, const pcbilateral::BilateralParameters& given)
+{
+  pcbilateral::BilateralParameters parameters = given;
+  parameters.NumberOfThreads = 1;
+  const pcbilateral::BilateralResult result =
+    pcbilateral::RunBilateralFilter(View(truth.Cloud->Positions), parameters);
+  return truth.Measure(result.Positions);
+}
+
+std::vector<Case> Cases(bool quick)
+{
+  auto cube = [] { return Cube(); };
+  auto sharpEdge = [] { return SharpEdge(); };
+  auto cutCylinder = [] { return std::unique_ptr<Shape>(new CutCylinder(0.2)); };
+  auto sphere = [] { return std::unique_ptr<Shape>(new Sphere()); };
+  auto cadPart = [] { return CadPart(); };
+  auto terrain = [] { return std::unique_ptr<Shape>(new Terrain()); };
+  const std::vector<std::pair<std::string, std::function<std::unique_ptr<Shape>()>>> shapes = {
+    { "cube", cube }, { "sharp edge", sharpEdge }, { "cut cylinder", cutCylinder },
+    { "sphere", sphere }, { "CAD part", cadPart }, { "terrain", terrain } };
+  std::vector<Case> cases;
+  for (const auto& shape : shapes)
+  {
+    for (double noise : { 0.001, 0.005, 0.01 })
+    {
+      cases.push_back({ shape.first, shape.second, 20000, noise, false, 0.0, false });
+      cases.push_back({ shape.first, shape.second, 20000, noise, true, 0.01, false });
+    }
+    cases.push_back({ shape.first, shape.second, 100000, 0.005, true, 0.0, true });
+  }
+  cases.push_back({ "cube", cube, 1000000, 0.001, false, 0.01, true });
+  cases.push_back({ "sphere", sphere, 1000000, 0.005, true, 0.0, true });
+  if (quick)
+  {
+    cases.erase(std::remove_if(cases.begin(), cases.end(), [](const Case& c) { return c.Big; }),
+      cases.end());
+  }
+  return cases;
+}
+
+int Cost()
+{
+  struct Workload
+  {
+    const char* Name;
+    std::unique_ptr<Shape> Surface;
+    std::size_t Points;
+  };
+  Workload workloads[] = { { "cube600k", Cube(), 600000 },
+    { "sphere1M", std::unique_ptr<Shape>(new Sphere()), 1000000 } };
+  std::printf("| cloud | measurement | one iteration (r = %s) | ratio |\n", "automatic");
+  std::printf("| --- | --- | --- | --- |\n");
+  for (Workload& workload : workloads)
+  {
+    const NoisyCloud cloud = MakeNoisyCloud(*workload.Surface, workload.Points, 0.005, false, 0, 7);
+    pcbilateral::ScaleMeasurementOptions options;
+    options.NumberOfThreads = 1;
+    auto start = std::chrono::steady_clock::now();
+    const pcbilateral::CloudScales scales =
+      pcbilateral::MeasureScales(View(cloud.Positions), options);
+    const double measuring = Seconds(start);
+    pcbilateral::BilateralParameters automatic;
+    automatic.NumberOfIterations = 0;
+    pcbilateral::BilateralParameters parameters = pcbilateral::ChooseParameters(scales, automatic);
+    parameters.NumberOfIterations = 1;
+    parameters.NumberOfThreads = 1;
+    start = std::chrono::steady_clock::now();
+    pcbilateral::RunBilateralFilter(View(cloud.Positions), parameters);
+    const double filtering = Seconds(start);
+    std::printf("| %s | %.3f s | %.3f s (r = %.4g, rn = %.4g) | %.1f%% |\n", workload.Name,
+      measuring, filtering, parameters.Radius, parameters.NormalRadius,
+      100.0 * measuring / filtering);
+  }
+  return EXIT_SUCCESS;
+}
+
+std::string Describe(const Case& c)
+{
+  char text[160];
+  std::snprintf(text, sizeof text, "%s %zuk %.1f%% %s%s", c.ShapeName.c_str(), c.Points / 1000,
+    100 * c.Noise, c.ScanLines ? "scan" : "uniform", c.Outliers > 0 ? " +1% outliers" : "");
+  return text;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  bool quick = false;
+  std::string only;
+  FILE* csv = nullptr;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string argument = argv[i];
+    if (argument == "--quick")
+    {
+      quick = true;
+    }
+    else if (argument == "--only" && i + 1 < argc)
+    {
+      only = argv[++i];
+    }
+    else if (argument == "--csv" && i + 1 < argc)
+    {
+      csv = std::fopen(argv[++i], "w");
+    }
+    else if (argument == "--cost")
+    {
+      return Cost();
+    }
+    else
+    {
+      std::fprintf(stderr, "usage: %s [--quick] [--only SUBSTRING] [--csv FILE] | --cost\n",
+        argv[0]);
+      return EXIT_FAILURE;
+    }
+  }
+  if (csv)
+  {
+    std::fprintf(csv, "case,spacing,sigma,r,rn,N,rms,edge_rms\n");
+  }
+  std::printf("| case | noisy RMS | grid best RMS (r/s, rn/σ, N) | grid best edge RMS (r/s, rn/σ, "
+              "N) | paper | old default | automatic RMS | automatic edge RMS | auto/best RMS | "
+              "auto/best edge |\n");
+  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+  std::uint64_t seed = 100;
+  for (const Case& c : Cases(quick))
+  {
+    ++seed;
+    const std::string name = Describe(c);
+    if (!only.empty() && name.find(only) == std::string::npos)
+    {
+      continue;
+    }
+    const std::unique_ptr<Shape> shape = c.Make();
+    const NoisyCloud cloud = MakeNoisyCloud(*shape, c.Points, c.Noise, c.ScanLines, c.Outliers, seed);
+    Truth truth;
+    truth.Surface = shape.get();
+    truth.Cloud = &cloud;
+    truth.NearEdge.assign(cloud.NumberOfPoints(), 0);
+    const double band = 3.0 * cloud.Sigma + 0.03 * shape->Diagonal();
+    for (std::size_t i = 0; i < cloud.NumberOfPoints(); ++i)
+    {
+      const Vec3 clean{ cloud.Clean[3 * i], cloud.Clean[3 * i + 1], cloud.Clean[3 * i + 2] };
+      truth.NearEdge[i] = !cloud.Outlier[i] && shape->EdgeDistance(clean) <= band;
+      truth.EdgePoints += truth.NearEdge[i];
+    }
+    const bool hasEdges = truth.EdgePoints > 0;
+    const Quality noisy = truth.Measure(cloud.Positions);
+
+    pcbilateral::ScaleMeasurementOptions options;
+    options.NumberOfThreads = 1;
+    const pcbilateral::CloudScales scales =
+      pcbilateral::MeasureScales(View(cloud.Positions), options);
+    const double s = scales.PointSpacing, sigma = scales.NoiseSigma;
+
+    // The grid, in the measured units: r geometric from min(3 s, 4 sigma) to max(36 s,
+    // 20 sigma), rn from 1.5 to 7.5 sigma, N from 1 to 4.
+    const double ratio = c.Big ? 1.7 : 1.45;
+    std::vector<double> radii, normalRadii;
+    for (double r = std::min(3 * s, 4 * sigma); r <= std::max(36 * s, 20 * sigma) * 1.01; r *= ratio)
+    {
+      radii.push_back(r);
+    }
+    for (double k : c.Big ? std::vector<double>{ 2.5, 5, 7.5 } : std::vector<double>{ 1.5, 2.2, 3.3, 5, 7.5 })
+    {
+      normalRadii.push_back(k * sigma);
+    }
+    const int iterations = c.Big ? 3 : 4;
+    Quality best{ 1e300, 1e300 };
+    std::string bestAt, bestEdgeAt;
+    for (double r : radii)
+    {
+      for (double rn : normalRadii)
+      {
+        const std::vector<Quality> chain = RunChain(truth, r, rn, iterations);
+        for (int n = 0; n < iterations; ++n)
+        {
+          char at[64];
+          std::snprintf(at, sizeof at, "%.1f, %.1f, %d", r / s, rn / sigma, n + 1);
+          if (chain[n].Rms < best.Rms)
+          {
+            best.Rms = chain[n].Rms;
+            bestAt = at;
+          }
+          if (hasEdges && chain[n].EdgeRms < best.EdgeRms)
+          {
+            best.EdgeRms = chain[n].EdgeRms;
+            bestEdgeAt = at;
+          }
+          if (csv)
+          {
+            std::fprintf(csv, "%s,%.6g,%.6g,%.6g,%.6g,%d,%.6g,%.6g\n", name.c_str(), s, sigma, r,
+              rn, n + 1, chain[n].Rms, chain[n].EdgeRms);
+          }
+        }
+      }
+    }
+    if (csv)
+    {
+      std::fflush(csv);
+    }
+
+    const pcbilateral::CloudExtent extent = pcbilateral::MeasureCloud(View(cloud.Positions));
+    pcbilateral::BilateralParameters paper;
+    paper.Radius = pcbilateral::AutomaticRadius(extent.NumberOfFinitePoints, extent.LargestExtent());
+    paper.NormalRadius = paper.Radius;
+    const Quality paperQuality = RunOnce(truth, paper);
+    pcbilateral::BilateralParameters old;
+    old.Radius = 0.025 * extent.LargestExtent();
+    old.NormalRadius = old.Radius;
+    const Quality oldQuality = RunOnce(truth, old);
+    pcbilateral::BilateralParameters automatic;
+    automatic.NumberOfIterations = 0;
+    automatic = pcbilateral::ChooseParameters(scales, automatic);
+    const Quality autoQuality = RunOnce(truth, automatic);
+
+    auto edge = [&](const Quality& q) {
+      char text[32];
+      std::snprintf(text, sizeof text, hasEdges ? "%.3g" : "–", q.EdgeRms);
+      return std::string(text);
+    };
+    std::printf("| %s | %.3g | %.3g (%s) | %s%s%s%s | %.3g / %s | %.3g / %s | %.3g | %s | %.2f | %s |\n",
+      name.c_str(), noisy.Rms, best.Rms, bestAt.c_str(), edge(best).c_str(),
+      hasEdges ? " (" : "", hasEdges ? bestEdgeAt.c_str() : "", hasEdges ? ")" : "",
+      paperQuality.Rms, edge(paperQuality).c_str(), oldQuality.Rms, edge(oldQuality).c_str(),
+      autoQuality.Rms, edge(autoQuality).c_str(), autoQuality.Rms / best.Rms,
+      hasEdges ? std::to_string(autoQuality.EdgeRms / best.EdgeRms).substr(0, 4).c_str() : "–");
+    std::fflush(stdout);
+  }
+  if (csv)
+  {
+    std::fclose(csv);
+  }
+  return EXIT_SUCCESS;
+}
