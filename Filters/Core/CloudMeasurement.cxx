@@ -855,15 +855,15 @@ BilateralParameters ChooseParameters(const CloudScales& scales,
   }
   if (!(parameters.Radius > 0.0))
   {
-    parameters.Radius = std::max(
-      rule.RadiusInSpacings * scales.PointSpacing, rule.RadiusInSigmas * scales.NoiseSigma);
+    parameters.Radius =
+      rule.RadiusInSpacings * scales.PointSpacing + rule.RadiusInSigmas * scales.NoiseSigma;
   }
   if (!(parameters.NormalRadius > 0.0))
   {
-    // A noise-free cloud measures sigma 0: keep the normal radius a small fraction of r then
-    // (the filter needs a positive one).
+    // A noise-free cloud measures sigma 0 (or round-off): the floor keeps the normal radius
+    // positive and computable, far below anything a real noise would give.
     parameters.NormalRadius =
-      std::max(rule.NormalRadiusInSigmas * scales.NoiseSigma, 0.05 * parameters.Radius);
+      std::max(rule.NormalRadiusInSigmas * scales.NoiseSigma, 1e-3 * parameters.Radius);
   }
   return parameters;
 }

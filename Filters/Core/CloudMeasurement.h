@@ -58,20 +58,23 @@ struct CloudScales
 CloudScales MeasureScales(const PointCloudView& cloud,
   const ScaleMeasurementOptions& options = ScaleMeasurementOptions());
 
-/// The automatic rule's constants (documented in README.md, section "Automatic parameters").
+/// The automatic rule's constants (where they come from: README.md, "Automatic parameters"):
+///   r = RadiusInSpacings x spacing + RadiusInSigmas x sigma,
+///   rn = NormalRadiusInSigmas x sigma, N = NumberOfIterations.
+/// The spacing term gives every point enough neighbours for a stable normal and average on a
+/// clean cloud; the sigma term widens the neighbourhood as the noise grows.
 struct AutomaticRule
 {
-  /// r = max(RadiusInSpacings x spacing, RadiusInSigmas x sigma).
-  double RadiusInSpacings = 14.0;
-  double RadiusInSigmas = 8.0;
-  /// rn = NormalRadiusInSigmas x sigma.
-  double NormalRadiusInSigmas = 3.0;
+  double RadiusInSpacings = 5.0;
+  double RadiusInSigmas = 4.0;
+  double NormalRadiusInSigmas = 5.0;
   int NumberOfIterations = 2;
 };
 
 /// The parameters of the automatic mode: each of Radius, NormalRadius and NumberOfIterations
-/// that the user gave (Radius > 0, NormalRadius > 0, NumberOfIterations > 0) is kept; the
-/// others come from the rule applied to the measured scales. Every other field is copied from
+/// that the user gave (Radius > 0, NormalRadius > 0, NumberOfIterations > 0; pass 0 for
+/// "automatic", also for the iterations) is kept; the others come from the rule applied to the
+/// measured scales. Every other field is copied from
 /// userParameters. When the scales are not valid, the unset radii are left at 0, so that the
 /// filter falls back to the paper's automatic radius.
 BilateralParameters ChooseParameters(const CloudScales& scales,

@@ -71,8 +71,8 @@ struct Truth
       {
         continue;
       }
-      const double d = this->Surface->Distance(
-        { positions[3 * i], positions[3 * i + 1], positions[3 * i + 2] });
+      const double d =
+        this->Surface->Distance({ positions[3 * i], positions[3 * i + 1], positions[3 * i + 2] });
       sum += d * d;
       ++count;
       if (this->NearEdge[i])
@@ -140,8 +140,13 @@ std::vector<Case> Cases(bool quick)
   auto cadPart = [] { return CadPart(); };
   auto terrain = [] { return std::unique_ptr<Shape>(new Terrain()); };
   const std::vector<std::pair<std::string, std::function<std::unique_ptr<Shape>()>>> shapes = {
-    { "cube", cube }, { "sharp edge", sharpEdge }, { "cut cylinder", cutCylinder },
-    { "sphere", sphere }, { "CAD part", cadPart }, { "terrain", terrain } };
+    { "cube", cube },
+    { "sharp edge", sharpEdge },
+    { "cut cylinder", cutCylinder },
+    { "sphere", sphere },
+    { "CAD part", cadPart },
+    { "terrain", terrain }
+  };
   std::vector<Case> cases;
   for (const auto& shape : shapes)
   {
@@ -156,8 +161,8 @@ std::vector<Case> Cases(bool quick)
   cases.push_back({ "sphere", sphere, 1000000, 0.005, true, 0.0, true });
   if (quick)
   {
-    cases.erase(std::remove_if(cases.begin(), cases.end(), [](const Case& c) { return c.Big; }),
-      cases.end());
+    cases.erase(
+      std::remove_if(cases.begin(), cases.end(), [](const Case& c) { return c.Big; }), cases.end());
   }
   return cases;
 }
@@ -191,8 +196,12 @@ int Cost()
     start = std::chrono::steady_clock::now();
     pcbilateral::RunBilateralFilter(View(cloud.Positions), parameters);
     const double filtering = Seconds(start);
-    std::printf("| %s | %.3f s | %.3f s (r = %.4g, rn = %.4g) | %.1f%% |\n", workload.Name,
-      measuring, filtering, parameters.Radius, parameters.NormalRadius,
+    std::printf("| %s | %.3f s | %.3f s (r = %.4g, rn = %.4g) | %.1f%% |\n",
+      workload.Name,
+      measuring,
+      filtering,
+      parameters.Radius,
+      parameters.NormalRadius,
       100.0 * measuring / filtering);
   }
   return EXIT_SUCCESS;
@@ -201,8 +210,14 @@ int Cost()
 std::string Describe(const Case& c)
 {
   char text[160];
-  std::snprintf(text, sizeof text, "%s %zuk %.1f%% %s%s", c.ShapeName.c_str(), c.Points / 1000,
-    100 * c.Noise, c.ScanLines ? "scan" : "uniform", c.Outliers > 0 ? " +1% outliers" : "");
+  std::snprintf(text,
+    sizeof text,
+    "%s %zuk %.1f%% %s%s",
+    c.ShapeName.c_str(),
+    c.Points / 1000,
+    100 * c.Noise,
+    c.ScanLines ? "scan" : "uniform",
+    c.Outliers > 0 ? " +1% outliers" : "");
   return text;
 }
 } // namespace
@@ -233,8 +248,8 @@ int main(int argc, char* argv[])
     }
     else
     {
-      std::fprintf(stderr, "usage: %s [--quick] [--only SUBSTRING] [--csv FILE] | --cost\n",
-        argv[0]);
+      std::fprintf(
+        stderr, "usage: %s [--quick] [--only SUBSTRING] [--csv FILE] | --cost\n", argv[0]);
       return EXIT_FAILURE;
     }
   }
@@ -256,7 +271,8 @@ int main(int argc, char* argv[])
       continue;
     }
     const std::unique_ptr<Shape> shape = c.Make();
-    const NoisyCloud cloud = MakeNoisyCloud(*shape, c.Points, c.Noise, c.ScanLines, c.Outliers, seed);
+    const NoisyCloud cloud =
+      MakeNoisyCloud(*shape, c.Points, c.Noise, c.ScanLines, c.Outliers, seed);
     Truth truth;
     truth.Surface = shape.get();
     truth.Cloud = &cloud;
@@ -281,11 +297,13 @@ int main(int argc, char* argv[])
     // 20 sigma), rn from 1.5 to 7.5 sigma, N from 1 to 4.
     const double ratio = c.Big ? 1.7 : 1.45;
     std::vector<double> radii, normalRadii;
-    for (double r = std::min(3 * s, 4 * sigma); r <= std::max(36 * s, 20 * sigma) * 1.01; r *= ratio)
+    for (double r = std::min(3 * s, 4 * sigma); r <= std::max(36 * s, 20 * sigma) * 1.01;
+         r *= ratio)
     {
       radii.push_back(r);
     }
-    for (double k : c.Big ? std::vector<double>{ 2.5, 5, 7.5 } : std::vector<double>{ 1.5, 2.2, 3.3, 5, 7.5 })
+    for (double k :
+      c.Big ? std::vector<double>{ 2.5, 5, 7.5 } : std::vector<double>{ 1.5, 2.2, 3.3, 5, 7.5 })
     {
       normalRadii.push_back(k * sigma);
     }
@@ -313,8 +331,16 @@ int main(int argc, char* argv[])
           }
           if (csv)
           {
-            std::fprintf(csv, "%s,%.6g,%.6g,%.6g,%.6g,%d,%.6g,%.6g\n", name.c_str(), s, sigma, r,
-              rn, n + 1, chain[n].Rms, chain[n].EdgeRms);
+            std::fprintf(csv,
+              "%s,%.6g,%.6g,%.6g,%.6g,%d,%.6g,%.6g\n",
+              name.c_str(),
+              s,
+              sigma,
+              r,
+              rn,
+              n + 1,
+              chain[n].Rms,
+              chain[n].EdgeRms);
           }
         }
       }
@@ -326,7 +352,8 @@ int main(int argc, char* argv[])
 
     const pcbilateral::CloudExtent extent = pcbilateral::MeasureCloud(View(cloud.Positions));
     pcbilateral::BilateralParameters paper;
-    paper.Radius = pcbilateral::AutomaticRadius(extent.NumberOfFinitePoints, extent.LargestExtent());
+    paper.Radius =
+      pcbilateral::AutomaticRadius(extent.NumberOfFinitePoints, extent.LargestExtent());
     paper.NormalRadius = paper.Radius;
     const Quality paperQuality = RunOnce(truth, paper);
     pcbilateral::BilateralParameters old;
@@ -338,16 +365,29 @@ int main(int argc, char* argv[])
     automatic = pcbilateral::ChooseParameters(scales, automatic);
     const Quality autoQuality = RunOnce(truth, automatic);
 
-    auto edge = [&](const Quality& q) {
+    auto edge = [&](const Quality& q)
+    {
       char text[32];
       std::snprintf(text, sizeof text, hasEdges ? "%.3g" : "–", q.EdgeRms);
       return std::string(text);
     };
-    std::printf("| %s | %.3g | %.3g (%s) | %s%s%s%s | %.3g / %s | %.3g / %s | %.3g | %s | %.2f | %s |\n",
-      name.c_str(), noisy.Rms, best.Rms, bestAt.c_str(), edge(best).c_str(),
-      hasEdges ? " (" : "", hasEdges ? bestEdgeAt.c_str() : "", hasEdges ? ")" : "",
-      paperQuality.Rms, edge(paperQuality).c_str(), oldQuality.Rms, edge(oldQuality).c_str(),
-      autoQuality.Rms, edge(autoQuality).c_str(), autoQuality.Rms / best.Rms,
+    std::printf(
+      "| %s | %.3g | %.3g (%s) | %s%s%s%s | %.3g / %s | %.3g / %s | %.3g | %s | %.2f | %s |\n",
+      name.c_str(),
+      noisy.Rms,
+      best.Rms,
+      bestAt.c_str(),
+      edge(best).c_str(),
+      hasEdges ? " (" : "",
+      hasEdges ? bestEdgeAt.c_str() : "",
+      hasEdges ? ")" : "",
+      paperQuality.Rms,
+      edge(paperQuality).c_str(),
+      oldQuality.Rms,
+      edge(oldQuality).c_str(),
+      autoQuality.Rms,
+      edge(autoQuality).c_str(),
+      autoQuality.Rms / best.Rms,
       hasEdges ? std::to_string(autoQuality.EdgeRms / best.EdgeRms).substr(0, 4).c_str() : "–");
     std::fflush(stdout);
   }

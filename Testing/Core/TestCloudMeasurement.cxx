@@ -202,8 +202,8 @@ void Accuracy()
 bool SameScales(const pcbilateral::CloudScales& a, const pcbilateral::CloudScales& b)
 {
   return a.Valid == b.Valid && a.PointSpacing == b.PointSpacing && a.NoiseSigma == b.NoiseSigma &&
-    a.SurfaceDensity == b.SurfaceDensity && a.NeighbourhoodRadius == b.NeighbourhoodRadius &&
-    a.NumberOfFittedSamples == b.NumberOfFittedSamples && a.NumberOfRounds == b.NumberOfRounds;
+         a.SurfaceDensity == b.SurfaceDensity && a.NeighbourhoodRadius == b.NeighbourhoodRadius &&
+         a.NumberOfFittedSamples == b.NumberOfFittedSamples && a.NumberOfRounds == b.NumberOfRounds;
 }
 
 void Determinism()
@@ -218,8 +218,13 @@ void Determinism()
   {
     options.NumberOfThreads = threads;
     const pcbilateral::CloudScales other = pcbilateral::MeasureScales(View(cloud), options);
-    PCB_CHECK(SameScales(one, other), "%d threads: spacing %.17g vs %.17g, sigma %.17g vs %.17g",
-      threads, other.PointSpacing, one.PointSpacing, other.NoiseSigma, one.NoiseSigma);
+    PCB_CHECK(SameScales(one, other),
+      "%d threads: spacing %.17g vs %.17g, sigma %.17g vs %.17g",
+      threads,
+      other.PointSpacing,
+      one.PointSpacing,
+      other.NoiseSigma,
+      one.NoiseSigma);
   }
 
   // Given sample indices: every 97th point, a different sample that measures the same scales.
@@ -229,13 +234,16 @@ void Determinism()
     options.SampleIndices.push_back(i);
   }
   const pcbilateral::CloudScales given = pcbilateral::MeasureScales(View(cloud), options);
-  PCB_CHECK(given.NumberOfSamples == options.SampleIndices.size(), "%zu samples",
-    given.NumberOfSamples);
+  PCB_CHECK(
+    given.NumberOfSamples == options.SampleIndices.size(), "%zu samples", given.NumberOfSamples);
   PCB_CHECK(!SameScales(one, given), "the given samples were not used");
   PCB_CHECK(std::abs(given.PointSpacing / one.PointSpacing - 1) < 0.05 &&
-      std::abs(given.NoiseSigma / one.NoiseSigma - 1) < 0.05,
-    "given samples: spacing %g vs %g, sigma %g vs %g", given.PointSpacing, one.PointSpacing,
-    given.NoiseSigma, one.NoiseSigma);
+              std::abs(given.NoiseSigma / one.NoiseSigma - 1) < 0.05,
+    "given samples: spacing %g vs %g, sigma %g vs %g",
+    given.PointSpacing,
+    one.PointSpacing,
+    given.NoiseSigma,
+    one.NoiseSigma);
 
   // A quarter of the cloud, as a distributed run would gather it, with PointFraction = 0.25:
   // the whole cloud's spacing.
@@ -244,8 +252,8 @@ void Determinism()
   {
     if (i % 4 == 1)
     {
-      quarter.insert(quarter.end(), cloud.Positions.begin() + 3 * i,
-        cloud.Positions.begin() + 3 * i + 3);
+      quarter.insert(
+        quarter.end(), cloud.Positions.begin() + 3 * i, cloud.Positions.begin() + 3 * i + 3);
     }
   }
   pcbilateral::PointCloudView quarterView;
@@ -255,9 +263,12 @@ void Determinism()
   quarterOptions.PointFraction = 0.25;
   const pcbilateral::CloudScales part = pcbilateral::MeasureScales(quarterView, quarterOptions);
   PCB_CHECK(std::abs(part.PointSpacing / one.PointSpacing - 1) < 0.05 &&
-      std::abs(part.NoiseSigma / one.NoiseSigma - 1) < 0.10,
-    "a quarter: spacing %g vs %g, sigma %g vs %g", part.PointSpacing, one.PointSpacing,
-    part.NoiseSigma, one.NoiseSigma);
+              std::abs(part.NoiseSigma / one.NoiseSigma - 1) < 0.10,
+    "a quarter: spacing %g vs %g, sigma %g vs %g",
+    part.PointSpacing,
+    one.PointSpacing,
+    part.NoiseSigma,
+    one.NoiseSigma);
 
   // Non-finite points are skipped, a degenerate cloud is reported, not measured.
   std::vector<double> withNaN = cloud.Positions;
@@ -270,7 +281,9 @@ void Determinism()
   nanView.Positions = withNaN.data();
   const pcbilateral::CloudScales skipped = pcbilateral::MeasureScales(nanView);
   PCB_CHECK(skipped.Valid && std::abs(skipped.NoiseSigma / one.NoiseSigma - 1) < 0.05,
-    "with NaN points: sigma %g vs %g", skipped.NoiseSigma, one.NoiseSigma);
+    "with NaN points: sigma %g vs %g",
+    skipped.NoiseSigma,
+    one.NoiseSigma);
   std::vector<double> line;
   for (int i = 0; i < 1000; ++i)
   {
@@ -287,9 +300,171 @@ void Determinism()
   PCB_CHECK(!pcbilateral::MeasureScales(fewView).Valid, "10 points measured");
 }
 
+/// The RMS distance of the non-outliers to the true surface, and the same for those whose clean
+/// position is near a sharp edge (as pcb_quality measures them).
+std::pair<double, double> Errors(const Shape& shape,
+  const NoisyCloud& cloud,
+  const std::vector<double>& positions)
+{
+  const double band = 3.0 * cloud.Sigma + 0.03 * shape.Diagonal();
+  double sum = 0.0, edgeSum = 0.0;
+  std::size_t count = 0, edgeCount = 0;
+  for (std::size_t i = 0; i < cloud.NumberOfPoints(); ++i)
+  {
+    if (cloud.Outlier[i])
+    {
+      continue;
+    }
+    const double d =
+      shape.Distance({ positions[3 * i], positions[3 * i + 1], positions[3 * i + 2] });
+    sum += d * d;
+    ++count;
+    if (shape.EdgeDistance(
+          { cloud.Clean[3 * i], cloud.Clean[3 * i + 1], cloud.Clean[3 * i + 2] }) <= band)
+    {
+      edgeSum += d * d;
+      ++edgeCount;
+    }
+  }
+  return { std::sqrt(sum / count), edgeCount ? std::sqrt(edgeSum / edgeCount) : 0.0 };
+}
+
+void Rule()
+{
+  // Any parameter the user gave overrides only itself.
+  pcbilateral::CloudScales scales;
+  scales.Valid = true;
+  scales.PointSpacing = 0.01;
+  scales.NoiseSigma = 0.002;
+  pcbilateral::BilateralParameters user;
+  user.NumberOfIterations = 0;
+  user.NumberOfThreads = 3;
+  const pcbilateral::AutomaticRule rule;
+  pcbilateral::BilateralParameters chosen = pcbilateral::ChooseParameters(scales, user);
+  PCB_CHECK(chosen.Radius == rule.RadiusInSpacings * 0.01 + rule.RadiusInSigmas * 0.002 &&
+              chosen.NormalRadius == rule.NormalRadiusInSigmas * 0.002 &&
+              chosen.NumberOfIterations == rule.NumberOfIterations && chosen.NumberOfThreads == 3,
+    "automatic: r %g rn %g N %d",
+    chosen.Radius,
+    chosen.NormalRadius,
+    chosen.NumberOfIterations);
+  user.Radius = 0.5;
+  chosen = pcbilateral::ChooseParameters(scales, user);
+  PCB_CHECK(chosen.Radius == 0.5 && chosen.NormalRadius == rule.NormalRadiusInSigmas * 0.002,
+    "given r: r %g rn %g",
+    chosen.Radius,
+    chosen.NormalRadius);
+  user.Radius = 0.0;
+  user.NormalRadius = 0.3;
+  user.NumberOfIterations = 7;
+  chosen = pcbilateral::ChooseParameters(scales, user);
+  PCB_CHECK(chosen.Radius == rule.RadiusInSpacings * 0.01 + rule.RadiusInSigmas * 0.002 &&
+              chosen.NormalRadius == 0.3 && chosen.NumberOfIterations == 7,
+    "given rn and N: r %g rn %g N %d",
+    chosen.Radius,
+    chosen.NormalRadius,
+    chosen.NumberOfIterations);
+  scales.Valid = false;
+  user = pcbilateral::BilateralParameters();
+  user.NumberOfIterations = 0;
+  chosen = pcbilateral::ChooseParameters(scales, user);
+  PCB_CHECK(chosen.Radius == 0.0 && chosen.NormalRadius == 0.0 &&
+              chosen.NumberOfIterations == rule.NumberOfIterations,
+    "unmeasured cloud: r %g rn %g (0 expected: the paper's heuristic)",
+    chosen.Radius,
+    chosen.NormalRadius);
+
+  // Quality on a few of pcb_quality's small cases (same clouds: same seeds), against the best
+  // of its grid search as printed in README.md, with 5% of margin on the targets, and against
+  // the paper's heuristic.
+  struct QualityCase
+  {
+    const char* Name;
+    std::function<std::unique_ptr<Shape>()> Make;
+    double Noise;
+    bool ScanLines;
+    double Outliers;
+    std::uint64_t Seed;
+    double GridBestRms, GridBestEdgeRms; // 0: a smooth shape
+  };
+  const QualityCase cases[] = {
+    { "cube 20k 0.5% uniform", [] { return Cube(); }, 0.005, false, 0.0, 103, 0.00305, 0.00465 },
+    { "sharp edge 20k 0.5% scan +1% outliers",
+      [] { return SharpEdge(); },
+      0.005,
+      true,
+      0.01,
+      111,
+      0.00191,
+      0.0039 },
+    { "cut cylinder 20k 0.1% uniform",
+      [] { return std::unique_ptr<Shape>(new CutCylinder(0.2)); },
+      0.001,
+      false,
+      0.0,
+      115,
+      0.000455,
+      0.000767 },
+    { "sphere 20k 0.5% uniform",
+      [] { return std::unique_ptr<Shape>(new Sphere()); },
+      0.005,
+      false,
+      0.0,
+      124,
+      0.00186,
+      0.0 },
+  };
+  for (const QualityCase& c : cases)
+  {
+    const auto shape = c.Make();
+    const NoisyCloud cloud =
+      MakeNoisyCloud(*shape, 20000, c.Noise, c.ScanLines, c.Outliers, c.Seed);
+    pcbilateral::BilateralParameters automatic;
+    automatic.NumberOfIterations = 0;
+    automatic = pcbilateral::ChooseParameters(pcbilateral::MeasureScales(View(cloud)), automatic);
+    const auto autoErrors =
+      Errors(*shape, cloud, pcbilateral::RunBilateralFilter(View(cloud), automatic).Positions);
+    const pcbilateral::CloudExtent extent = pcbilateral::MeasureCloud(View(cloud));
+    pcbilateral::BilateralParameters paper;
+    paper.Radius =
+      pcbilateral::AutomaticRadius(extent.NumberOfFinitePoints, extent.LargestExtent());
+    paper.NormalRadius = paper.Radius;
+    const auto paperErrors =
+      Errors(*shape, cloud, pcbilateral::RunBilateralFilter(View(cloud), paper).Positions);
+    std::printf("%s: automatic (r %.4g, rn %.4g, N %d) RMS %.4g edge %.4g; grid best %.4g / "
+                "%.4g; paper %.4g\n",
+      c.Name,
+      automatic.Radius,
+      automatic.NormalRadius,
+      automatic.NumberOfIterations,
+      autoErrors.first,
+      autoErrors.second,
+      c.GridBestRms,
+      c.GridBestEdgeRms,
+      paperErrors.first);
+    const double rmsTarget = c.GridBestEdgeRms > 0 ? 1.5 : 1.25;
+    PCB_CHECK(autoErrors.first <= 1.05 * rmsTarget * c.GridBestRms,
+      "%s: RMS %g vs best %g",
+      c.Name,
+      autoErrors.first,
+      c.GridBestRms);
+    PCB_CHECK(c.GridBestEdgeRms == 0 || autoErrors.second <= 1.05 * 1.25 * c.GridBestEdgeRms,
+      "%s: edge RMS %g vs best %g",
+      c.Name,
+      autoErrors.second,
+      c.GridBestEdgeRms);
+    PCB_CHECK(autoErrors.first < paperErrors.first,
+      "%s: RMS %g, the paper's heuristic %g",
+      c.Name,
+      autoErrors.first,
+      paperErrors.first);
+  }
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
 {
-  return RunNamedCase(argc, argv, { { "Accuracy", Accuracy }, { "Determinism", Determinism } });
+  return RunNamedCase(
+    argc, argv, { { "Accuracy", Accuracy }, { "Determinism", Determinism }, { "Rule", Rule } });
 }
