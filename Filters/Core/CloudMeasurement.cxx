@@ -51,7 +51,7 @@ std::uint64_t HashIndex(std::uint64_t x)
 }
 
 /// Points per ball that the fits aim at, and the fewest the radius may hold at full density.
-constexpr double PointsPerBall = 128.0;
+constexpr double PointsPerBall = 64.0;
 constexpr double FewestPointsPerBall = 48.0;
 /// The fixed point's radius in sigmas.
 constexpr double RadiusInSigmas = 5.0;
@@ -411,13 +411,21 @@ LocalFit FitQuadric(const std::vector<std::array<double, 3>>& points,
       }
       const double x = local[i][0], y = local[i][1];
       const double basis[QuadricTerms] = { 1.0, x, y, x * x, x * y, y * y };
+      // The lower triangle only: the matrix is symmetric.
       for (int r = 0; r < QuadricTerms; ++r)
       {
-        for (int c = 0; c < QuadricTerms; ++c)
+        for (int c = 0; c <= r; ++c)
         {
           normal[r][c] += basis[r] * basis[c];
         }
         rhs[r] += basis[r] * local[i][2];
+      }
+    }
+    for (int r = 0; r < QuadricTerms; ++r)
+    {
+      for (int c = r + 1; c < QuadricTerms; ++c)
+      {
+        normal[r][c] = normal[c][r];
       }
     }
     if (!SolveCholesky(normal, rhs, coefficients))
