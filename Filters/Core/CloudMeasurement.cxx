@@ -63,6 +63,14 @@ constexpr int MaximumRounds = 12;
 /// The noise is read at this quantile of the per-sample deviations; its normal score.
 constexpr double DeviationQuantile = 0.25;
 constexpr double DeviationQuantileScore = 0.6745;
+/// The flatness is measured at FlatnessRadiusInSpacings x spacing + FlatnessRadiusInSigmas x
+/// sigma (1.5 times the automatic rule's radius), with about this many points per ball; a
+/// sample whose plane fit leaves FeatureExcess sigma^2 more variance than its quadric fit sees
+/// an edge or a strong bend.
+constexpr double FlatnessRadiusInSpacings = 7.5;
+constexpr double FlatnessRadiusInSigmas = 6.0;
+constexpr double FlatnessPointsPerBall = 128.0;
+constexpr double FeatureExcess = 0.5;
 /// Points in the disc that measures the density.
 constexpr double DiscPoints = 40.0;
 constexpr int QuadricTerms = 6;
@@ -256,10 +264,11 @@ void SymmetricEigen(double a[3][3], double values[3], double vectors[3][3])
 /// Solves the symmetric positive system m x = b (n x n, n <= 6) by Cholesky; false if singular.
 bool SolveCholesky(double m[QuadricTerms][QuadricTerms],
   double b[QuadricTerms],
-  double x[QuadricTerms])
+  double x[QuadricTerms],
+  int n)
 {
   double l[QuadricTerms][QuadricTerms] = {};
-  for (int i = 0; i < QuadricTerms; ++i)
+  for (int i = 0; i < n; ++i)
   {
     for (int j = 0; j <= i; ++j)
     {
@@ -283,7 +292,7 @@ bool SolveCholesky(double m[QuadricTerms][QuadricTerms],
     }
   }
   double y[QuadricTerms];
-  for (int i = 0; i < QuadricTerms; ++i)
+  for (int i = 0; i < n; ++i)
   {
     double sum = b[i];
     for (int k = 0; k < i; ++k)
@@ -292,10 +301,10 @@ bool SolveCholesky(double m[QuadricTerms][QuadricTerms],
     }
     y[i] = sum / l[i][i];
   }
-  for (int i = QuadricTerms - 1; i >= 0; --i)
+  for (int i = n - 1; i >= 0; --i)
   {
     double sum = y[i];
-    for (int k = i + 1; k < QuadricTerms; ++k)
+    for (int k = i + 1; k < n; ++k)
     {
       sum -= l[k][i] * x[k];
     }
@@ -346,11 +355,12 @@ struct LocalFit
   }
 };
 
-/// Robust quadric fit of the given points (coordinates relative to centre, in units of
-/// radius for conditioning).
+/// Robust quadric fit (or plane fit, with 3 terms) of the given points (coordinates relative to
+/// centre, in units of radius for conditioning).
 LocalFit FitQuadric(const std::vector<std::array<double, 3>>& points,
   const double centre[3],
-  double radius)
+  double radius,
+  int terms = QuadricTerms)
 {
   LocalFit fit;
   const std::size_t m = points.size();
@@ -412,7 +422,7 @@ LocalFit FitQuadric(const std::vector<std::array<double, 3>>& points,
       const double x = local[i][0], y = local[i][1];
       const double basis[QuadricTerms] = { 1.0, x, y, x * x, x * y, y * y };
       // The lower triangle only: the matrix is symmetric.
-      for (int r = 0; r < QuadricTerms; ++r)
+      for (int r = 0; r < terms; ++r)
       {
         for (int c = 0; c <= r; ++c)
         {
@@ -421,14 +431,14 @@ LocalFit FitQuadric(const std::vector<std::array<double, 3>>& points,
         rhs[r] += basis[r] * local[i][2];
       }
     }
-    for (int r = 0; r < QuadricTerms; ++r)
+    for (int r = 0; r < terms; ++r)
     {
-      for (int c = r + 1; c < QuadricTerms; ++c)
+      for (int c = r + 1; c < terms; ++c)
       {
         normal[r][c] = normal[c][r];
       }
     }
-    if (!SolveCholesky(normal, rhs, coefficients))
+    if (!SolveCholesky(normal, rhs, coefficients, terms))
     {
       return fit;
     }
@@ -469,8 +479,7 @@ LocalFit FitQuadric(const std::vector<std::array<double, 3>>& points,
     sum += inlier[i] ? residual[i] * residual[i] : 0.0;
   }
   fit.Fitted = true;
-  fit.Variance =
-    sum / static_cast<double>(inliers - QuadricTerms) / ClippedVariance * radius * radius;
+  fit.Variance = sum / static_cast<double>(inliers - terms) / ClippedVariance * radius * radius;
   fit.Inliers = inliers;
   // The centre's foot on the fitted surface (the centre is local (0,0,0) shifted by -mean).
   double c[3];
@@ -843,9 +852,73 @@ CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOpt
     spacingSum += spacings[k];
   }
   scales.PointSpacing = spacingSum / static_cast<double>(spacings.size() - 2 * trim);
+
+  // Flatness at the scale the filter will work at (1.5 times the automatic radius): on the
+  // same points, a plane leaves more residual variance than a quadric where the surface bends
+  // or breaks. The excess, in units of sigma^2, is small on flat or gently curved parts,
+  // noticeable on curved ones, large near edges.
+  scales.FlatnessRadius =
+    FlatnessRadiusInSpacings * scales.PointSpacing + FlatnessRadiusInSigmas * sigma;
+  {
+    const double rho = scales.FlatnessRadius;
+    std::size_t level = 0;
+    const double expected = density * M_PI * rho * rho;
+    while (level + 1 < levels.size() && expected * fractions[level + 1] >= FlatnessPointsPerBall)
+    {
+      ++level;
+    }
+    std::vector<double> excess(samples.size(), -1.0);
+#pragma omp parallel num_threads(threads)
+    {
+      std::vector<std::array<double, 3>> points;
+#pragma omp for schedule(dynamic, 16)
+      for (std::ptrdiff_t s = 0; s < static_cast<std::ptrdiff_t>(samples.size()); ++s)
+      {
+        if (!fits[s].Fitted)
+        {
+          continue;
+        }
+        const double* centre = fits[s].SurfacePoint;
+        points.clear();
+        grids[level].ForEachInBall(centre,
+          rho,
+          [&](std::size_t index)
+          {
+            const double* p = cloud.Positions + 3 * index;
+            points.push_back(
+              { (p[0] - centre[0]) / rho, (p[1] - centre[1]) / rho, (p[2] - centre[2]) / rho });
+          });
+        const LocalFit quadric = FitQuadric(points, centre, rho);
+        const LocalFit plane = FitQuadric(points, centre, rho, 3);
+        if (quadric.Fitted && plane.Fitted)
+        {
+          excess[s] = (plane.Variance - quadric.Variance) / (sigma * sigma);
+        }
+      }
+    }
+    std::vector<double> measured;
+    std::size_t featured = 0;
+    for (double value : excess)
+    {
+      if (value >= -0.5)
+      {
+        measured.push_back(value);
+        featured += value > FeatureExcess;
+      }
+    }
+    scales.CurvatureExcess = measured.empty() ? 0.0 : Median(measured);
+    scales.FeatureFraction =
+      measured.empty() ? 1.0 : static_cast<double>(featured) / static_cast<double>(measured.size());
+  }
   scales.SurfaceDensity = Median(densities);
   scales.Valid = true;
   return scales;
+}
+
+bool IsFlat(const CloudScales& scales, const AutomaticRule& rule)
+{
+  return scales.Valid && scales.CurvatureExcess < rule.FlatExcess &&
+         scales.FeatureFraction < rule.FlatFeatureFraction;
 }
 
 BilateralParameters ChooseParameters(const CloudScales& scales,
@@ -853,9 +926,10 @@ BilateralParameters ChooseParameters(const CloudScales& scales,
   const AutomaticRule& rule)
 {
   BilateralParameters parameters = userParameters;
+  const bool flat = IsFlat(scales, rule);
   if (parameters.NumberOfIterations <= 0)
   {
-    parameters.NumberOfIterations = rule.NumberOfIterations;
+    parameters.NumberOfIterations = flat ? rule.FlatIterations : rule.NumberOfIterations;
   }
   if (!scales.Valid)
   {
@@ -864,7 +938,8 @@ BilateralParameters ChooseParameters(const CloudScales& scales,
   if (!(parameters.Radius > 0.0))
   {
     parameters.Radius =
-      rule.RadiusInSpacings * scales.PointSpacing + rule.RadiusInSigmas * scales.NoiseSigma;
+      (flat ? rule.FlatRadiusFactor : 1.0) *
+      (rule.RadiusInSpacings * scales.PointSpacing + rule.RadiusInSigmas * scales.NoiseSigma);
   }
   if (!(parameters.NormalRadius > 0.0))
   {

@@ -45,6 +45,13 @@ struct CloudScales
   double SurfaceDensity = 0.0;
   /// The radius of the neighbourhoods the fits used (about 5 sigma, at least ~50 points).
   double NeighbourhoodRadius = 0.0;
+  /// How far the surface is from flat at FlatnessRadius (1.5 times the automatic radius): the
+  /// median over the samples of the residual variance a plane fit leaves beyond a quadric fit,
+  /// in units of sigma^2 (about 0 on flat parts), and the fraction of samples where it exceeds
+  /// 0.5 (edges, strong bends).
+  double FlatnessRadius = 0.0;
+  double CurvatureExcess = 0.0;
+  double FeatureFraction = 0.0;
   std::size_t NumberOfSamples = 0;
   /// Samples whose neighbourhood could be fitted (enough points, not an isolated outlier).
   std::size_t NumberOfFittedSamples = 0;
@@ -60,7 +67,10 @@ CloudScales MeasureScales(const PointCloudView& cloud,
 
 /// The automatic rule's constants (where they come from: README.md, "Automatic parameters"):
 ///   r = RadiusInSpacings x spacing + RadiusInSigmas x sigma,
-///   rn = NormalRadiusInSigmas x sigma, N = NumberOfIterations.
+///   rn = NormalRadiusInSigmas x sigma, N = NumberOfIterations;
+/// on a flat cloud (CurvatureExcess below FlatExcess and FeatureFraction below
+/// FlatFeatureFraction: no edge, no bend at that scale), r is FlatRadiusFactor times larger and
+/// N = FlatIterations, since nothing limits the smoothing there but the noise.
 /// The spacing term gives every point enough neighbours for a stable normal and average on a
 /// clean cloud; the sigma term widens the neighbourhood as the noise grows.
 struct AutomaticRule
@@ -69,7 +79,14 @@ struct AutomaticRule
   double RadiusInSigmas = 4.0;
   double NormalRadiusInSigmas = 5.0;
   int NumberOfIterations = 2;
+  double FlatExcess = 0.007;
+  double FlatFeatureFraction = 0.01;
+  double FlatRadiusFactor = 1.5;
+  int FlatIterations = 3;
 };
+
+/// Whether the rule treats the cloud as flat.
+bool IsFlat(const CloudScales& scales, const AutomaticRule& rule = AutomaticRule());
 
 /// The parameters of the automatic mode: each of Radius, NormalRadius and NumberOfIterations
 /// that the user gave (Radius > 0, NormalRadius > 0, NumberOfIterations > 0; pass 0 for
