@@ -207,7 +207,9 @@ bool SameScales(const pcbilateral::CloudScales& a, const pcbilateral::CloudScale
 {
   return a.Valid == b.Valid && a.PointSpacing == b.PointSpacing && a.NoiseSigma == b.NoiseSigma &&
          a.SurfaceDensity == b.SurfaceDensity && a.NeighbourhoodRadius == b.NeighbourhoodRadius &&
-         a.NumberOfFittedSamples == b.NumberOfFittedSamples && a.NumberOfRounds == b.NumberOfRounds;
+         a.NumberOfFittedSamples == b.NumberOfFittedSamples &&
+         a.NumberOfRounds == b.NumberOfRounds && a.CurvatureExcess == b.CurvatureExcess &&
+         a.FeatureFraction == b.FeatureFraction;
 }
 
 void Determinism()
