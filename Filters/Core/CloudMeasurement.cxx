@@ -4,7 +4,7 @@
 // function z = q(x, y) over their principal plane, robustly (points more than 3 robust
 // deviations off are left out, then the fit is redone): the quadric takes the surface's
 // curvature away, the clipping takes outliers and the far side of edges away. The residuals'
-// spread estimates the noise sigma; the number of points in the ball gives the surface density.
+// spread estimates the noise sigma.
 //
 // Two effects bias that estimate and are corrected:
 // - the fit absorbs 6 degrees of freedom (variance x m / (m - 6) for m points) and the clipping
@@ -14,15 +14,24 @@
 //   (g the noise's Gaussian), whose variance is less than sigma^2. It is inverted numerically.
 // The radius must be a few sigmas for the slab to show, yet as small as possible to keep the
 // edges out: it is found as a fixed point, rho = 5 sigma(rho) but holding at least ~50 points,
-// starting from the smallest ball and growing.
+// starting from the smallest ball and growing. The per-sample deviations are read at their
+// 25th percentile, not the median: at strong noise the balls are wide enough that most samples
+// see an edge, which only raises their deviation.
+//
+// The density is counted over a small disc of each fitted surface, within 3 sigma of it, so
+// that neither the noise nor (much) the borders and density changes matter. The spacing is the
+// mean over the samples of 1 / (2 sqrt(density)), which is the mean nearest-neighbour distance
+// of points spread at random with that density.
+//
+// Flatness: at 1.5 times the automatic rule's radius, the residual variance a plane fit leaves
+// beyond a quadric fit of the same points (curvature and edges), in units of sigma^2.
 //
 // Large balls hold too many points: the ball is gathered from a subset of the cloud (each
-// point has a fixed pseudo-random key; level l keeps the points with key < 4^-l), chosen so
+// point has a fixed pseudo-random key; level l keeps a 4^-l fraction of the points), chosen so
 // that it holds about a hundred points. Each level has its own hashed uniform grid.
 //
-// The per-sample estimates are combined by medians (robust to samples on edges and outliers);
-// the spacing is the mean over the well-fitted samples of 1 / (2 sqrt(density)), which is the
-// mean nearest-neighbour distance of points spread at random with that density.
+// Every per-sample result is stored in its sample's slot and reduced in sample order, so the
+// result does not depend on the number of threads.
 #include "CloudMeasurement.h"
 
 #include "BilateralKernel.h" // IsFinitePoint
@@ -682,8 +691,6 @@ CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOpt
     }
     const HashedGrid& grid = grids[level];
     levelUsed.assign(samples.size(), level);
-    const double cellsAcross = 2.0 * rho / grid.GetCellSize();
-    (void)cellsAcross;
 #pragma omp parallel num_threads(threads)
     {
       std::vector<std::array<double, 3>> points;
