@@ -78,7 +78,7 @@ constexpr double DeviationQuantileScore = 0.6745;
 /// an edge or a strong bend.
 constexpr double FlatnessRadiusInSpacings = 7.5;
 constexpr double FlatnessRadiusInSigmas = 6.0;
-constexpr double FlatnessPointsPerBall = 128.0;
+constexpr double FlatnessPointsPerBall = 96.0;
 constexpr double FeatureExcess = 0.5;
 /// Points in the disc that measures the density.
 constexpr double DiscPoints = 40.0;
@@ -697,12 +697,15 @@ CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOpt
 #pragma omp for schedule(dynamic, 16)
       for (std::ptrdiff_t s = 0; s < static_cast<std::ptrdiff_t>(samples.size()); ++s)
       {
+        // The ball is centred on the surface the sample's previous fit found, as the ball-cut
+        // correction assumes; without one yet, a first fit around the sample finds it.
         double centre[3];
-        std::copy(cloud.Positions + 3 * samples[s], cloud.Positions + 3 * samples[s] + 3, centre);
+        const bool refit = fits[s].Fitted;
+        std::copy(refit ? fits[s].SurfacePoint : cloud.Positions + 3 * samples[s],
+          (refit ? fits[s].SurfacePoint : cloud.Positions + 3 * samples[s]) + 3,
+          centre);
         LocalFit fit;
-        // Twice: the second ball is centred on the surface found by the first, as the ball-cut
-        // correction assumes.
-        for (int pass = 0; pass < 2; ++pass)
+        for (int pass = refit ? 1 : 0; pass < 2; ++pass)
         {
           points.clear();
           grid.ForEachInBall(centre,

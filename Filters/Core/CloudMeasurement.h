@@ -17,7 +17,7 @@ struct ScaleMeasurementOptions
 {
   /// Points around which the surface is fitted, picked deterministically (stratified by index
   /// with a hashed offset). More gives steadier estimates; the cost grows linearly.
-  std::size_t NumberOfSamples = 1024;
+  std::size_t NumberOfSamples = 512;
   /// Optional: the indices of the sample points (into the cloud's points). When empty, the
   /// stratified sample above is used.
   std::vector<std::size_t> SampleIndices;
