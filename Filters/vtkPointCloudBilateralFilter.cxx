@@ -1,4 +1,5 @@
 #include "vtkPointCloudBilateralFilter.h"
+#include "vtkPointCloudVertices.h"
 
 #include "BilateralFilter.h"
 
@@ -72,20 +73,6 @@ struct CopyKeptPositions
     }
   }
 };
-
-vtkSmartPointer<vtkCellArray> OneVertexPerPoint(vtkIdType numberOfPoints)
-{
-  vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(numberOfPoints + 1);
-  std::iota(offsets->GetPointer(0), offsets->GetPointer(0) + numberOfPoints + 1, vtkIdType(0));
-  vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(numberOfPoints);
-  std::iota(
-    connectivity->GetPointer(0), connectivity->GetPointer(0) + numberOfPoints, vtkIdType(0));
-  auto cells = vtkSmartPointer<vtkCellArray>::New();
-  cells->SetData(offsets, connectivity);
-  return cells;
-}
 
 bool HasCellsOtherThanVertices(vtkPointSet* input)
 {
@@ -302,7 +289,7 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     }
   }
   output->SetPoints(points);
-  output->SetVerts(OneVertexPerPoint(outputCount));
+  output->SetVerts(vtkPointCloudVertices(outputCount));
   // The radii used travel with the data (ParaView's Information panel shows them).
   output->GetFieldData()->PassData(input->GetFieldData());
   for (const auto& used : { std::make_pair("BilateralRadius", this->RadiusUsed),

@@ -1,8 +1,8 @@
 #include "vtkPointCloudTextReader.h"
+#include "vtkPointCloudVertices.h"
 
 #include "PointCloudText.h"
 
-#include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -66,13 +66,7 @@ int vtkPointCloudTextReader::RequestData(vtkInformation*,
   vtkNew<vtkPoints> points;
   points->SetData(MakeArray("Points", 3, table.Positions));
   output->SetPoints(points);
-  vtkNew<vtkCellArray> vertices;
-  vertices->AllocateExact(count, count);
-  for (vtkIdType id = 0; id < count; ++id)
-  {
-    vertices->InsertNextCell(1, &id);
-  }
-  output->SetVerts(vertices);
+  output->SetVerts(vtkPointCloudVertices(count));
 
   vtkPointData* pointData = output->GetPointData();
   if (this->HasNormals)
