@@ -299,16 +299,10 @@ struct MessageCatcher
     object->AddObserver(vtkCommand::ErrorEvent, this->Command);
   }
 
-  /// "vtkClass (0x...): text\n" -> "<path>: text" (the path once).
-  std::string Clean(std::string message) const
+  /// The event's message, starting with the path (once).
+  std::string Clean(const char* callData) const
   {
-    const std::size_t prefix = message.find("): ");
-    if (message.compare(0, 3, "vtk") == 0 && prefix != std::string::npos)
-    {
-      message = message.substr(prefix + 3);
-    }
-    const std::size_t lineEnd = message.find('\n');
-    message = message.substr(0, lineEnd);
+    std::string message = vtkPointCloudFileIO::EventMessage(callData);
     if (message.compare(0, this->Path.size(), this->Path) != 0)
     {
       message = this->Path + ": " + message;
@@ -320,6 +314,29 @@ struct MessageCatcher
 
 vtkPointCloudFileIO::vtkPointCloudFileIO() = default;
 vtkPointCloudFileIO::~vtkPointCloudFileIO() = default;
+
+std::string vtkPointCloudFileIO::EventMessage(const char* callData)
+{
+  std::string message = callData ? callData : "";
+  // "ERROR: In file.cxx, line N\n" (or "Warning: ...") before the object, in VTK 9.2.
+  if (message.compare(0, 10, "ERROR: In ") == 0 || message.compare(0, 12, "Warning: In ") == 0)
+  {
+    const std::size_t lineEnd = message.find('\n');
+    message = lineEnd == std::string::npos ? std::string() : message.substr(lineEnd + 1);
+  }
+  const std::size_t prefix = message.find("): ");
+  if (message.compare(0, 3, "vtk") == 0 && prefix != std::string::npos &&
+      prefix < message.find('\n'))
+  {
+    message = message.substr(prefix + 3);
+  }
+  message = message.substr(0, message.find('\n'));
+  while (!message.empty() && (message.back() == ' ' || message.back() == '\r'))
+  {
+    message.pop_back();
+  }
+  return message;
+}
 
 const char* vtkPointCloudFileIO::GetSupportedExtensions()
 {

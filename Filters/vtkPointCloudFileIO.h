@@ -80,6 +80,12 @@ public:
   /// GetErrorMessage() on failure, leaving no file.
   bool Write(vtkPolyData* data, const char* path);
 
+  /**
+   * The message of a VTK ErrorEvent or WarningEvent (its call data) without what VTK's
+   * macros add around it ("ERROR: In file.cxx, line N", "vtkClass (0x...): "): one line.
+   */
+  static std::string EventMessage(const char* callData);
+
   /// Why the last Read() or Write() failed; empty after a success.
   const char* GetErrorMessage() const { return this->ErrorMessage.c_str(); }
 
