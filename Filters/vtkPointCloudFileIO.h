@@ -25,7 +25,7 @@
 
 #include "vtkFiltersPointCloudBilateralModule.h" // For export macro
 #include "vtkObject.h"
-#include "vtkSmartPointer.h" // For the reader and writer
+#include "vtkWrappingHints.h" // For VTK_NEWINSTANCE
 
 #include <string> // For the messages
 
@@ -58,11 +58,11 @@ public:
    * extension. It is not run and the file is not checked (see CheckInputFile()). The caller
    * owns it.
    */
-  static vtkAlgorithm* NewReader(const char* path);
+  VTK_NEWINSTANCE static vtkAlgorithm* NewReader(const char* path);
 
   /// A new writer for the path's extension with its file name set, or nullptr; the caller
   /// owns it. PLY writers write binary files.
-  static vtkAlgorithm* NewWriter(const char* path);
+  VTK_NEWINSTANCE static vtkAlgorithm* NewWriter(const char* path);
 
   /**
    * Checks a file before it is read: it exists and is not a folder; PLY and VTP files as said
