@@ -312,10 +312,23 @@ std::string WritePointCloudText(const std::string& path, const PointCloudTable& 
     table.Normals.size() == 3 * table.NumberOfPoints && !table.Normals.empty();
   const std::size_t columns = 3 + (withNormals ? 3 : 0) + table.ExtraColumns.size();
 
+  // The header line names the columns, so that reading the file back keeps the names.
+  std::string header = withNormals ? "x\ty\tz\tnx\tny\tnz" : "x\ty\tz";
+  for (std::size_t c = 0; c < table.ExtraColumns.size(); ++c)
+  {
+    std::string name = c < table.ExtraColumnNames.size() ? table.ExtraColumnNames[c] : "";
+    // A name is one field of the line: no spaces, and never empty.
+    std::replace_if(
+      name.begin(), name.end(), [](char ch) { return IsSpace(ch) || ch == '\n'; }, '_');
+    header +=
+      "\t" + (name.empty() ? "column" + std::to_string(4 + (withNormals ? 3 : 0) + c) : name);
+  }
+  header += "\n";
+  bool ok = std::fwrite(header.data(), 1, header.size(), file) == header.size();
+
   // Blocks of lines formatted in parallel, written in order.
   constexpr std::size_t PointsPerBlock = 1 << 13;
   const std::size_t blockCount = (table.NumberOfPoints + PointsPerBlock - 1) / PointsPerBlock;
-  bool ok = true;
   constexpr std::size_t BlocksAtOnce = 16; // about 10 MB of text at a time
   std::vector<std::string> blocks(std::min(blockCount, BlocksAtOnce));
   for (std::size_t first = 0; first < blockCount && ok; first += BlocksAtOnce)
