@@ -4,7 +4,7 @@
     pvbatch  Examples/Python/denoise.py IN OUT ...
     mpirun -np 2 pvbatch Examples/Python/denoise.py IN OUT ...
 
-IN and OUT: .ply, .vtp, or the authors' text format (.xyz, .txt). The script loads the
+IN and OUT: .ply, .vtp, .las, or the authors' text format (.xyz, .txt). The script loads the
 PointCloudBilateral plugin itself: from --plugin, from PV_PLUGIN_PATH (auto-loaded), or from the
 build or install tree that holds this script.
 """
@@ -42,9 +42,22 @@ def load_plugin(explicit):
     sys.exit(f"error: the {PLUGIN} plugin was not found: give --plugin PATH or set PV_PLUGIN_PATH")
 
 
+def check_input(path):
+    """The project's checks of damaged files (vtkPointCloudFileIO), when its Python package is
+    on the path: a damaged PLY, VTP or LAS file is one line here rather than VTK's messages."""
+    try:
+        from pointcloudbilateral import vtkPointCloudFileIO
+    except ImportError:
+        return
+    problem = vtkPointCloudFileIO.CheckInputFile(path)
+    if problem:
+        sys.exit(f"error: {problem}")
+
+
 def open_cloud(path, oriented_normals):
     if not os.path.isfile(path):
         sys.exit(f"error: {path}: no such file")
+    check_input(path)
     if path.endswith((".xyz", ".txt")):
         return simple.PointCloudTextReader(FileName=path, HasNormals=int(oriented_normals))
     reader = simple.OpenDataFile(path)
