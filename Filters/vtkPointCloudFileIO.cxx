@@ -513,7 +513,8 @@ bool vtkPointCloudFileIO::Write(vtkPolyData* data, const char* path)
       floatNormals->DeepCopy(normals);
       input->GetPointData()->SetNormals(floatNormals);
     }
-    for (const char* colours : { "RGB", "RGBA" })
+    // 8-bit colours only; a LAS file's 16-bit "RGB" has 8-bit "Colors" beside it.
+    for (const char* colours : { "Colors", "RGBA", "RGB" })
     {
       vtkDataArray* array = input->GetPointData()->GetArray(colours);
       if (array && array->GetDataType() == VTK_UNSIGNED_CHAR)

@@ -54,6 +54,21 @@ b = open(out, "rb").read()
 check(a[2038:2038 + 110000 * 34] == b[2038:2038 + 110000 * 34] and b[104] == 3,
       "the same point records and point format")
 
+# Filtered and written: the same header fields (point format, record length, scales,
+# offsets), the same VLRs (the coordinate system), every field but the coordinates unchanged.
+bilateral = simple.PointCloudBilateralFilter(Input=reader, Radius=10.0)
+filtered = os.path.join(scratch, "autzen_filtered.las")
+simple.SaveData(filtered, proxy=bilateral)
+c = open(filtered, "rb").read()
+check(len(c) == len(a) and c[94:107] == a[94:107] and c[131:179] == a[131:179],
+      "the filtered file keeps the header's offsets, counts, format, scales and offsets")
+check(c[227:2038] == a[227:2038], "and the VLRs (coordinate system)")
+moved = sum(1 for k in range(0, 110000, 97) if c[2038 + 34 * k: 2038 + 34 * k + 12] !=
+            a[2038 + 34 * k: 2038 + 34 * k + 12])
+unchanged = all(c[2038 + 34 * k + 12: 2038 + 34 * k + 34] == a[2038 + 34 * k + 12: 2038 + 34 * k + 34]
+                for k in range(0, 110000, 97))
+check(moved > 0 and unchanged, f"the coordinates moved ({moved} of 1134 sampled), nothing else")
+
 # A damaged file: one error, no points.
 damaged = os.path.join(folder, "permutations", "1.2-no-points.las")
 bad = simple.OpenDataFile(damaged)
