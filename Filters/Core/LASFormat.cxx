@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -930,24 +931,35 @@ std::string WriteLAS(const std::string& path,
                                 -std::numeric_limits<double>::infinity() },
         {},
         false };
+      // The extremes of the stored integers, in locals the loop keeps in registers; the
+      // bounds are computed from them once.
+      const double scale[3] = { h.Scale[0], h.Scale[1], h.Scale[2] };
+      const double offset[3] = { h.Offset[0], h.Offset[1], h.Offset[2] };
+      std::int32_t low[3] = { INT32_MAX, INT32_MAX, INT32_MAX };
+      std::int32_t high[3] = { INT32_MIN, INT32_MIN, INT32_MIN };
+      bool outOfRange = false;
       for (std::size_t i = 0; i < n; ++i)
       {
         const double* p = positions + 3 * (first + i);
         for (int axis = 0; axis < 3; ++axis)
         {
-          const double q = std::floor((p[axis] - h.Offset[axis]) / h.Scale[axis] + 0.5);
+          const double q = std::floor((p[axis] - offset[axis]) / scale[axis] + 0.5);
           // Also false for NaN.
-          if (!(q >= -2147483648.0 && q <= 2147483647.0))
-          {
-            summary.OutOfRange = true;
-            continue;
-          }
-          const auto stored = static_cast<std::int32_t>(q);
+          const bool fits = q >= -2147483648.0 && q <= 2147483647.0;
+          outOfRange = outOfRange || !fits;
+          const auto stored = fits ? static_cast<std::int32_t>(q) : 0;
           Store<std::int32_t>(block + i * stride + 4 * axis, stored);
-          const double value = stored * h.Scale[axis] + h.Offset[axis];
-          summary.Bounds[axis] = std::min(summary.Bounds[axis], value);
-          summary.Bounds[3 + axis] = std::max(summary.Bounds[3 + axis], value);
+          low[axis] = std::min(low[axis], stored);
+          high[axis] = std::max(high[axis], stored);
         }
+      }
+      summary.OutOfRange = outOfRange;
+      for (int axis = 0; axis < 3 && n > 0; ++axis)
+      {
+        const double a = low[axis] * scale[axis] + offset[axis];
+        const double z = high[axis] * scale[axis] + offset[axis];
+        summary.Bounds[axis] = std::min(a, z); // a negative scale swaps them
+        summary.Bounds[3 + axis] = std::max(a, z);
       }
       for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
       {
