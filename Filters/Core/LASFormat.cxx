@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <future>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -751,6 +752,19 @@ std::vector<std::uint8_t> EncodeHeader(const LASFileInfo& info,
   return out;
 }
 
+struct PackedField
+{
+  const std::uint8_t* Column;
+  unsigned Mask;
+  unsigned Shift;
+};
+
+struct PackedByte
+{
+  std::size_t ByteOffset;
+  std::vector<PackedField> Fields;
+};
+
 void AppendRecord(std::vector<std::uint8_t>& out, const LASRecord& record, bool extended)
 {
   const std::size_t headerSize = extended ? EVLRHeaderSize : VLRHeaderSize;
@@ -901,10 +915,35 @@ std::string WriteLAS(const std::string& path,
       returnDimension = static_cast<int>(d);
     }
   }
+  // The fields packed in bits of a byte, by byte: each byte is made in one pass over the
+  // points rather than one pass per field.
+  std::vector<PackedByte> packedBytes;
+  for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+  {
+    const LASDimension& dimension = info.Dimensions[d];
+    if (dimension.BitCount == 0 || !columns[d])
+    {
+      continue;
+    }
+    auto byte = std::find_if(packedBytes.begin(),
+      packedBytes.end(),
+      [&](const PackedByte& packed) { return packed.ByteOffset == dimension.ByteOffset; });
+    if (byte == packedBytes.end())
+    {
+      packedBytes.push_back(PackedByte{ dimension.ByteOffset, {} });
+      byte = packedBytes.end() - 1;
+    }
+    byte->Fields.push_back(PackedField{ static_cast<const std::uint8_t*>(columns[d]),
+      (1u << dimension.BitCount) - 1u,
+      static_cast<unsigned>(dimension.BitShift) });
+  }
   const std::size_t stride = h.RecordLength;
   constexpr std::size_t BlocksAtOnce = 128; // about 1M points, tens of MB, per write
   const std::size_t blockCount = (count + PointsPerBlock - 1) / PointsPerBlock;
-  std::vector<std::uint8_t> chunk(std::min(blockCount, BlocksAtOnce) * PointsPerBlock * stride);
+  // Two chunks: one is written (by another thread) while the next is encoded.
+  std::vector<std::uint8_t> chunks[2];
+  std::future<bool> writing;
+  auto finishWriting = [&]() { return !writing.valid() || writing.get(); };
   struct BlockSummary
   {
     double Bounds[6];
@@ -914,6 +953,8 @@ std::string WriteLAS(const std::string& path,
   std::vector<BlockSummary> summaries(blockCount);
   for (std::size_t firstBlock = 0; firstBlock < blockCount && ok; firstBlock += BlocksAtOnce)
   {
+    std::vector<std::uint8_t>& chunk = chunks[(firstBlock / BlocksAtOnce) % 2];
+    chunk.resize(std::min(blockCount, BlocksAtOnce) * PointsPerBlock * stride);
     const auto blocks = static_cast<std::int64_t>(std::min(BlocksAtOnce, blockCount - firstBlock));
 #pragma omp parallel for schedule(static)
     for (std::int64_t b = 0; b < blocks; ++b)
@@ -971,17 +1012,22 @@ std::string WriteLAS(const std::string& path,
         const std::size_t bytes = LASSizeOf(dimension.Type) * dimension.Components;
         const auto* from = static_cast<const std::uint8_t*>(columns[d]) + first * bytes;
         std::uint8_t* to = block + dimension.ByteOffset;
-        if (dimension.BitCount > 0)
-        {
-          const unsigned mask = (1u << dimension.BitCount) - 1u;
-          for (std::size_t i = 0; i < n; ++i)
-          {
-            to[i * stride] |= static_cast<std::uint8_t>((from[i] & mask) << dimension.BitShift);
-          }
-        }
-        else
+        if (dimension.BitCount == 0)
         {
           ScatterBytes(from, to, stride, bytes, n);
+        }
+      }
+      for (const PackedByte& packed : packedBytes)
+      {
+        std::uint8_t* to = block + packed.ByteOffset;
+        for (std::size_t i = 0; i < n; ++i)
+        {
+          unsigned value = 0;
+          for (const PackedField& field : packed.Fields)
+          {
+            value |= (field.Column[first + i] & field.Mask) << field.Shift;
+          }
+          to[i * stride] = static_cast<std::uint8_t>(value);
         }
       }
       if (returnDimension >= 0)
@@ -1001,6 +1047,7 @@ std::string WriteLAS(const std::string& path,
     {
       if (summaries[firstBlock + static_cast<std::size_t>(b)].OutOfRange)
       {
+        finishWriting();
         return fail("a point's coordinates do not fit the LAS records' 32-bit integers with "
                     "the scale and offset of the header (or are not finite)");
       }
@@ -1008,8 +1055,11 @@ std::string WriteLAS(const std::string& path,
     const std::size_t first = firstBlock * PointsPerBlock;
     const std::size_t bytes =
       (std::min(count, first + static_cast<std::size_t>(blocks) * PointsPerBlock) - first) * stride;
-    ok = std::fwrite(chunk.data(), 1, bytes, file) == bytes;
+    ok = finishWriting();
+    writing = std::async(std::launch::async,
+      [&chunk, bytes, file]() { return std::fwrite(chunk.data(), 1, bytes, file) == bytes; });
   }
+  ok = finishWriting() && ok;
 
   std::vector<std::uint8_t> evlrBytes;
   for (const LASRecord* record : extended)
