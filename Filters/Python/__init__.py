@@ -2,7 +2,8 @@
 
     from pointcloudbilateral import vtkPointCloudBilateralFilter
 
-Classes: vtkPointCloudBilateralFilter, vtkPointCloudTextReader, vtkPointCloudTextWriter.
+Classes: vtkPointCloudBilateralFilter, vtkPointCloudTextReader, vtkPointCloudTextWriter, and
+vtkPPointCloudBilateralFilter (distributed runs under MPI) when the package was built with MPI.
 They work in pipelines with ParaView's ``vtkmodules``.
 """
 # The wrapped classes derive from VTK classes: their Python modules must be loaded first.
@@ -17,8 +18,15 @@ from .vtkFiltersPointCloudBilateral import (  # noqa: F401
     vtkPointCloudTextWriter,
 )
 
+try:
+    # Distributed runs, built when VTK has MPI.
+    import vtkmodules.vtkParallelCore  # noqa: F401
+    from .vtkFiltersParallelPointCloudBilateral import vtkPPointCloudBilateralFilter  # noqa: F401
+except ImportError:
+    pass
+
 __all__ = [
     "vtkPointCloudBilateralFilter",
     "vtkPointCloudTextReader",
     "vtkPointCloudTextWriter",
-]
+] + (["vtkPPointCloudBilateralFilter"] if "vtkPPointCloudBilateralFilter" in globals() else [])
