@@ -5,6 +5,7 @@
 // each process) with an in-process ghost exchange.
 #include "BilateralFilter.h"
 #include "CoreTesting.h"
+#include "SampleShapes.h"
 
 #include <algorithm>
 #include <array>
@@ -26,9 +27,9 @@ using pcbilateral::PointCloudView;
 /// ties in the order of a leaf.
 std::vector<double> MakeCloud(std::size_t count, unsigned seed)
 {
-  std::mt19937_64 random(seed);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  std::normal_distribution<double> noise(0.0, 0.004);
+  pcbilateral_samples::Random random(seed);
+  auto uniform = [&random]() { return random.Uniform(); };
+  auto noise = [&random]() { return 0.004 * random.Gaussian(); };
   std::vector<double> xyz;
   for (std::size_t i = 0; i < count; ++i)
   {
@@ -37,11 +38,11 @@ std::vector<double> MakeCloud(std::size_t count, unsigned seed)
       xyz.insert(xyz.end(), xyz.end() - 3, xyz.end()); // an exact duplicate of the last point
       continue;
     }
-    const double u = uniform(random);
-    const double v = uniform(random);
-    xyz.push_back(u + noise(random));
-    xyz.push_back(v + noise(random));
-    xyz.push_back(0.3 * std::abs(u - 0.5) + noise(random));
+    const double u = uniform();
+    const double v = uniform();
+    xyz.push_back(u + noise());
+    xyz.push_back(v + noise());
+    xyz.push_back(0.3 * std::abs(u - 0.5) + noise());
   }
   return xyz;
 }
