@@ -6,6 +6,7 @@
 // Formats by extension: .txt and .xyz (the authors' ASCII format), .las, .ply, .vtp. Errors
 // print one line and exit with status 1; a damaged input file is an error, never a cloud. Run with
 // -h for the options.
+#include "BilateralFilter.h"
 #include "vtkPointCloudBilateralFilter.h"
 #include "vtkPointCloudFileIO.h"
 
@@ -20,7 +21,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -126,7 +129,8 @@ void CheckFormat(const std::string& path, bool output)
   }
 }
 
-double ParseLength(const char* option, const char* text)
+/// A number; whether it is an acceptable radius is the core's to say (CheckParameters).
+double ParseNumber(const char* option, const char* text)
 {
   char* end = nullptr;
   const double value = std::strtod(text, &end);
@@ -134,20 +138,18 @@ double ParseLength(const char* option, const char* text)
   {
     Fail(std::string(option) + ": '" + text + "' is not a number");
   }
-  if (!std::isfinite(value) || value < 0.0)
-  {
-    Fail(std::string(option) + " must be a finite number >= 0 (0 means automatic), got " + text);
-  }
   return value;
 }
 
+/// A whole number; its limits are the core's (CheckParameters).
 int ParseCount(const char* option, const char* text)
 {
   char* end = nullptr;
+  errno = 0;
   const long value = std::strtol(text, &end, 10);
-  if (end == text || *end != '\0' || value < 0 || value > 1000000000L)
+  if (end == text || *end != '\0' || errno == ERANGE || value < INT_MIN || value > INT_MAX)
   {
-    Fail(std::string(option) + ": '" + text + "' is not a whole number >= 0");
+    Fail(std::string(option) + ": '" + text + "' is not a whole number");
   }
   return static_cast<int>(value);
 }
@@ -155,12 +157,13 @@ int ParseCount(const char* option, const char* text)
 struct Options
 {
   std::string Input, Output;
-  double Radius = 0.0;
-  double NormalRadius = 0.0;
-  int Iterations = 1;
+  // The core's defaults.
+  double Radius = pcbilateral::BilateralParameters().Radius;
+  double NormalRadius = pcbilateral::BilateralParameters().NormalRadius;
+  int Iterations = pcbilateral::BilateralParameters().NumberOfIterations;
   bool OrientedNormals = false;
-  int Threads = 0;
-  bool RemoveIsolated = false;
+  int Threads = pcbilateral::BilateralParameters().NumberOfThreads;
+  bool RemoveIsolated = pcbilateral::BilateralParameters().RemoveIsolatedPoints;
 };
 
 Options ParseArguments(int argc, char* argv[])
@@ -185,11 +188,11 @@ Options ParseArguments(int argc, char* argv[])
     }
     else if (argument == "-r")
     {
-      options.Radius = ParseLength("-r", value());
+      options.Radius = ParseNumber("-r", value());
     }
     else if (argument == "-n")
     {
-      options.NormalRadius = ParseLength("-n", value());
+      options.NormalRadius = ParseNumber("-n", value());
     }
     else if (argument == "-N")
     {
@@ -227,6 +230,17 @@ Options ParseArguments(int argc, char* argv[])
   }
   options.Input = positional[0];
   options.Output = positional[1];
+  // The core's checks and messages, before any file is read.
+  pcbilateral::BilateralParameters parameters;
+  parameters.Radius = options.Radius;
+  parameters.NormalRadius = options.NormalRadius;
+  parameters.NumberOfIterations = options.Iterations;
+  parameters.NumberOfThreads = options.Threads;
+  const std::string problem = pcbilateral::CheckParameters(parameters);
+  if (!problem.empty())
+  {
+    Fail(problem);
+  }
   CheckFormat(options.Input, false);
   CheckFormat(options.Output, true);
   return options;

@@ -18,20 +18,24 @@ from paraview import simple
 
 PLUGIN = "PointCloudBilateral"
 HERE = os.path.dirname(os.path.abspath(__file__))
-# Where the plugin is relative to this script: the source tree next to a build/ folder, and the
-# install tree (<prefix>/share/pointcloudbilateral/examples/).
-CANDIDATES = [
-    os.path.join(HERE, "..", "..", "build", "lib", "paraview-5.11", "plugins", PLUGIN),
-    os.path.join(HERE, "..", "..", "..", "lib", "paraview-5.11", "plugins", PLUGIN),
-    os.path.join(HERE, "..", "..", "..", "lib", "*", "paraview-5.11", "plugins", PLUGIN),
-]
+
+
+def plugin_candidates():
+    """Where the plugin is relative to this script: the source tree next to a build/ folder, and
+    the install tree (<prefix>/share/pointcloudbilateral/examples/); ParaView's plugin folder is
+    named after its version (lib[/<arch>]/paraview-X.Y/plugins)."""
+    version = simple.GetParaViewVersion()
+    plugins = os.path.join(f"paraview-{version.major}.{version.minor}", "plugins", PLUGIN)
+    return [os.path.join(HERE, "..", "..", "build", "lib", plugins),
+            os.path.join(HERE, "..", "..", "..", "lib", plugins),
+            os.path.join(HERE, "..", "..", "..", "lib", "*", plugins)]
 
 
 def load_plugin(explicit):
     if hasattr(simple, "PointCloudBilateralFilter"):
         return "already loaded (PV_PLUGIN_PATH)"
     paths = [explicit] if explicit else []
-    for pattern in CANDIDATES:
+    for pattern in plugin_candidates():
         paths += glob.glob(os.path.join(pattern, PLUGIN + ".so"))
     for path in paths:
         if os.path.isfile(path):

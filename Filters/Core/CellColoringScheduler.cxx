@@ -1,5 +1,7 @@
 #include "CellColoringScheduler.h"
 
+#include "BitOperations.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -156,7 +158,7 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
 
   for (std::uint64_t leaves = this->Octree.GetLeafMask(cell); leaves != 0; leaves &= leaves - 1)
   {
-    const int localLeaf = __builtin_ctzll(leaves);
+    const int localLeaf = CountTrailingZeros(leaves);
     std::uint32_t begin, end;
     this->Octree.GetLeafRange(cell, localLeaf, begin, end);
     this->GatherCandidates(neighbours, localLeaf, scratch.Candidates);
@@ -275,7 +277,7 @@ double CellColoringScheduler::EstimateNeighboursPerPoint(std::size_t samples)
     for (std::uint64_t leaves = this->Octree.GetLeafMask(cell); leaves != 0; leaves &= leaves - 1)
     {
       std::uint32_t begin, end;
-      localLeaf = __builtin_ctzll(leaves);
+      localLeaf = CountTrailingZeros(leaves);
       this->Octree.GetLeafRange(cell, localLeaf, begin, end);
       if (index < end)
       {

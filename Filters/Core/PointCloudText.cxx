@@ -5,9 +5,10 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <sstream>
-#include <sys/stat.h>
+#include <system_error>
 
 namespace pcbilateral
 {
@@ -273,14 +274,15 @@ std::string ParsePointCloudText(const char* text,
 
 std::string ReadPointCloudText(const std::string& path, bool hasNormals, PointCloudTable& table)
 {
-  struct stat status;
-  if (stat(path.c_str(), &status) != 0)
-  {
-    return path + ": " + std::strerror(errno);
-  }
-  if (S_ISDIR(status.st_mode))
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error))
   {
     return path + ": is a directory, not a point file";
+  }
+  const std::uintmax_t fileSize = std::filesystem::file_size(path, error);
+  if (error)
+  {
+    return path + ": " + error.message();
   }
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr)
@@ -288,7 +290,7 @@ std::string ReadPointCloudText(const std::string& path, bool hasNormals, PointCl
     return path + ": cannot be opened for reading (" + std::strerror(errno) + ")";
   }
   // Not zero-filled first: the read fills it.
-  const auto size = static_cast<std::size_t>(status.st_size);
+  const auto size = static_cast<std::size_t>(fileSize);
   const std::unique_ptr<char[]> text(new char[size + 1]);
   const std::size_t read = std::fread(text.get(), 1, size, file);
   const bool failed = std::ferror(file) != 0;

@@ -3,8 +3,9 @@
     from pointcloudbilateral import vtkPointCloudBilateralFilter
 
 Classes: vtkPointCloudBilateralFilter, vtkPointCloudTextReader, vtkPointCloudTextWriter,
-vtkLASPointCloudReader, vtkLASPointCloudWriter (LAS files), and vtkPointCloudFileIO, which
-picks a reader or writer by extension and checks files before reading them::
+vtkLASPointCloudReader, vtkLASPointCloudWriter (LAS files), vtkPointCloudFileIO, which picks a
+reader or writer by extension and checks files before reading them, and
+vtkPPointCloudBilateralFilter (distributed runs under MPI) when the package was built with MPI::
 
     io = vtkPointCloudFileIO()
     cloud = vtkPolyData()
@@ -29,6 +30,13 @@ from .vtkFiltersPointCloudBilateral import (  # noqa: F401
     vtkPointCloudTextWriter,
 )
 
+try:
+    # Distributed runs, built when VTK has MPI.
+    import vtkmodules.vtkParallelCore  # noqa: F401
+    from .vtkFiltersParallelPointCloudBilateral import vtkPPointCloudBilateralFilter  # noqa: F401
+except ImportError:
+    pass
+
 __all__ = [
     "vtkLASPointCloudReader",
     "vtkLASPointCloudWriter",
@@ -36,4 +44,4 @@ __all__ = [
     "vtkPointCloudFileIO",
     "vtkPointCloudTextReader",
     "vtkPointCloudTextWriter",
-]
+] + (["vtkPPointCloudBilateralFilter"] if "vtkPPointCloudBilateralFilter" in globals() else [])
