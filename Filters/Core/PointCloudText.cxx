@@ -314,8 +314,12 @@ std::string WritePointCloudText(const std::string& path, const PointCloudTable& 
     table.Normals.size() == 3 * table.NumberOfPoints && !table.Normals.empty();
   const std::size_t columns = 3 + (withNormals ? 3 : 0) + table.ExtraColumns.size();
 
-  // The header line names the columns, so that reading the file back keeps the names.
-  std::string header = withNormals ? "x\ty\tz\tnx\tny\tnz" : "x\ty\tz";
+  // A header line names the extra columns, so that reading the file back keeps their names. A
+  // file of x y z [nx ny nz] alone needs none, and stays in the authors' format, which their
+  // program reads.
+  std::string header = table.ExtraColumns.empty() ? ""
+                       : withNormals              ? "x\ty\tz\tnx\tny\tnz"
+                                                  : "x\ty\tz";
   for (std::size_t c = 0; c < table.ExtraColumns.size(); ++c)
   {
     std::string name = c < table.ExtraColumnNames.size() ? table.ExtraColumnNames[c] : "";
@@ -325,7 +329,7 @@ std::string WritePointCloudText(const std::string& path, const PointCloudTable& 
     header +=
       "\t" + (name.empty() ? "column" + std::to_string(4 + (withNormals ? 3 : 0) + c) : name);
   }
-  header += "\n";
+  header += header.empty() ? "" : "\n";
   bool ok = std::fwrite(header.data(), 1, header.size(), file) == header.size();
 
   // Blocks of lines formatted in parallel, written in order.
