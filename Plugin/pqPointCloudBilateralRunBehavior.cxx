@@ -1,0 +1,191 @@
+#include "pqPointCloudBilateralRunBehavior.h"
+
+#include "pqApplicationCore.h"
+#include "pqCoreUtilities.h"
+#include "pqPipelineSource.h"
+#include "pqProgressManager.h"
+#include "pqServer.h"
+#include "pqServerManagerModel.h"
+#include "vtkAlgorithm.h"
+#include "vtkCommand.h"
+#include "vtkOutputWindow.h"
+#include "vtkSMProxy.h"
+
+#include <QApplication>
+#include <QEvent>
+#include <QMouseEvent>
+#include <QPointer>
+#include <QThread>
+#include <QWidget>
+#include <QWindow>
+
+#include <cstring>
+
+namespace
+{
+/// Qt's events are processed at most this often during a run (ParaView's progress interval).
+constexpr qint64 EventsIntervalMs = 100;
+
+/**
+ * Installed on the application while events are processed during a run:
+ * - timer events wait until the run has ended (a timer that is not handled fires again later),
+ *   so nothing a timer starts (a render of the view, a dialog with its own event loop, such as
+ *   the welcome dialog at start-up) runs in the middle of the filter;
+ * - key and mouse input is dropped unless it is for the progress manager's non-blockable
+ *   objects (its progress bar and Abort button). pqProgressManager's own filter means the same
+ *   but drops the press that Qt 5 first delivers to the window, so the Abort button never gets
+ *   it: the manager's filter is switched off meanwhile (pqProgressManager::unblockEvents), and
+ *   this one finds the widget under a window's mouse event.
+ * Repaints and queued calls (the Output Messages window showing a warning) are handled.
+ */
+class RunEventGate : public QObject
+{
+public:
+  explicit RunEventGate(const QList<QPointer<QObject>>& allowed)
+    : Allowed(allowed)
+  {
+  }
+
+  bool eventFilter(QObject* object, QEvent* event) override
+  {
+    switch (event->type())
+    {
+      case QEvent::Timer:
+        return true;
+      case QEvent::MouseButtonPress:
+      case QEvent::MouseButtonRelease:
+      case QEvent::MouseButtonDblClick:
+      {
+        QWidget* target = qobject_cast<QWidget*>(object);
+        if (!target && qobject_cast<QWindow*>(object))
+        {
+          target = QApplication::widgetAt(static_cast<QMouseEvent*>(event)->globalPos());
+        }
+        for (; target; target = target->parentWidget())
+        {
+          if (this->Allowed.contains(target))
+          {
+            return false;
+          }
+        }
+        return true;
+      }
+      case QEvent::KeyPress:
+      case QEvent::KeyRelease:
+      case QEvent::ShortcutOverride:
+      case QEvent::Wheel:
+        return true;
+      default:
+        return false;
+    }
+  }
+
+private:
+  const QList<QPointer<QObject>>& Allowed;
+};
+}
+
+pqPointCloudBilateralRunBehavior::pqPointCloudBilateralRunBehavior(QObject* parent)
+  : Superclass(parent)
+{
+}
+
+pqPointCloudBilateralRunBehavior::~pqPointCloudBilateralRunBehavior() = default;
+
+void pqPointCloudBilateralRunBehavior::startup()
+{
+  pqApplicationCore* core = pqApplicationCore::instance();
+  pqServerManagerModel* model = core->getServerManagerModel();
+  QObject::connect(model,
+    &pqServerManagerModel::sourceAdded,
+    this,
+    &pqPointCloudBilateralRunBehavior::onSourceAdded);
+  for (pqPipelineSource* source : model->findItems<pqPipelineSource*>())
+  {
+    this->onSourceAdded(source); // filters made before the plugin was loaded
+  }
+  QObject::connect(core->getProgressManager(),
+    &pqProgressManager::abort,
+    this,
+    &pqPointCloudBilateralRunBehavior::onAbort);
+}
+
+void pqPointCloudBilateralRunBehavior::shutdown()
+{
+  this->disconnect();
+}
+
+void pqPointCloudBilateralRunBehavior::onSourceAdded(pqPipelineSource* source)
+{
+  vtkSMProxy* proxy = source ? source->getProxy() : nullptr;
+  if (!proxy || !proxy->GetXMLName() ||
+      std::strcmp(proxy->GetXMLName(), "PointCloudBilateralFilter") != 0 ||
+      source->getServer()->isRemote())
+  {
+    return;
+  }
+  auto* algorithm = vtkAlgorithm::SafeDownCast(proxy->GetClientSideObject());
+  if (!algorithm)
+  {
+    return;
+  }
+  // The connections end with either object.
+  pqCoreUtilities::connect(algorithm, vtkCommand::StartEvent, this, SLOT(onRunStarted(vtkObject*)));
+  pqCoreUtilities::connect(
+    algorithm, vtkCommand::ProgressEvent, this, SLOT(onRunProgress(vtkObject*)));
+  pqCoreUtilities::connect(algorithm, vtkCommand::EndEvent, this, SLOT(onRunEnded(vtkObject*)));
+}
+
+void pqPointCloudBilateralRunBehavior::onRunStarted(vtkObject* algorithm)
+{
+  this->Running = vtkAlgorithm::SafeDownCast(algorithm);
+  this->SinceEvents.start();
+  pqApplicationCore::instance()->getProgressManager()->setEnableAbort(true);
+}
+
+void pqPointCloudBilateralRunBehavior::onRunProgress(vtkObject* algorithm)
+{
+  // The filter reports from its calling thread, the GUI's; a nested event loop is only safe there
+  // and only once at a time.
+  if (algorithm != this->Running || this->InEvents ||
+      QThread::currentThread() != QCoreApplication::instance()->thread() ||
+      this->SinceEvents.elapsed() < EventsIntervalMs)
+  {
+    return;
+  }
+  this->InEvents = true;
+  pqProgressManager* progress = pqApplicationCore::instance()->getProgressManager();
+  RunEventGate gate(progress->nonBlockableObjects());
+  QCoreApplication::instance()->installEventFilter(&gate);
+  const bool wasUnblocked = progress->unblockEvents(true);
+  QCoreApplication::processEvents(QEventLoop::ExcludeSocketNotifiers);
+  progress->unblockEvents(wasUnblocked);
+  QCoreApplication::instance()->removeEventFilter(&gate);
+  this->InEvents = false;
+  this->SinceEvents.start();
+}
+
+void pqPointCloudBilateralRunBehavior::onRunEnded(vtkObject* algorithm)
+{
+  if (algorithm == this->Running)
+  {
+    this->Running = nullptr;
+    pqApplicationCore::instance()->getProgressManager()->setEnableAbort(false);
+    if (static_cast<vtkAlgorithm*>(algorithm)->GetAbortExecute())
+    {
+      // The pipeline takes the aborted run as up to date: Apply alone would not run it again.
+      vtkOutputWindow::GetInstance()->DisplayWarningText(
+        "Point Cloud Bilateral Filter: aborted, the output is empty. Change a property and "
+        "Apply to run it again.");
+    }
+  }
+}
+
+void pqPointCloudBilateralRunBehavior::onAbort()
+{
+  if (this->Running)
+  {
+    // Polled by the filter between points; the run ends with an empty output.
+    this->Running->SetAbortExecute(1);
+  }
+}

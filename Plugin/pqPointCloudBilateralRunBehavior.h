@@ -1,0 +1,61 @@
+/**
+ * @class   pqPointCloudBilateralRunBehavior
+ * @brief   keeps ParaView 5.11's GUI alive while a Point Cloud Bilateral Filter runs, and makes
+ *          its Abort button stop the run
+ *
+ * In ParaView 5.11 a filter runs on the GUI thread (built-in session) and the GUI does not
+ * process events meanwhile: its progress manager's call to processEvents is commented out,
+ * and its Abort button only emits pqProgressManager::abort(), which nothing in 5.11 receives.
+ * So during a long run the window does not repaint, the Output Messages window shows the
+ * run's warnings only after it, and Abort does nothing. ParaView 5.12 does both in its
+ * progress manager; this auto-start object does the same for this plugin's filter only:
+ * - while the filter executes, Abort is enabled, and the filter's progress events (one per
+ *   0.1 s or so) let Qt process its pending events, at most every 0.1 s, timers excepted (they
+ *   fire after the run). The progress manager's event filter still drops key and mouse presses
+ *   everywhere but on the progress bar and its Abort button, so nothing else can be started
+ *   meanwhile;
+ * - pqProgressManager::abort() (the Abort button) sets the running filter's AbortExecute flag,
+ *   which the filter polls from its calling thread; the run stops and the output is empty.
+ * Only in a built-in session: with a remote server the filter runs in another process.
+ */
+#ifndef pqPointCloudBilateralRunBehavior_h
+#define pqPointCloudBilateralRunBehavior_h
+
+#include <QElapsedTimer>
+#include <QObject>
+
+#include "vtkWeakPointer.h"
+
+class pqPipelineSource;
+class vtkAlgorithm;
+class vtkObject;
+
+class pqPointCloudBilateralRunBehavior : public QObject
+{
+  Q_OBJECT
+  typedef QObject Superclass;
+
+public:
+  pqPointCloudBilateralRunBehavior(QObject* parent = nullptr);
+  ~pqPointCloudBilateralRunBehavior() override;
+
+  // The plugin's auto-start hooks.
+  void startup();
+  void shutdown();
+
+private Q_SLOTS:
+  void onSourceAdded(pqPipelineSource* source);
+  void onRunStarted(vtkObject* algorithm);
+  void onRunProgress(vtkObject* algorithm);
+  void onRunEnded(vtkObject* algorithm);
+  void onAbort();
+
+private:
+  vtkWeakPointer<vtkAlgorithm> Running;
+  QElapsedTimer SinceEvents;
+  bool InEvents = false;
+
+  Q_DISABLE_COPY(pqPointCloudBilateralRunBehavior)
+};
+
+#endif
