@@ -2,20 +2,27 @@
 
 #include "pqApplicationCore.h"
 #include "pqCoreUtilities.h"
+#include "pqDataRepresentation.h"
 #include "pqPipelineSource.h"
 #include "pqProgressManager.h"
+#include "pqRepresentation.h"
 #include "pqServer.h"
 #include "pqServerManagerModel.h"
 #include "vtkAlgorithm.h"
 #include "vtkCommand.h"
 #include "vtkOutputWindow.h"
+#include "vtkPVDataInformation.h"
+#include "vtkSMProperty.h"
+#include "vtkSMPropertyHelper.h"
 #include "vtkSMProxy.h"
+#include "vtkSMStringListDomain.h"
 
 #include <QApplication>
 #include <QEvent>
 #include <QMouseEvent>
 #include <QPointer>
 #include <QThread>
+#include <QTimer>
 #include <QWidget>
 #include <QWindow>
 
@@ -117,9 +124,22 @@ void pqPointCloudBilateralRunBehavior::shutdown()
 
 void pqPointCloudBilateralRunBehavior::onSourceAdded(pqPipelineSource* source)
 {
-  vtkSMProxy* proxy = source ? source->getProxy() : nullptr;
-  if (!proxy || !proxy->GetXMLName() ||
-      std::strcmp(proxy->GetXMLName(), "PointCloudBilateralFilter") != 0 ||
+  if (!source)
+  {
+    return;
+  }
+  QObject::connect(source,
+    &pqPipelineSource::representationAdded,
+    this,
+    [this](pqPipelineSource*, pqDataRepresentation* display, int)
+    { this->onRepresentationAdded(display); });
+  for (pqDataRepresentation* display : source->getRepresentations(nullptr))
+  {
+    this->onRepresentationAdded(display); // shown before the plugin's GUI part started
+  }
+
+  vtkSMProxy* proxy = source->getProxy();
+  if (!proxy->GetXMLName() || std::strcmp(proxy->GetXMLName(), "PointCloudBilateralFilter") != 0 ||
       source->getServer()->isRemote())
   {
     return;
@@ -134,6 +154,44 @@ void pqPointCloudBilateralRunBehavior::onSourceAdded(pqPipelineSource* source)
   pqCoreUtilities::connect(
     algorithm, vtkCommand::ProgressEvent, this, SLOT(onRunProgress(vtkObject*)));
   pqCoreUtilities::connect(algorithm, vtkCommand::EndEvent, this, SLOT(onRunEnded(vtkObject*)));
+}
+
+void pqPointCloudBilateralRunBehavior::onRepresentationAdded(pqRepresentation* representation)
+{
+  QPointer<pqDataRepresentation> display = qobject_cast<pqDataRepresentation*>(representation);
+  if (!display || !display->getProxy()->GetProperty("Representation"))
+  {
+    return;
+  }
+  // Once ParaView has set the new display up: Show chooses its representation type after
+  // registering it.
+  QTimer::singleShot(0,
+    this,
+    [display]()
+    {
+      vtkPVDataInformation* information = display ? display->getInputDataInformation() : nullptr;
+      if (!information || information->GetNumberOfPoints() == 0 ||
+          information->GetNumberOfCells() != 0)
+      {
+        return;
+      }
+      vtkSMProxy* proxy = display->getProxy();
+      vtkSMPropertyHelper type(proxy, "Representation");
+      auto* domain = proxy->GetProperty("Representation")->FindDomain<vtkSMStringListDomain>();
+      unsigned int index = 0;
+      if (!type.GetAsString() || std::strcmp(type.GetAsString(), "Surface") != 0 || !domain ||
+          !domain->IsInDomain("Point Gaussian", index))
+      {
+        return; // not the default, or not a render view's display
+      }
+      type.Set("Point Gaussian");
+      if (proxy->GetProperty("ShaderPreset"))
+      {
+        vtkSMPropertyHelper(proxy, "ShaderPreset").Set("Sphere");
+      }
+      proxy->UpdateVTKObjects();
+      display->renderViewEventually();
+    });
 }
 
 void pqPointCloudBilateralRunBehavior::onRunStarted(vtkObject* algorithm)

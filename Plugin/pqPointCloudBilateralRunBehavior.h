@@ -17,6 +17,12 @@
  * - pqProgressManager::abort() (the Abort button) sets the running filter's AbortExecute flag,
  *   which the filter polls from its calling thread; the run stops and the output is empty.
  * Only in a built-in session: with a remote server the filter runs in another process.
+ *
+ * It also shows point clouds without cells: ParaView 5.11 reads a PLY scan without faces (and a
+ * VTP without vertex cells) as points with no cells, which its default Surface representation,
+ * and Points too, draw as nothing, so a new user takes the file for empty. A new display in a
+ * render view whose data has points but no cells gets the Point Gaussian representation (it
+ * draws points, not cells) with the sphere shader; the user may change it as usual.
  */
 #ifndef pqPointCloudBilateralRunBehavior_h
 #define pqPointCloudBilateralRunBehavior_h
@@ -27,6 +33,7 @@
 #include "vtkWeakPointer.h"
 
 class pqPipelineSource;
+class pqRepresentation;
 class vtkAlgorithm;
 class vtkObject;
 
@@ -45,6 +52,7 @@ public:
 
 private Q_SLOTS:
   void onSourceAdded(pqPipelineSource* source);
+  void onRepresentationAdded(pqRepresentation* representation);
   void onRunStarted(vtkObject* algorithm);
   void onRunProgress(vtkObject* algorithm);
   void onRunEnded(vtkObject* algorithm);
