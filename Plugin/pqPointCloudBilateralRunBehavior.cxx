@@ -12,6 +12,7 @@
 #include "vtkCommand.h"
 #include "vtkOutputWindow.h"
 #include "vtkPVDataInformation.h"
+#include "vtkPVRepresentedArrayListSettings.h"
 #include "vtkSMProperty.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMProxy.h"
@@ -110,6 +111,18 @@ void pqPointCloudBilateralRunBehavior::startup()
   for (pqPipelineSource* source : model->findItems<pqPipelineSource*>())
   {
     this->onSourceAdded(source); // filters made before the plugin was loaded
+  }
+  // The radii the filter records in its output's field data are for the Information panel and
+  // for scripts, not for colouring: keep them out of the colour-by lists (ParaView's "Filter
+  // Expressions" of the colour array list; editing that setting in the Settings dialog replaces
+  // these until the next start).
+  vtkPVRepresentedArrayListSettings* colourArrays =
+    vtkPVRepresentedArrayListSettings::GetInstance();
+  for (const char* expression : { "^BilateralRadius$", "^BilateralNormalRadius$" })
+  {
+    const int count = colourArrays->GetNumberOfFilterExpressions();
+    colourArrays->SetNumberOfFilterExpressions(count + 1);
+    colourArrays->SetFilterExpression(count, expression);
   }
   QObject::connect(core->getProgressManager(),
     &pqProgressManager::abort,

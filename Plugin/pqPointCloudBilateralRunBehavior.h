@@ -23,6 +23,9 @@
  * and Points too, draw as nothing, so a new user takes the file for empty. A new display in a
  * render view whose data has points but no cells gets the Point Gaussian representation (it
  * draws points, not cells) with the sphere shader; the user may change it as usual.
+ *
+ * And it keeps the filter's field arrays BilateralRadius and BilateralNormalRadius (one value
+ * each) out of the colour-by lists.
  */
 #ifndef pqPointCloudBilateralRunBehavior_h
 #define pqPointCloudBilateralRunBehavior_h
