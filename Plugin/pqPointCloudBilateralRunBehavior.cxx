@@ -16,6 +16,7 @@
 #include "vtkSMProperty.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMProxy.h"
+#include "vtkSMSettings.h"
 #include "vtkSMStringListDomain.h"
 
 #include <QApplication>
@@ -124,6 +125,14 @@ void pqPointCloudBilateralRunBehavior::startup()
     colourArrays->SetNumberOfFilterExpressions(count + 1);
     colourArrays->SetFilterExpression(count, expression);
   }
+  // A .xyz file opens with the Point Cloud Text Reader: ParaView 5.11's open dialog offers the
+  // PLOT3D reader first (it claims .xyz too, and gives an empty multiblock for a point file).
+  // This is ParaView's "default reader" setting, at a priority below the user's own settings
+  // (which then win) and never saved to them.
+  vtkSMSettings::GetInstance()->AddCollectionFromString(
+    R"json({ "settings": { "RepresentedArrayListSettings": { "ReaderDetails": [
+      "*.xyz", "Point Cloud Text Files", "PointCloudTextReader" ] } } })json",
+    0.1);
   QObject::connect(core->getProgressManager(),
     &pqProgressManager::abort,
     this,

@@ -25,7 +25,8 @@
  * draws points, not cells) with the sphere shader; the user may change it as usual.
  *
  * And it keeps the filter's field arrays BilateralRadius and BilateralNormalRadius (one value
- * each) out of the colour-by lists.
+ * each) out of the colour-by lists, and makes the Point Cloud Text Reader the default reader of
+ * .xyz files (ParaView's "default reader" setting, below the user's settings).
  */
 #ifndef pqPointCloudBilateralRunBehavior_h
 #define pqPointCloudBilateralRunBehavior_h
