@@ -3,7 +3,6 @@ plugin's GUI part sets up, and writes "ok: ..." or "FAILED: ..." lines to PCB_LO
 - after the filter has run, the arrays its display offers for colouring: the field arrays
   BilateralRadius and BilateralNormalRadius (the radii used, for the Information panel and
   scripts) must not be among them; DisplacementLength must;
-- Radius Used and Normal Radius Used are hidden while they hold 0 (before the first Apply);
 - the default reader of .xyz files (what File > Open uses without asking) is the Point Cloud
   Text Reader, not PLOT3D's."""
 import os
@@ -27,13 +26,6 @@ with open(os.environ["PCB_LOG"], "w") as log:
     check("DisplacementLength" in offered, f"colour-by offers {offered}")
     check("BilateralRadius" not in offered and "BilateralNormalRadius" not in offered,
           "colour-by does not offer the radii")
-
-    for name in ("RadiusUsed", "NormalRadiusUsed"):
-        hints = bilateral.GetProperty(name).SMProperty.GetHints()
-        decorator = hints.FindNestedElementByName("PropertyWidgetDecorator") if hints else None
-        check(decorator is not None and decorator.GetAttribute("mode") == "visibility" and
-              decorator.GetAttribute("value") == "0" and decorator.GetAttribute("inverse") == "1",
-              f"{name} is hidden in the Properties panel while it is 0")
 
     # ParaView's open dialog (pqLoadDataReaction) reads this setting: pattern, description,
     # reader name, three strings per entry, the last matching entry first.
