@@ -171,6 +171,7 @@ void pqPointCloudBilateralRunBehavior::onSourceAdded(pqPipelineSource* source)
   {
     return;
   }
+  this->Sources[algorithm] = source;
   // The connections end with either object.
   pqCoreUtilities::connect(algorithm, vtkCommand::StartEvent, this, SLOT(onRunStarted(vtkObject*)));
   pqCoreUtilities::connect(
@@ -247,6 +248,17 @@ void pqPointCloudBilateralRunBehavior::onRunProgress(vtkObject* algorithm)
 
 void pqPointCloudBilateralRunBehavior::onRunEnded(vtkObject* algorithm)
 {
+  // Once the Apply has finished (a pipeline request cannot be made from within one).
+  QPointer<pqPipelineSource> source = this->Sources.value(algorithm);
+  QTimer::singleShot(0,
+    this,
+    [source]()
+    {
+      if (source)
+      {
+        source->getProxy()->UpdatePropertyInformation();
+      }
+    });
   if (algorithm == this->Running)
   {
     this->Running = nullptr;

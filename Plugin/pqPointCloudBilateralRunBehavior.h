@@ -24,6 +24,10 @@
  * render view whose data has points but no cells gets the Point Gaussian representation (it
  * draws points, not cells) with the sphere shader; the user may change it as usual.
  *
+ * After each run it refreshes the filter's information properties (Radius Used, Normal Radius
+ * Used): the Properties panel reads them when Apply pushes the properties, before the run, so
+ * they showed the previous run's values.
+ *
  * And it keeps the filter's field arrays BilateralRadius and BilateralNormalRadius (one value
  * each) out of the colour-by lists, and makes the Point Cloud Text Reader the default reader of
  * .xyz files (ParaView's "default reader" setting, below the user's settings).
@@ -32,7 +36,9 @@
 #define pqPointCloudBilateralRunBehavior_h
 
 #include <QElapsedTimer>
+#include <QMap>
 #include <QObject>
+#include <QPointer>
 
 #include "vtkWeakPointer.h"
 
@@ -64,6 +70,7 @@ private Q_SLOTS:
 
 private:
   vtkWeakPointer<vtkAlgorithm> Running;
+  QMap<vtkObject*, QPointer<pqPipelineSource>> Sources;
   QElapsedTimer SinceEvents;
   bool InEvents = false;
 
