@@ -169,7 +169,13 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     {
       vtkErrorMacro(<< result.Error);
     }
-    return 0;
+    // A failed run is reported once, above, and gives an empty output; the request itself
+    // succeeds. Returning 0 would add the executive's "returned failure for request" dump of
+    // pipeline internals, and in ParaView it stops the update before the representation: the
+    // representation is then marked up to date without having run, so later valid runs were
+    // never shown (the render and the Information panel kept the data from before the error).
+    this->UpdateProgress(1.0);
+    return 1;
   }
   this->RecordRunInformation(result);
   if (result.Status == pcbilateral::BilateralStatus::Completed)

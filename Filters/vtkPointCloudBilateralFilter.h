@@ -49,6 +49,10 @@
  * Points with NaN or infinite coordinates are passed through unchanged, are never used as
  * neighbours, and are reported in one warning.
  *
+ * Bad parameters or an unusable input are reported by one error (an ErrorEvent); the output is
+ * then empty and the update itself succeeds, so a pipeline downstream (a ParaView view) runs on
+ * the empty output and shows the next valid result.
+ *
  * This class runs on one process: its input is the whole cloud, and it never communicates.
  * vtkPPointCloudBilateralFilter (module FiltersParallelPointCloudBilateral, built when VTK has
  * MPI) filters a cloud split across the processes of an MPI run, with the same result.

@@ -6,6 +6,7 @@
 #include "ProcessingOctree.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -273,6 +274,7 @@ struct BilateralRun::Internals
   bool Started = false;
   bool Finished = false;
   double LastReported = -1.0;
+  std::chrono::steady_clock::time_point LastReportTime;
   BilateralResult Result;
   /// The engine of a run without ghosts, kept from one iteration to the next.
   std::unique_ptr<IterationEngine> Engine;
@@ -288,10 +290,16 @@ struct BilateralRun::Internals
 
   void Report(double fraction)
   {
-    if (this->Observer.Progress && fraction - this->LastReported >= 0.01)
+    // Every 1 % of the run, and at least every 0.1 s while it runs, even when 1 % takes longer:
+    // a GUI that runs the filter on its own thread (ParaView) repaints and sees its Abort button
+    // only in these calls.
+    const auto now = std::chrono::steady_clock::now();
+    if (this->Observer.Progress && (fraction - this->LastReported >= 0.01 ||
+                                     now - this->LastReportTime >= std::chrono::milliseconds(100)))
     {
       this->Observer.Progress(fraction);
       this->LastReported = fraction;
+      this->LastReportTime = now;
     }
   }
 
