@@ -1,4 +1,5 @@
 #include "vtkPointCloudBilateralFilter.h"
+#include "vtkPointCloudVertices.h"
 
 #include "BilateralFilter.h"
 
@@ -12,7 +13,6 @@
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
-#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -22,12 +22,10 @@
 #include "vtkSmartPointer.h"
 
 #include <cmath>
-#include <cstring>
 #include <numeric>
 #include <vector>
 
 vtkStandardNewMacro(vtkPointCloudBilateralFilter);
-vtkCxxSetObjectMacro(vtkPointCloudBilateralFilter, Controller, vtkMultiProcessController);
 
 namespace
 {
@@ -73,20 +71,6 @@ struct CopyKeptPositions
   }
 };
 
-vtkSmartPointer<vtkCellArray> OneVertexPerPoint(vtkIdType numberOfPoints)
-{
-  vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(numberOfPoints + 1);
-  std::iota(offsets->GetPointer(0), offsets->GetPointer(0) + numberOfPoints + 1, vtkIdType(0));
-  vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(numberOfPoints);
-  std::iota(
-    connectivity->GetPointer(0), connectivity->GetPointer(0) + numberOfPoints, vtkIdType(0));
-  auto cells = vtkSmartPointer<vtkCellArray>::New();
-  cells->SetData(offsets, connectivity);
-  return cells;
-}
-
 bool HasCellsOtherThanVertices(vtkPointSet* input)
 {
   if (auto* polyData = vtkPolyData::SafeDownCast(input))
@@ -107,9 +91,34 @@ bool HasCellsOtherThanVertices(vtkPointSet* input)
 }
 } // namespace
 
+struct vtkPointCloudBilateralFilter::InputCloud
+{
+  std::vector<double> Positions;
+  std::vector<double> Orientation;
+
+  pcbilateral::PointCloudView View() const
+  {
+    pcbilateral::PointCloudView view;
+    view.NumberOfPoints = this->Positions.size() / 3;
+    view.Positions = this->Positions.data();
+    view.OrientationNormals = this->Orientation.empty() ? nullptr : this->Orientation.data();
+    return view;
+  }
+};
+
 vtkPointCloudBilateralFilter::vtkPointCloudBilateralFilter()
 {
-  this->SetController(vtkMultiProcessController::GetGlobalController());
+  const pcbilateral::BilateralParameters defaults;
+  this->Radius = defaults.Radius;
+  this->NormalRadius = defaults.NormalRadius;
+  this->NumberOfIterations = defaults.NumberOfIterations;
+  this->RemoveIsolatedPoints = defaults.RemoveIsolatedPoints;
+  this->NumberOfThreads = defaults.NumberOfThreads;
+}
+
+vtkPointCloudBilateralFilter::~vtkPointCloudBilateralFilter()
+{
+  this->SetOrientationArrayName(nullptr);
 }
 
 int vtkPointCloudBilateralFilter::FillInputPortInformation(int, vtkInformation* info)
@@ -131,135 +140,120 @@ pcbilateral::BilateralParameters vtkPointCloudBilateralFilter::MakeParameters() 
   return parameters;
 }
 
-int vtkPointCloudBilateralFilter::RequestInformation(vtkInformation*,
-  vtkInformationVector** inputVector,
-  vtkInformationVector*)
-{
-  // ParaView reads the "used" values when the pipeline information is updated, before the data
-  // is: resolve them here already, from the input as it is now. RequestData resolves them again
-  // the same way.
-  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
-  if (!input || input->GetNumberOfPoints() == 0 || !(this->Radius >= 0.0) ||
-      !(this->NormalRadius >= 0.0))
-  {
-    return 1;
-  }
-  if (this->Radius == 0.0 && this->IsDistributed())
-  {
-    // The automatic radius needs the whole cloud's extent, a collective reduction that
-    // RequestInformation must not start: RequestData resolves it.
-    return 1;
-  }
-  pcbilateral::CloudExtent extent;
-  if (this->Radius == 0.0 || this->NormalRadius == 0.0)
-  {
-    std::vector<double> positions;
-    ToDoubles(input->GetPoints()->GetData(), positions);
-    pcbilateral::PointCloudView cloud;
-    cloud.NumberOfPoints = static_cast<std::size_t>(input->GetNumberOfPoints());
-    cloud.Positions = positions.data();
-    extent = pcbilateral::MeasureCloud(cloud);
-  }
-  const pcbilateral::RadiiUsed radii = pcbilateral::ResolveRadii(this->MakeParameters(), extent);
-  this->RadiusUsed = radii.Radius;
-  this->NormalRadiusUsed = radii.NormalRadius;
-  return 1;
-}
-
-vtkPointCloudBilateralFilter::~vtkPointCloudBilateralFilter()
-{
-  this->SetOrientationArrayName(nullptr);
-  this->SetController(nullptr);
-}
-
 int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
   vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  this->RadiusUsed = 0.0;
-  this->NormalRadiusUsed = 0.0;
-  this->ProcessingDepth = 0;
-  this->NumberOfRemovedPoints = 0;
-  this->NumberOfNonFinitePoints = 0;
   output->Initialize();
-  if (!input)
+  this->RecordRunInformation(pcbilateral::BilateralResult());
+
+  InputCloud cloud;
+  const std::string problem = this->PrepareInput(input, cloud);
+  if (!problem.empty())
   {
-    vtkErrorMacro(<< "the input is not a vtkPointSet");
-    if (this->IsDistributed())
-    {
-      this->RunDistributed({}, this->MakeParameters(), {}, true); // the others are waiting
-    }
-    return 0;
+    vtkErrorMacro(<< problem);
   }
 
-  const vtkIdType numberOfPoints = input->GetNumberOfPoints();
-  std::vector<double> positions;
-  if (numberOfPoints > 0)
-  {
-    ToDoubles(input->GetPoints()->GetData(), positions);
-  }
-
-  const pcbilateral::BilateralParameters parameters = this->MakeParameters();
-  vtkPointData* inPD = input->GetPointData();
-  std::vector<double> orientation;
-  if (this->OrientNormals && numberOfPoints > 0)
-  {
-    vtkDataArray* reference = inPD->GetNormals();
-    if (this->OrientationArrayName && *this->OrientationArrayName)
-    {
-      reference = inPD->GetArray(this->OrientationArrayName);
-      if (!reference && std::strcmp(this->OrientationArrayName, "None") != 0)
-      {
-        vtkWarningMacro(<< "the input has no point array '" << this->OrientationArrayName
-                        << "': the estimated normals are not oriented");
-      }
-    }
-    if (reference && reference->GetNumberOfComponents() != 3)
-    {
-      vtkErrorMacro(<< "the orientation array '"
-                    << (reference->GetName() ? reference->GetName() : "(unnamed)") << "' has "
-                    << reference->GetNumberOfComponents() << " components, not 3");
-      if (this->IsDistributed())
-      {
-        this->RunDistributed({}, parameters, {}, true); // the others are waiting
-      }
-      return 0;
-    }
-    if (reference)
-    {
-      ToDoubles(reference, orientation);
-    }
-  }
-
-  pcbilateral::PointCloudView cloud;
-  cloud.NumberOfPoints = static_cast<std::size_t>(numberOfPoints);
-  cloud.Positions = positions.data();
-  cloud.OrientationNormals = orientation.empty() ? nullptr : orientation.data();
   pcbilateral::BilateralObserver observer;
   observer.Progress = [this](double fraction) { this->UpdateProgress(fraction); };
   observer.ShouldAbort = [this]() { return this->GetAbortExecute() != 0; };
   observer.Warning = [this](const std::string& warning) { vtkWarningMacro(<< warning); };
-
   this->UpdateProgress(0.0);
   const pcbilateral::BilateralResult result =
-    this->IsDistributed() ? this->RunDistributed(cloud, parameters, observer)
-                          : pcbilateral::RunBilateralFilter(cloud, parameters, observer);
+    this->RunCore(cloud.View(), this->MakeParameters(), observer, problem.empty());
   if (result.Status == pcbilateral::BilateralStatus::Failed)
   {
-    vtkErrorMacro(<< result.Error);
-    return 0;
+    if (problem.empty())
+    {
+      vtkErrorMacro(<< result.Error);
+    }
+    // A failed run is reported once, above, and gives an empty output; the request itself
+    // succeeds. Returning 0 would add the executive's "returned failure for request" dump of
+    // pipeline internals, and in ParaView it stops the update before the representation: the
+    // representation is then marked up to date without having run, so later valid runs were
+    // never shown (the render and the Information panel kept the data from before the error).
+    this->UpdateProgress(1.0);
+    return 1;
   }
+  this->RecordRunInformation(result);
+  if (result.Status == pcbilateral::BilateralStatus::Completed)
+  {
+    this->BuildOutput(input, cloud, result, output); // an aborted run leaves it empty
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+std::string vtkPointCloudBilateralFilter::PrepareInput(vtkPointSet* input, InputCloud& cloud)
+{
+  if (!input)
+  {
+    return "the input is not a vtkPointSet";
+  }
+  if (input->GetNumberOfPoints() == 0)
+  {
+    return std::string();
+  }
+  ToDoubles(input->GetPoints()->GetData(), cloud.Positions);
+  if (!this->OrientNormals)
+  {
+    return std::string();
+  }
+  vtkPointData* pointData = input->GetPointData();
+  vtkDataArray* reference = pointData->GetNormals();
+  if (this->OrientationArrayName && *this->OrientationArrayName)
+  {
+    reference = pointData->GetArray(this->OrientationArrayName);
+    if (!reference)
+    {
+      vtkWarningMacro(<< "the input has no point array '" << this->OrientationArrayName
+                      << "': the estimated normals are not oriented");
+    }
+  }
+  if (reference && reference->GetNumberOfComponents() != 3)
+  {
+    return std::string("the orientation array '") +
+           (reference->GetName() ? reference->GetName() : "(unnamed)") + "' has " +
+           std::to_string(reference->GetNumberOfComponents()) + " components, not 3";
+  }
+  if (reference)
+  {
+    ToDoubles(reference, cloud.Orientation);
+  }
+  return std::string();
+}
+
+pcbilateral::BilateralResult vtkPointCloudBilateralFilter::RunCore(
+  const pcbilateral::PointCloudView& cloud,
+  const pcbilateral::BilateralParameters& parameters,
+  const pcbilateral::BilateralObserver& observer,
+  bool preparedHere)
+{
+  if (!preparedHere)
+  {
+    return pcbilateral::BilateralResult(); // Failed; the error is reported already
+  }
+  return pcbilateral::RunBilateralFilter(cloud, parameters, observer);
+}
+
+void vtkPointCloudBilateralFilter::RecordRunInformation(const pcbilateral::BilateralResult& result)
+{
   this->RadiusUsed = result.RadiusUsed;
   this->NormalRadiusUsed = result.NormalRadiusUsed;
   this->ProcessingDepth = result.ProcessingDepth;
   this->NumberOfRemovedPoints = static_cast<vtkIdType>(result.NumberOfRemovedPoints);
   this->NumberOfNonFinitePoints = static_cast<vtkIdType>(result.NumberOfNonFinitePoints);
-  if (result.Status == pcbilateral::BilateralStatus::Aborted)
-  {
-    return 1; // an empty output
-  }
+}
+
+void vtkPointCloudBilateralFilter::BuildOutput(vtkPointSet* input,
+  const InputCloud& cloud,
+  const pcbilateral::BilateralResult& result,
+  vtkPolyData* output)
+{
+  vtkPointData* inPD = input->GetPointData();
+  const vtkIdType numberOfPoints = input->GetNumberOfPoints();
   if (numberOfPoints == 0)
   {
     // Nothing to filter; the output still has the input's (empty) arrays and field data.
@@ -271,7 +265,7 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     }
     output->GetPointData()->PassData(inPD);
     output->GetFieldData()->PassData(input->GetFieldData());
-    return 1;
+    return;
   }
   if (HasCellsOtherThanVertices(input))
   {
@@ -302,7 +296,7 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     }
   }
   output->SetPoints(points);
-  output->SetVerts(OneVertexPerPoint(outputCount));
+  output->SetVerts(vtkPointCloudVertices(outputCount));
   // The radii used travel with the data (ParaView's Information panel shows them).
   output->GetFieldData()->PassData(input->GetFieldData());
   for (const auto& used : { std::make_pair("BilateralRadius", this->RadiusUsed),
@@ -357,7 +351,7 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     lengths->SetNumberOfValues(outputCount);
     for (vtkIdType out = 0; out < outputCount; ++out)
     {
-      const double* before = positions.data() + 3 * kept[out];
+      const double* before = cloud.Positions.data() + 3 * kept[out];
       const double* after = result.Positions.data() + 3 * kept[out];
       const double length = std::sqrt((after[0] - before[0]) * (after[0] - before[0]) +
                                       (after[1] - before[1]) * (after[1] - before[1]) +
@@ -366,8 +360,6 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     }
     outPD->AddArray(lengths);
   }
-  this->UpdateProgress(1.0);
-  return 1;
 }
 
 void vtkPointCloudBilateralFilter::PrintSelf(ostream& os, vtkIndent indent)
@@ -384,7 +376,6 @@ void vtkPointCloudBilateralFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "GenerateEstimatedNormals: " << this->GenerateEstimatedNormals << "\n";
   os << indent << "GenerateDisplacementLength: " << this->GenerateDisplacementLength << "\n";
-  os << indent << "Controller: " << this->Controller << "\n";
   os << indent << "RadiusUsed: " << this->RadiusUsed << "\n";
   os << indent << "NormalRadiusUsed: " << this->NormalRadiusUsed << "\n";
   os << indent << "ProcessingDepth: " << this->ProcessingDepth << "\n";

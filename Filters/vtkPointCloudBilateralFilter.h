@@ -49,16 +49,13 @@
  * Points with NaN or infinite coordinates are passed through unchanged, are never used as
  * neighbours, and are reported in one warning.
  *
- * @par Distributed runs:
- * Under `mpirun pvbatch` (or any program with a vtkMPIController of several processes as the
- * Controller), each process's input is its part of the cloud, split in any way (a reader's
- * pieces, ParaView's Distribute Points, or empty on some processes). Each process filters its
- * own points and outputs only them, in their order and with all their arrays; the union of
- * the outputs is bit for bit the output of one process filtering the whole cloud. Before each
- * iteration, the processes exchange the current positions of their points within one radius
- * of each other's (with vtkDistributedPointCloudFilter::GetPointsInsideBounds); the automatic
- * radius and the octree come from the whole cloud's point count and bounds. Every process must
- * update the filter together, as with VTK's other parallel filters.
+ * Bad parameters or an unusable input are reported by one error (an ErrorEvent); the output is
+ * then empty and the update itself succeeds, so a pipeline downstream (a ParaView view) runs on
+ * the empty output and shows the next valid result.
+ *
+ * This class runs on one process: its input is the whole cloud, and it never communicates.
+ * vtkPPointCloudBilateralFilter (module FiltersParallelPointCloudBilateral, built when VTK has
+ * MPI) filters a cloud split across the processes of an MPI run, with the same result.
  *
  * @warning
  * The filter runs in parallel with OpenMP (NumberOfThreads, 0 for all cores), scheduled by the
@@ -67,7 +64,8 @@
  * georeferenced coordinates lose nothing.
  *
  * @sa
- * vtkPointSmoothingFilter vtkPointCloudTextReader vtkPointCloudTextWriter
+ * vtkPPointCloudBilateralFilter vtkPointSmoothingFilter vtkPointCloudTextReader
+ * vtkPointCloudTextWriter
  */
 
 #ifndef vtkPointCloudBilateralFilter_h
@@ -76,7 +74,9 @@
 #include "vtkFiltersPointCloudBilateralModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
-class vtkMultiProcessController;
+#include <string> // For PrepareInput
+
+class vtkPointSet;
 namespace pcbilateral
 {
 struct BilateralObserver;
@@ -113,7 +113,8 @@ public:
 
   ///@{
   /**
-   * Number of iterations N (default 1). 0 passes the points through unchanged.
+   * Number of iterations N (default 1). 0 passes the points through unchanged; more than
+   * 1000 is an error.
    */
   vtkSetMacro(NumberOfIterations, int);
   vtkGetMacro(NumberOfIterations, int);
@@ -124,8 +125,7 @@ public:
    * Flip the estimated normals to agree with reference normals (default on). The reference is
    * the point array named by OrientationArrayName if set, else the input's point normals; with
    * neither, normals keep the arbitrary sign of the eigen solver. A name that is not a point
-   * array of the input means no orientation: with a warning, unless the name is "None" (the
-   * "no array" entry of ParaView's chooser).
+   * array of the input means no orientation, with a warning.
    */
   vtkSetMacro(OrientNormals, bool);
   vtkGetMacro(OrientNormals, bool);
@@ -174,21 +174,9 @@ public:
 
   ///@{
   /**
-   * The processes sharing the cloud; by default the global controller, so that ParaView's
-   * proxies in `mpirun pvbatch` (or pvserver) work on the distributed cloud with nothing to
-   * set. With no controller or a single process, the input is the whole cloud. With several,
-   * the controller must be a vtkMPIController, and every process must update the filter.
-   */
-  virtual void SetController(vtkMultiProcessController*);
-  vtkGetObjectMacro(Controller, vtkMultiProcessController);
-  ///@}
-
-  ///@{
-  /**
    * What the last update used and did: the radius and normal radius (after the automatic
    * choices), the octree's processing depth, and the numbers of removed and non-finite points.
-   * In a distributed run they are the same on every process: the numbers are totals over all
-   * processes.
+   * Zero until an update has run the filter, and after an update that failed.
    */
   vtkGetMacro(RadiusUsed, double);
   vtkGetMacro(NormalRadiusUsed, double);
@@ -202,16 +190,27 @@ protected:
   ~vtkPointCloudBilateralFilter() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  double Radius = 0.0;
-  double NormalRadius = 0.0;
-  int NumberOfIterations = 1;
+  /**
+   * Runs the core on the prepared points. `preparedHere` is false when this process could not
+   * prepare its input (its error is reported already): the run then fails, but an override that
+   * communicates (vtkPPointCloudBilateralFilter) still takes part, so that no other process is
+   * left waiting. RequestData calls it exactly once per update.
+   */
+  virtual pcbilateral::BilateralResult RunCore(const pcbilateral::PointCloudView& cloud,
+    const pcbilateral::BilateralParameters& parameters,
+    const pcbilateral::BilateralObserver& observer,
+    bool preparedHere);
+
+  // The defaults are the core's (pcbilateral::BilateralParameters), set by the constructor.
+  double Radius;
+  double NormalRadius;
+  int NumberOfIterations;
   bool OrientNormals = true;
   char* OrientationArrayName = nullptr;
-  bool RemoveIsolatedPoints = false;
-  int NumberOfThreads = 0;
+  bool RemoveIsolatedPoints;
+  int NumberOfThreads;
   bool GenerateEstimatedNormals = false;
   bool GenerateDisplacementLength = false;
 
@@ -221,23 +220,17 @@ protected:
   vtkIdType NumberOfRemovedPoints = 0;
   vtkIdType NumberOfNonFinitePoints = 0;
 
-  vtkMultiProcessController* Controller = nullptr;
-
 private:
+  struct InputCloud;
   pcbilateral::BilateralParameters MakeParameters() const;
-
-  /// True when several processes share the cloud (see SetController).
-  bool IsDistributed() const;
-  /**
-   * The distributed counterpart of pcbilateral::RunBilateralFilter, for this process's part of
-   * the cloud (defined in vtkPointCloudBilateralFilterDistributed.cxx). Collective: every
-   * process calls it once per update, also when its own preparation failed (failedHere), so
-   * that the others return with an error instead of waiting for it.
-   */
-  pcbilateral::BilateralResult RunDistributed(const pcbilateral::PointCloudView& cloud,
-    const pcbilateral::BilateralParameters& parameters,
-    const pcbilateral::BilateralObserver& observer,
-    bool failedHere = false);
+  /// The input's positions and orientation normals as doubles; why they cannot be had, or empty.
+  std::string PrepareInput(vtkPointSet* input, InputCloud& cloud);
+  void RecordRunInformation(const pcbilateral::BilateralResult& result);
+  /// The output point cloud: the kept points, their arrays, the arrays the filter adds.
+  void BuildOutput(vtkPointSet* input,
+    const InputCloud& cloud,
+    const pcbilateral::BilateralResult& result,
+    vtkPolyData* output);
 
   vtkPointCloudBilateralFilter(const vtkPointCloudBilateralFilter&) = delete;
   void operator=(const vtkPointCloudBilateralFilter&) = delete;

@@ -1,8 +1,8 @@
 #include "vtkPointCloudTextReader.h"
+#include "vtkPointCloudVertices.h"
 
 #include "PointCloudText.h"
 
-#include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -13,6 +13,8 @@
 #include "vtkPolyData.h"
 
 #include <algorithm>
+#include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkPointCloudTextReader);
 
@@ -66,23 +68,45 @@ int vtkPointCloudTextReader::RequestData(vtkInformation*,
   vtkNew<vtkPoints> points;
   points->SetData(MakeArray("Points", 3, table.Positions));
   output->SetPoints(points);
-  vtkNew<vtkCellArray> vertices;
-  vertices->AllocateExact(count, count);
-  for (vtkIdType id = 0; id < count; ++id)
-  {
-    vertices->InsertNextCell(1, &id);
-  }
-  output->SetVerts(vertices);
+  output->SetVerts(vtkPointCloudVertices(count));
 
   vtkPointData* pointData = output->GetPointData();
   if (this->HasNormals)
   {
     pointData->SetNormals(MakeArray("Normals", 3, table.Normals));
   }
-  for (std::size_t column = 0; column < table.ExtraColumns.size(); ++column)
+  for (std::size_t column = 0; column < table.ExtraColumns.size();)
   {
-    pointData->AddArray(
-      MakeArray(table.ExtraColumnNames[column].c_str(), 1, table.ExtraColumns[column]));
+    // Columns "name:0", "name:1", ... (as the text writer names an array's components) are
+    // one array of as many components.
+    const std::string& first = table.ExtraColumnNames[column];
+    std::size_t components = 1;
+    if (first.size() > 2 && first.compare(first.size() - 2, 2, ":0") == 0)
+    {
+      const std::string base = first.substr(0, first.size() - 1);
+      while (column + components < table.ExtraColumns.size() &&
+             table.ExtraColumnNames[column + components] == base + std::to_string(components))
+      {
+        ++components;
+      }
+    }
+    if (components == 1)
+    {
+      pointData->AddArray(MakeArray(first.c_str(), 1, table.ExtraColumns[column]));
+      ++column;
+      continue;
+    }
+    std::vector<double> values(components * count);
+    for (std::size_t c = 0; c < components; ++c)
+    {
+      for (vtkIdType id = 0; id < count; ++id)
+      {
+        values[id * components + c] = table.ExtraColumns[column + c][id];
+      }
+    }
+    const std::string name = first.substr(0, first.size() - 2);
+    pointData->AddArray(MakeArray(name.c_str(), static_cast<int>(components), values));
+    column += components;
   }
   return 1;
 }

@@ -9,7 +9,9 @@
  *
  * The output has the points (double), one vertex cell per point, the normals as the point
  * normals ("Normals"), and each further column as a double point array, named by the header
- * or "column4", "column5", ... by its position in the line.
+ * or "column4", "column5", ... by its position in the line. Columns named "name:0",
+ * "name:1", ... (as vtkPointCloudTextWriter names the components of an array) make one
+ * array "name" of as many components.
  *
  * Errors (missing file, a directory, a malformed line) name the file and the line; the
  * message of the last one is also available from GetErrorMessage().

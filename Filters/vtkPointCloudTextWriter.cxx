@@ -10,6 +10,8 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 
+#include <string>
+
 vtkStandardNewMacro(vtkPointCloudTextWriter);
 
 vtkPointCloudTextWriter::vtkPointCloudTextWriter() = default;
@@ -77,7 +79,13 @@ void vtkPointCloudTextWriter::WriteData()
         column[id] = array->GetComponent(id, component);
       }
       table.ExtraColumns.push_back(std::move(column));
-      table.ExtraColumnNames.emplace_back(array->GetName() ? array->GetName() : "");
+      // Components are "name:0", "name:1"...: the text reader makes them one array again.
+      std::string name = array->GetName() ? array->GetName() : "";
+      if (array->GetNumberOfComponents() > 1)
+      {
+        name += ":" + std::to_string(component);
+      }
+      table.ExtraColumnNames.push_back(name);
     }
   }
   this->ErrorMessage = pcbilateral::WritePointCloudText(this->FileName, table);

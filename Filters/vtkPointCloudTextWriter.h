@@ -2,9 +2,13 @@
  * @class   vtkPointCloudTextWriter
  * @brief   write a point cloud in the ASCII point format of the bilateral filter's authors
  *
- * One line per point, values separated by tabs: "x y z", then the point normals when
- * WriteNormals is on and the input has them, then every other point-data array in order, one
- * column per component. Numbers are written with the shortest digits that read back to the
+ * When the input has point arrays besides the normals, a header line naming the columns (the
+ * arrays' names; "name:0", "name:1", ... for the components of an array, which
+ * vtkPointCloudTextReader makes one array again; without such arrays there is no header, as in
+ * the authors' files), then one line
+ * per point, values separated by tabs: "x y z", then the point normals when WriteNormals is on
+ * and the input has them, then every other point-data array in order, one column per
+ * component. Numbers are written with the shortest digits that read back to the
  * same double. The file is written under a temporary name and renamed when complete, so a
  * failed write leaves no partial file.
  *

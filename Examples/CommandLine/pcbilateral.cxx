@@ -3,36 +3,35 @@
 //
 //   pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [-R] [-t THREADS] [--remove-isolated]
 //
-// Formats by extension: .txt and .xyz (the authors' ASCII format), .ply, .vtp. Errors print
-// one line and exit with status 1. Run with -h for the options.
+// Formats by extension: .txt and .xyz (the authors' ASCII format), .las, .ply, .vtp. Errors
+// print one line and exit with status 1; a damaged input file is an error, never a cloud. Run with
+// -h for the options.
+#include "BilateralFilter.h"
 #include "vtkPointCloudBilateralFilter.h"
-#include "vtkPointCloudTextReader.h"
-#include "vtkPointCloudTextWriter.h"
+#include "vtkPointCloudFileIO.h"
 
-#include "vtkAlgorithm.h"
-#include "vtkFloatArray.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkLogger.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOutputWindow.h"
-#include "vtkPLYReader.h"
-#include "vtkPLYWriter.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkSmartPointer.h"
-#include "vtkXMLPolyDataReader.h"
-#include "vtkXMLPolyDataWriter.h"
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <string>
-#include <sys/stat.h>
 #include <unistd.h>
+#include <vector>
 
 namespace
 {
@@ -40,7 +39,8 @@ const char* const Usage =
   "usage: pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [-R] [-t THREADS] [--remove-isolated]\n"
   "\n"
   "Denoises a point cloud with the bilateral filter (Digne & de Franchis, IPOL 2017).\n"
-  "INPUT and OUTPUT: .txt or .xyz (x y z [nx ny nz] [more columns]), .ply or .vtp.\n"
+  "INPUT and OUTPUT: .txt or .xyz (x y z [nx ny nz] [more columns]), .las (LiDAR,\n"
+  "uncompressed), .ply or .vtp.\n"
   "\n"
   "  -r R               neighbourhood radius (default: sqrt(20 / points) x largest extent)\n"
   "  -n RN              normal radius, the tolerance to the tangent plane (default: R)\n"
@@ -54,41 +54,45 @@ const char* const Usage =
   "parallel\n"
   "  -h, --help         this text\n";
 
-/// Prints VTK's errors and warnings as one line each, without the source location.
-class OneLineOutputWindow : public vtkOutputWindow
+/// Swallows what VTK prints by itself: the messages that matter come from the observers of
+/// the reader, the filter and the writer (see ReportMessages); the rest repeat them (the
+/// pipeline's "returned failure" reports) or are internals of VTK's readers.
+class QuietOutputWindow : public vtkOutputWindow
 {
 public:
-  static OneLineOutputWindow* New();
-  vtkTypeMacro(OneLineOutputWindow, vtkOutputWindow);
-
-  void DisplayText(const char* text) override
-  {
-    std::string message = text ? text : "";
-    // "ERROR: In file.cxx, line N\nvtkClass (0x...): the message\n\n"
-    const std::size_t lineEnd = message.find('\n');
-    if (lineEnd != std::string::npos && message.compare(0, 3, "In ") != 0)
-    {
-      const std::size_t objectEnd = message.find("): ", lineEnd);
-      if (objectEnd != std::string::npos)
-      {
-        message = message.substr(objectEnd + 3);
-      }
-    }
-    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
-    {
-      message.pop_back();
-    }
-    const bool isError = this->GetCurrentMessageType() == vtkOutputWindow::MESSAGE_TYPE_ERROR;
-    if (isError && this->ErrorSeen)
-    {
-      return; // the pipeline's own report of the same failure
-    }
-    std::fprintf(stderr, "pcbilateral: %s%s\n", isError ? "error: " : "warning: ", message.c_str());
-    this->ErrorSeen = this->ErrorSeen || isError;
-  }
-  bool ErrorSeen = false;
+  static QuietOutputWindow* New();
+  vtkTypeMacro(QuietOutputWindow, vtkOutputWindow);
+  void DisplayText(const char*) override {}
 };
-vtkStandardNewMacro(OneLineOutputWindow);
+vtkStandardNewMacro(QuietOutputWindow);
+
+/// Prints the filter's errors and warnings as one line each, as they arise.
+struct ReportMessages
+{
+  bool ErrorSeen = false;
+  vtkNew<vtkCallbackCommand> Command;
+
+  void Observe(vtkObject* object)
+  {
+    this->Command->SetClientData(this);
+    this->Command->SetCallback(
+      [](vtkObject*, unsigned long event, void* clientData, void* callData)
+      {
+        auto* self = static_cast<ReportMessages*>(clientData);
+        const std::string message =
+          vtkPointCloudFileIO::EventMessage(static_cast<const char*>(callData));
+        const bool isError = event == vtkCommand::ErrorEvent;
+        if (!(isError && self->ErrorSeen))
+        {
+          std::fprintf(
+            stderr, "pcbilateral: %s%s\n", isError ? "error: " : "warning: ", message.c_str());
+        }
+        self->ErrorSeen = self->ErrorSeen || isError;
+      });
+    object->AddObserver(vtkCommand::ErrorEvent, this->Command);
+    object->AddObserver(vtkCommand::WarningEvent, this->Command);
+  }
+};
 
 [[noreturn]] void Fail(const std::string& message)
 {
@@ -98,13 +102,7 @@ vtkStandardNewMacro(OneLineOutputWindow);
 
 std::string Extension(const std::string& path)
 {
-  const std::size_t dot = path.find_last_of('.');
-  const std::size_t slash = path.find_last_of('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
-  {
-    return std::string();
-  }
-  std::string extension = path.substr(dot);
+  std::string extension = std::filesystem::path(path).extension().string();
   std::transform(extension.begin(),
     extension.end(),
     extension.begin(),
@@ -117,16 +115,22 @@ bool IsText(const std::string& extension)
   return extension == ".txt" || extension == ".xyz";
 }
 
-void CheckFormat(const std::string& path)
+void CheckFormat(const std::string& path, bool output)
 {
-  const std::string extension = Extension(path);
-  if (!IsText(extension) && extension != ".ply" && extension != ".vtp")
+  if (!vtkPointCloudFileIO::IsSupported(path.c_str()))
   {
-    Fail(path + ": unsupported file type '" + extension + "' (use .txt, .xyz, .ply or .vtp)");
+    Fail(path + ": unsupported file type '" + Extension(path) + "' (use " +
+         vtkPointCloudFileIO::GetSupportedExtensions() + ")");
+  }
+  if (output && Extension(path) == ".laz")
+  {
+    Fail(path + ": compressed LAS (LAZ) is not written: write .las (then compress it with "
+                "laszip if needed)");
   }
 }
 
-double ParseLength(const char* option, const char* text)
+/// A number; whether it is an acceptable radius is the core's to say (CheckParameters).
+double ParseNumber(const char* option, const char* text)
 {
   char* end = nullptr;
   const double value = std::strtod(text, &end);
@@ -134,20 +138,18 @@ double ParseLength(const char* option, const char* text)
   {
     Fail(std::string(option) + ": '" + text + "' is not a number");
   }
-  if (!std::isfinite(value) || value < 0.0)
-  {
-    Fail(std::string(option) + " must be a finite number >= 0 (0 means automatic), got " + text);
-  }
   return value;
 }
 
+/// A whole number; its limits are the core's (CheckParameters).
 int ParseCount(const char* option, const char* text)
 {
   char* end = nullptr;
+  errno = 0;
   const long value = std::strtol(text, &end, 10);
-  if (end == text || *end != '\0' || value < 0 || value > 1000000000L)
+  if (end == text || *end != '\0' || errno == ERANGE || value < INT_MIN || value > INT_MAX)
   {
-    Fail(std::string(option) + ": '" + text + "' is not a whole number >= 0");
+    Fail(std::string(option) + ": '" + text + "' is not a whole number");
   }
   return static_cast<int>(value);
 }
@@ -155,12 +157,13 @@ int ParseCount(const char* option, const char* text)
 struct Options
 {
   std::string Input, Output;
-  double Radius = 0.0;
-  double NormalRadius = 0.0;
-  int Iterations = 1;
+  // The core's defaults.
+  double Radius = pcbilateral::BilateralParameters().Radius;
+  double NormalRadius = pcbilateral::BilateralParameters().NormalRadius;
+  int Iterations = pcbilateral::BilateralParameters().NumberOfIterations;
   bool OrientedNormals = false;
-  int Threads = 0;
-  bool RemoveIsolated = false;
+  int Threads = pcbilateral::BilateralParameters().NumberOfThreads;
+  bool RemoveIsolated = pcbilateral::BilateralParameters().RemoveIsolatedPoints;
 };
 
 Options ParseArguments(int argc, char* argv[])
@@ -185,11 +188,11 @@ Options ParseArguments(int argc, char* argv[])
     }
     else if (argument == "-r")
     {
-      options.Radius = ParseLength("-r", value());
+      options.Radius = ParseNumber("-r", value());
     }
     else if (argument == "-n")
     {
-      options.NormalRadius = ParseLength("-n", value());
+      options.NormalRadius = ParseNumber("-n", value());
     }
     else if (argument == "-N")
     {
@@ -227,100 +230,22 @@ Options ParseArguments(int argc, char* argv[])
   }
   options.Input = positional[0];
   options.Output = positional[1];
-  CheckFormat(options.Input);
-  CheckFormat(options.Output);
+  // The core's checks and messages, before any file is read.
+  pcbilateral::BilateralParameters parameters;
+  parameters.Radius = options.Radius;
+  parameters.NormalRadius = options.NormalRadius;
+  parameters.NumberOfIterations = options.Iterations;
+  parameters.NumberOfThreads = options.Threads;
+  const std::string problem = pcbilateral::CheckParameters(parameters);
+  if (!problem.empty())
+  {
+    Fail(problem);
+  }
+  CheckFormat(options.Input, false);
+  CheckFormat(options.Output, true);
   return options;
 }
 
-vtkSmartPointer<vtkAlgorithm> MakeReader(const Options& options)
-{
-  struct stat status;
-  if (stat(options.Input.c_str(), &status) != 0)
-  {
-    Fail(options.Input + ": " + std::strerror(errno));
-  }
-  if (S_ISDIR(status.st_mode))
-  {
-    Fail(options.Input + ": is a directory, not a point file");
-  }
-  const std::string extension = Extension(options.Input);
-  if (IsText(extension))
-  {
-    auto reader = vtkSmartPointer<vtkPointCloudTextReader>::New();
-    reader->SetFileName(options.Input.c_str());
-    reader->SetHasNormals(options.OrientedNormals);
-    return reader;
-  }
-  if (extension == ".ply")
-  {
-    auto reader = vtkSmartPointer<vtkPLYReader>::New();
-    reader->SetFileName(options.Input.c_str());
-    return reader;
-  }
-  auto reader = vtkSmartPointer<vtkXMLPolyDataReader>::New();
-  reader->SetFileName(options.Input.c_str());
-  return reader;
-}
-
-/// Writes PLY and VTP under a temporary name, then renames, so no partial file is left.
-bool WriteOutput(const Options& options, vtkPolyData* cloud)
-{
-  const std::string extension = Extension(options.Output);
-  if (IsText(extension))
-  {
-    // The authors' layout: the input's columns in order, no columns of the filter's own.
-    cloud->GetPointData()->RemoveArray("vtkOriginalPointIds");
-    vtkNew<vtkPointCloudTextWriter> writer;
-    writer->SetFileName(options.Output.c_str());
-    writer->SetWriteNormals(options.OrientedNormals);
-    writer->SetInputData(cloud);
-    return writer->Write() == 1 && writer->GetErrorMessage()[0] == '\0';
-  }
-  // The PLY writer appends ".ply" to a name without it: keep the extension last.
-  const std::string temporary =
-    options.Output.substr(0, options.Output.size() - extension.size()) + ".partial" + extension;
-  // The writers' own messages do not name the file: this program's one line below does.
-  vtkObject::GlobalWarningDisplayOff();
-  int written = 0;
-  if (extension == ".ply")
-  {
-    vtkNew<vtkPLYWriter> writer;
-    writer->SetFileName(temporary.c_str());
-    writer->SetFileTypeToBinary();
-    // PLY stores float normals only.
-    vtkDataArray* normals = cloud->GetPointData()->GetNormals();
-    if (normals && normals->GetDataType() != VTK_FLOAT)
-    {
-      vtkNew<vtkFloatArray> floatNormals;
-      floatNormals->DeepCopy(normals);
-      cloud->GetPointData()->SetNormals(floatNormals);
-    }
-    for (const char* colours : { "RGB", "RGBA" })
-    {
-      if (cloud->GetPointData()->GetArray(colours))
-      {
-        writer->SetArrayName(colours);
-      }
-    }
-    writer->SetInputData(cloud);
-    written = writer->Write();
-  }
-  else
-  {
-    vtkNew<vtkXMLPolyDataWriter> writer;
-    writer->SetFileName(temporary.c_str());
-    writer->SetInputData(cloud);
-    written = writer->Write();
-  }
-  vtkObject::GlobalWarningDisplayOn();
-  if (written != 1 || std::rename(temporary.c_str(), options.Output.c_str()) != 0)
-  {
-    const std::string reason = std::strerror(errno);
-    std::remove(temporary.c_str());
-    Fail(options.Output + ": cannot be written (" + reason + ")");
-  }
-  return true;
-}
 } // namespace
 
 /**
@@ -347,23 +272,26 @@ int main(int argc, char* argv[])
 {
   RestartWithHugePages(argv);
   vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
-  vtkNew<OneLineOutputWindow> messages;
-  vtkOutputWindow::SetInstance(messages);
+  vtkNew<QuietOutputWindow> quiet;
+  vtkOutputWindow::SetInstance(quiet);
   const Options options = ParseArguments(argc, argv);
 
-  vtkSmartPointer<vtkAlgorithm> reader = MakeReader(options);
-  reader->Update();
-  vtkPolyData* input = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
-  if (messages->ErrorSeen || !input)
+  // One place picks the reader and writer by extension and checks the file first.
+  vtkNew<vtkPointCloudFileIO> files;
+  files->SetOrientedNormals(options.OrientedNormals);
+  vtkNew<vtkPolyData> input;
+  if (!files->Read(options.Input.c_str(), input))
   {
-    return EXIT_FAILURE;
+    Fail(files->GetErrorMessage());
   }
   if (input->GetNumberOfPoints() == 0)
   {
     Fail(options.Input + ": contains no points");
   }
 
+  ReportMessages messages;
   vtkNew<vtkPointCloudBilateralFilter> filter;
+  messages.Observe(filter);
   filter->SetInputData(input);
   filter->SetRadius(options.Radius);
   filter->SetNormalRadius(options.NormalRadius);
@@ -374,7 +302,7 @@ int main(int argc, char* argv[])
   filter->Update();
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (messages->ErrorSeen)
+  if (messages.ErrorSeen)
   {
     return EXIT_FAILURE;
   }
@@ -397,9 +325,14 @@ int main(int argc, char* argv[])
       static_cast<long long>(filter->GetNumberOfRemovedPoints()));
   }
   std::printf("filtering:     %.3f s\n", seconds);
-  if (!WriteOutput(options, output))
+  if (IsText(Extension(options.Output)))
   {
-    return EXIT_FAILURE;
+    // The authors' layout: the input's columns in order, no columns of the filter's own.
+    output->GetPointData()->RemoveArray("vtkOriginalPointIds");
+  }
+  if (!files->Write(output, options.Output.c_str()))
+  {
+    Fail(files->GetErrorMessage());
   }
   std::printf("output:        %s, %lld points\n",
     options.Output.c_str(),

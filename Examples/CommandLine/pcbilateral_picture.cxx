@@ -3,18 +3,17 @@
 //
 //   pcbilateral_picture BEFORE AFTER OUTPUT.png [--caption-after TEXT] [--view X Y Z] [--zoom Z]
 //
-// BEFORE and AFTER: .txt, .xyz, .ply or .vtp. Both are drawn the same way (points as lit
+// BEFORE and AFTER: .txt, .xyz, .las, .ply or .vtp. Both are drawn the same way (points as lit
 // spheres, same camera), so differences are the filter's. --view sets the direction the camera
 // looks from (default 1 0.7 0.45), --zoom magnifies (default 1). Needs an X display (xvfb-run on a
 // headless machine).
-#include "vtkPointCloudTextReader.h"
+#include "vtkPointCloudFileIO.h"
 
 #include "vtkActor.h"
 #include "vtkAlgorithm.h"
 #include "vtkCamera.h"
 #include "vtkCoordinate.h"
 #include "vtkNew.h"
-#include "vtkPLYReader.h"
 #include "vtkPNGWriter.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
@@ -26,7 +25,6 @@
 #include "vtkTextProperty.h"
 #include "vtkVertexGlyphFilter.h"
 #include "vtkWindowToImageFilter.h"
-#include "vtkXMLPolyDataReader.h"
 
 #include <cmath>
 #include <cstdio>
@@ -37,29 +35,14 @@ namespace
 {
 vtkSmartPointer<vtkPolyData> Read(const std::string& path)
 {
-  const std::string extension = path.size() > 4 ? path.substr(path.size() - 4) : "";
-  vtkSmartPointer<vtkAlgorithm> reader;
-  if (extension == ".ply")
-  {
-    auto ply = vtkSmartPointer<vtkPLYReader>::New();
-    ply->SetFileName(path.c_str());
-    reader = ply;
-  }
-  else if (extension == ".vtp")
-  {
-    auto xml = vtkSmartPointer<vtkXMLPolyDataReader>::New();
-    xml->SetFileName(path.c_str());
-    reader = xml;
-  }
-  else
-  {
-    auto text = vtkSmartPointer<vtkPointCloudTextReader>::New();
-    text->SetFileName(path.c_str());
-    reader = text;
-  }
-  reader->Update();
+  // The same choice of reader, and the same checks of damaged files, as pcbilateral's.
+  vtkNew<vtkPointCloudFileIO> files;
   auto cloud = vtkSmartPointer<vtkPolyData>::New();
-  cloud->ShallowCopy(reader->GetOutputDataObject(0));
+  if (!files->Read(path.c_str(), cloud))
+  {
+    std::fprintf(stderr, "pcbilateral_picture: error: %s\n", files->GetErrorMessage());
+    std::exit(EXIT_FAILURE);
+  }
   if (cloud->GetNumberOfPoints() == 0)
   {
     std::fprintf(stderr, "pcbilateral_picture: error: %s: no points read\n", path.c_str());

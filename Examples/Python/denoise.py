@@ -4,7 +4,7 @@
     pvbatch  Examples/Python/denoise.py IN OUT ...
     mpirun -np 2 pvbatch Examples/Python/denoise.py IN OUT ...
 
-IN and OUT: .ply, .vtp, or the authors' text format (.xyz, .txt). The script loads the
+IN and OUT: .ply, .vtp, .las, or the authors' text format (.xyz, .txt). The script loads the
 PointCloudBilateral plugin itself: from --plugin, from PV_PLUGIN_PATH (auto-loaded), or from the
 build or install tree that holds this script.
 """
@@ -18,20 +18,24 @@ from paraview import simple
 
 PLUGIN = "PointCloudBilateral"
 HERE = os.path.dirname(os.path.abspath(__file__))
-# Where the plugin is relative to this script: the source tree next to a build/ folder, and the
-# install tree (<prefix>/share/pointcloudbilateral/examples/).
-CANDIDATES = [
-    os.path.join(HERE, "..", "..", "build", "lib", "paraview-5.11", "plugins", PLUGIN),
-    os.path.join(HERE, "..", "..", "..", "lib", "paraview-5.11", "plugins", PLUGIN),
-    os.path.join(HERE, "..", "..", "..", "lib", "*", "paraview-5.11", "plugins", PLUGIN),
-]
+
+
+def plugin_candidates():
+    """Where the plugin is relative to this script: the source tree next to a build/ folder, and
+    the install tree (<prefix>/share/pointcloudbilateral/examples/); ParaView's plugin folder is
+    named after its version (lib[/<arch>]/paraview-X.Y/plugins)."""
+    version = simple.GetParaViewVersion()
+    plugins = os.path.join(f"paraview-{version.major}.{version.minor}", "plugins", PLUGIN)
+    return [os.path.join(HERE, "..", "..", "build", "lib", plugins),
+            os.path.join(HERE, "..", "..", "..", "lib", plugins),
+            os.path.join(HERE, "..", "..", "..", "lib", "*", plugins)]
 
 
 def load_plugin(explicit):
     if hasattr(simple, "PointCloudBilateralFilter"):
         return "already loaded (PV_PLUGIN_PATH)"
     paths = [explicit] if explicit else []
-    for pattern in CANDIDATES:
+    for pattern in plugin_candidates():
         paths += glob.glob(os.path.join(pattern, PLUGIN + ".so"))
     for path in paths:
         if os.path.isfile(path):
@@ -42,9 +46,22 @@ def load_plugin(explicit):
     sys.exit(f"error: the {PLUGIN} plugin was not found: give --plugin PATH or set PV_PLUGIN_PATH")
 
 
+def check_input(path):
+    """The project's checks of damaged files (vtkPointCloudFileIO), when its Python package is
+    on the path: a damaged PLY, VTP or LAS file is one line here rather than VTK's messages."""
+    try:
+        from pointcloudbilateral import vtkPointCloudFileIO
+    except ImportError:
+        return
+    problem = vtkPointCloudFileIO.CheckInputFile(path)
+    if problem:
+        sys.exit(f"error: {problem}")
+
+
 def open_cloud(path, oriented_normals):
     if not os.path.isfile(path):
         sys.exit(f"error: {path}: no such file")
+    check_input(path)
     if path.endswith((".xyz", ".txt")):
         return simple.PointCloudTextReader(FileName=path, HasNormals=int(oriented_normals))
     reader = simple.OpenDataFile(path)

@@ -6,6 +6,7 @@
 #include "ProcessingOctree.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -41,12 +42,69 @@ int ResolveThreadCount(int requested)
 constexpr double MaximumExtentInRadii = 1e15;
 /// Positions stay below this magnitude, far from overflow.
 constexpr double MaximumMagnitude = 1e300;
-/// More iterations than this are refused: the paper uses a few, and each one may move the points
-/// by up to the radius, so that thousands would only collapse the cloud, slowly.
-constexpr int MaximumIterations = 1000;
 /// Above this mean number of neighbours per point, the run is warned about: it will be slow,
 /// and the radius was probably meant smaller (the paper's clouds have tens to hundreds).
 constexpr double ManyNeighbours = 10000.0;
+
+/// The margin of a ghost reach box beyond one radius, for the rounding of the box's own
+/// arithmetic; a larger box only brings candidates the kernel ignores.
+double GhostMargin(double radius, double magnitude)
+{
+  return 1.01 * radius + 1e-12 * magnitude;
+}
+
+struct RadiiUsed
+{
+  double Radius = 0.0;
+  double NormalRadius = 0.0;
+};
+
+/// The radius and normal radius a run uses on a cloud of this extent, the automatic choices
+/// resolved (both 0 when the cloud has no extent and the radius is automatic).
+RadiiUsed ResolveRadii(const BilateralParameters& parameters, const CloudExtent& extent)
+{
+  RadiiUsed radii;
+  radii.Radius = parameters.Radius > 0.0
+                   ? parameters.Radius
+                   : AutomaticRadius(extent.NumberOfFinitePoints, extent.LargestExtent());
+  radii.NormalRadius = parameters.NormalRadius > 0.0 ? parameters.NormalRadius : radii.Radius;
+  return radii;
+}
+
+/// Why a run with these parameters on a cloud of this extent (radius > 0 once resolved) cannot
+/// be computed in double precision, or empty: coordinates and N x radius near overflow, radii
+/// whose Gaussians cannot be computed, a cloud too many radii wide.
+std::string CheckPrecisionLimits(const BilateralParameters& parameters,
+  const CloudExtent& extent,
+  const RadiiUsed& radii)
+{
+  // Every position a run can reach must stay far from overflow, lattice coordinates (extent
+  // over radius) must fit in 64-bit integers with room to spare, and the Gaussians' scales
+  // must be finite.
+  const KernelConstants constants(radii.Radius, radii.NormalRadius);
+  std::ostringstream problem;
+  const double reach =
+    extent.LargestMagnitude() + 4.2 * (parameters.NumberOfIterations + 1.0) * radii.Radius;
+  if (!(reach < MaximumMagnitude))
+  {
+    problem << "coordinates up to " << extent.LargestMagnitude() << " with a radius of "
+            << radii.Radius << " come too close to the limits of double precision (keep "
+            << "coordinates and N x radius below " << MaximumMagnitude << ")";
+  }
+  else if (!std::isfinite(4.2 * radii.Radius) || !std::isfinite(constants.DistanceScale) ||
+           !std::isfinite(constants.NormalScale))
+  {
+    problem << "the radius " << radii.Radius << " or the normal radius " << radii.NormalRadius
+            << " is outside what double precision can compute with (about 1e-150 to 1e300)";
+  }
+  else if (extent.LargestExtent() / radii.Radius > MaximumExtentInRadii)
+  {
+    problem << "the radius " << radii.Radius << " is too small for a cloud "
+            << extent.LargestExtent() << " wide (it may be at most " << MaximumExtentInRadii
+            << " times smaller): give a larger radius";
+  }
+  return problem.str();
+}
 
 bool IsFiniteExtent(const CloudExtent& extent)
 {
@@ -100,102 +158,236 @@ CloudExtent MeasureCloud(const PointCloudView& cloud)
   return extent;
 }
 
-RadiiUsed ResolveRadii(const BilateralParameters& parameters, const CloudExtent& extent)
+CloudExtent MergeExtents(const CloudExtent& a, const CloudExtent& b)
 {
-  RadiiUsed radii;
-  radii.Radius = parameters.Radius > 0.0
-                   ? parameters.Radius
-                   : AutomaticRadius(extent.NumberOfFinitePoints, extent.LargestExtent());
-  radii.NormalRadius = parameters.NormalRadius > 0.0 ? parameters.NormalRadius : radii.Radius;
-  return radii;
+  if (a.NumberOfFinitePoints == 0)
+  {
+    return b;
+  }
+  if (b.NumberOfFinitePoints == 0)
+  {
+    return a;
+  }
+  CloudExtent merged;
+  merged.NumberOfFinitePoints = a.NumberOfFinitePoints + b.NumberOfFinitePoints;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    merged.Min[axis] = std::min(a.Min[axis], b.Min[axis]);
+    merged.Max[axis] = std::max(a.Max[axis], b.Max[axis]);
+  }
+  return merged;
 }
 
-std::string CheckPrecisionLimits(const BilateralParameters& parameters, const CloudExtent& extent)
+std::string CheckParameters(const BilateralParameters& parameters)
 {
-  // Every position a run can reach must stay far from overflow, lattice coordinates (extent
-  // over radius) must fit in 64-bit integers with room to spare, and the Gaussians' scales
-  // must be finite.
-  const RadiiUsed radii = ResolveRadii(parameters, extent);
-  const KernelConstants constants(radii.Radius, radii.NormalRadius);
-  std::ostringstream problem;
-  const double reach =
-    extent.LargestMagnitude() + 4.2 * (parameters.NumberOfIterations + 1.0) * radii.Radius;
-  if (!(reach < MaximumMagnitude))
-  {
-    problem << "coordinates up to " << extent.LargestMagnitude() << " with a radius of "
-            << radii.Radius << " come too close to the limits of double precision (keep "
-            << "coordinates and N x radius below " << MaximumMagnitude << ")";
-  }
-  else if (!std::isfinite(4.2 * radii.Radius) || !std::isfinite(constants.DistanceScale) ||
-           !std::isfinite(constants.NormalScale))
-  {
-    problem << "the radius " << radii.Radius << " or the normal radius " << radii.NormalRadius
-            << " is outside what double precision can compute with (about 1e-150 to 1e300)";
-  }
-  else if (extent.LargestExtent() / radii.Radius > MaximumExtentInRadii)
-  {
-    problem << "the radius " << radii.Radius << " is too small for a cloud "
-            << extent.LargestExtent() << " wide (it may be at most " << MaximumExtentInRadii
-            << " times smaller): give a larger radius";
-  }
-  return problem.str();
-}
-
-BilateralResult RunBilateralFilter(const PointCloudView& cloud,
-  const BilateralParameters& parameters,
-  const BilateralObserver& observer)
-{
-  BilateralResult result;
   if (!(std::isfinite(parameters.Radius) && parameters.Radius >= 0.0))
   {
-    result.Error = Describe("the radius", parameters.Radius);
-    return result;
+    return Describe("the radius", parameters.Radius);
   }
   if (!(std::isfinite(parameters.NormalRadius) && parameters.NormalRadius >= 0.0))
   {
-    result.Error = Describe("the normal radius", parameters.NormalRadius);
-    return result;
+    return Describe("the normal radius", parameters.NormalRadius);
   }
   if (parameters.NumberOfIterations < 0)
   {
-    result.Error =
-      "the number of iterations must be >= 0, got " + std::to_string(parameters.NumberOfIterations);
-    return result;
+    return "the number of iterations must be >= 0, got " +
+           std::to_string(parameters.NumberOfIterations);
   }
-  if (parameters.NumberOfIterations > MaximumIterations)
+  if (parameters.NumberOfIterations > limits::MaximumIterations)
   {
-    result.Error = "the number of iterations must be at most " + std::to_string(MaximumIterations) +
-                   ", got " + std::to_string(parameters.NumberOfIterations) +
-                   " (each iteration moves the points by up to the radius: a few are enough)";
-    return result;
+    return "the number of iterations must be at most " + std::to_string(limits::MaximumIterations) +
+           ", got " + std::to_string(parameters.NumberOfIterations) +
+           " (each iteration moves the points by up to the radius: a few are enough)";
   }
   if (parameters.NumberOfThreads < 0)
   {
-    result.Error = "the number of threads must be >= 0 (0 means all cores), got " +
-                   std::to_string(parameters.NumberOfThreads);
-    return result;
+    return "the number of threads must be >= 0 (0 means all cores), got " +
+           std::to_string(parameters.NumberOfThreads);
   }
-  if (cloud.NumberOfPoints > 0 && cloud.Positions == nullptr)
+  return std::string();
+}
+
+/**
+ * The octree, the scheduler and the per-point state of the points being filtered: a whole
+ * cloud for all its iterations, or one part and its ghosts for one iteration.
+ */
+class IterationEngine
+{
+public:
+  /// `state` holds the points' positions (the last `ghosts` of them ghosts), by id.
+  IterationEngine(PointState state,
+    const CloudExtent& extent,
+    const RadiiUsed& radii,
+    bool removeIsolatedPoints,
+    int threads)
+    : Octree(extent.Min, extent.Max, radii.Radius)
+    , Scheduler(this->Octree,
+        KernelConstants(radii.Radius, radii.NormalRadius),
+        radii.Radius,
+        removeIsolatedPoints,
+        threads)
+    , State(std::move(state))
+    , Threads(threads)
   {
-    result.Error = "the point cloud has no coordinates";
-    return result;
-  }
-  if (cloud.NumberOfGhostPoints > cloud.NumberOfPoints)
-  {
-    result.Error = "the point cloud has more ghost points than points";
-    return result;
-  }
-  if (parameters.GlobalExtent && !IsFiniteExtent(*parameters.GlobalExtent))
-  {
-    result.Error = "the global extent of the cloud is not finite";
-    return result;
-  }
-  if (cloud.NumberOfPoints > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
-  {
-    result.Error = "the point cloud has more than 2^31 - 1 points";
-    return result;
+    this->Octree.Load(this->State.Positions.data(), this->State.Removed.size());
   }
 
+  ProcessingOctree Octree;
+  CellColoringScheduler Scheduler;
+  PointState State;
+  int Threads;
+
+  /// Writes the points' last moves from the octree's layout back to their ids.
+  void ScatterMoves()
+  {
+    const std::uint32_t* ids = this->Octree.GetIds();
+    const double* moved[3] = {
+      this->Octree.GetMovedX(), this->Octree.GetMovedY(), this->Octree.GetMovedZ()
+    };
+    const auto count = static_cast<std::int64_t>(this->Octree.GetNumberOfPoints());
+    std::vector<double>& positions = this->State.Positions;
+    const std::vector<std::uint8_t>& removed = this->State.Removed;
+#pragma omp parallel for schedule(static) num_threads(this->Threads)
+    for (std::int64_t i = 0; i < count; ++i)
+    {
+      if (!removed[ids[i]])
+      {
+        for (int axis = 0; axis < 3; ++axis)
+        {
+          positions[3 * static_cast<std::size_t>(ids[i]) + axis] = moved[axis][i];
+        }
+      }
+    }
+  }
+};
+
+struct BilateralRun::Internals
+{
+  PointCloudView Cloud;
+  BilateralParameters Parameters;
+  BilateralObserver Observer;
+  int Threads = 1;
+  CloudExtent LocalExtent;
+  CloudExtent WholeExtent;
+  RadiiUsed Radii;
+  int Iteration = 0;
+  bool Started = false;
+  bool Finished = false;
+  double LastReported = -1.0;
+  std::chrono::steady_clock::time_point LastReportTime;
+  BilateralResult Result;
+  /// The engine of a run without ghosts, kept from one iteration to the next.
+  std::unique_ptr<IterationEngine> Engine;
+
+  void Warn(const std::string& warning)
+  {
+    this->Result.Warnings.push_back(warning);
+    if (this->Observer.Warning)
+    {
+      this->Observer.Warning(warning);
+    }
+  }
+
+  void Report(double fraction)
+  {
+    // Every 1 % of the run, and at least every 0.1 s while it runs, even when 1 % takes longer:
+    // a GUI that runs the filter on its own thread (ParaView) repaints and sees its Abort button
+    // only in these calls.
+    const auto now = std::chrono::steady_clock::now();
+    if (this->Observer.Progress && (fraction - this->LastReported >= 0.01 ||
+                                     now - this->LastReportTime >= std::chrono::milliseconds(100)))
+    {
+      this->Observer.Progress(fraction);
+      this->LastReported = fraction;
+      this->LastReportTime = now;
+    }
+  }
+
+  std::unique_ptr<IterationEngine> MakeEngine(PointState state)
+  {
+    auto engine = std::make_unique<IterationEngine>(std::move(state),
+      this->WholeExtent,
+      this->Radii,
+      this->Parameters.RemoveIsolatedPoints,
+      this->Threads);
+    this->Result.ProcessingDepth = engine->Octree.GetProcessingDepth();
+    CellColoringScheduler& scheduler = engine->Scheduler;
+    scheduler.ShouldAbort = this->Observer.ShouldAbort;
+    scheduler.ReportPoints = [this, &scheduler](std::size_t pointsDone)
+    {
+      const std::size_t total = std::max<std::size_t>(1, scheduler.GetNumberOfPointsProcessed());
+      this->Report(
+        (this->Iteration + static_cast<double>(pointsDone) / static_cast<double>(total)) /
+        this->Parameters.NumberOfIterations);
+    };
+    return engine;
+  }
+
+  /// One iteration of an engine; false if aborted.
+  bool Iterate(IterationEngine& engine)
+  {
+    engine.Octree.Compact(this->Threads);
+    if (this->Iteration == 0)
+    {
+      const double neighbours = engine.Scheduler.EstimateNeighboursPerPoint(32);
+      if (neighbours > ManyNeighbours)
+      {
+        std::ostringstream warning;
+        warning << "the radius " << this->Radii.Radius << " gives about "
+                << static_cast<long long>(neighbours)
+                << " neighbours per point, so the run will be slow (its time grows with that "
+                   "number): lower the radius, a few times the point spacing is usually enough";
+        this->Warn(warning.str());
+      }
+    }
+    if (!engine.Scheduler.RunIteration(engine.State))
+    {
+      return false;
+    }
+    this->Result.NumberOfNeighbourEvaluations += engine.Scheduler.GetNumberOfNeighbourEvaluations();
+    return true;
+  }
+
+  BilateralStatus EndIteration(bool completed)
+  {
+    if (!completed)
+    {
+      this->Result.Status = BilateralStatus::Aborted;
+      return this->Result.Status;
+    }
+    ++this->Iteration;
+    this->Report(static_cast<double>(this->Iteration) / this->Parameters.NumberOfIterations);
+    return this->Result.Status;
+  }
+};
+
+BilateralRun::BilateralRun(const PointCloudView& cloud,
+  const BilateralParameters& parameters,
+  const BilateralObserver& observer)
+  : Impl(std::make_unique<Internals>())
+{
+  Internals& run = *this->Impl;
+  run.Cloud = cloud;
+  run.Parameters = parameters;
+  run.Observer = observer;
+  BilateralResult& result = run.Result;
+  result.Error = CheckParameters(parameters);
+  if (result.Error.empty() && cloud.NumberOfPoints > 0 && cloud.Positions == nullptr)
+  {
+    result.Error = "the point cloud has no coordinates";
+  }
+  if (result.Error.empty() &&
+      cloud.NumberOfPoints > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+  {
+    result.Error = "the point cloud has more than 2^31 - 1 points";
+  }
+  if (!result.Error.empty())
+  {
+    result.Status = BilateralStatus::Failed;
+    return;
+  }
+  result.Status = BilateralStatus::Completed;
+  run.Threads = ResolveThreadCount(parameters.NumberOfThreads);
   const std::size_t n = cloud.NumberOfPoints;
   ReserveWithHugePages(3 * n, result.Positions);
   result.Positions.assign(cloud.Positions, cloud.Positions + 3 * n);
@@ -204,137 +396,273 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   {
     result.Normals.assign(3 * n, 0.0);
   }
+  run.LocalExtent = MeasureCloud(cloud);
+  result.NumberOfNonFinitePoints = n - run.LocalExtent.NumberOfFinitePoints;
+}
 
-  auto warn = [&](const std::string& warning)
+BilateralRun::~BilateralRun() = default;
+
+BilateralStatus BilateralRun::GetStatus() const
+{
+  return this->Impl->Result.Status;
+}
+
+const std::string& BilateralRun::GetError() const
+{
+  return this->Impl->Result.Error;
+}
+
+const CloudExtent& BilateralRun::GetLocalExtent() const
+{
+  return this->Impl->LocalExtent;
+}
+
+double BilateralRun::GetRadius() const
+{
+  return this->Impl->Radii.Radius;
+}
+
+double BilateralRun::GetNormalRadius() const
+{
+  return this->Impl->Radii.NormalRadius;
+}
+
+bool BilateralRun::Start(const CloudExtent& wholeCloud)
+{
+  Internals& run = *this->Impl;
+  BilateralResult& result = run.Result;
+  if (result.Status != BilateralStatus::Completed || run.Started)
   {
-    result.Warnings.push_back(warning);
-    if (observer.Warning)
-    {
-      observer.Warning(warning);
-    }
-  };
-
-  // Non-finite points are passed through and never become neighbours.
-  const CloudExtent localExtent = MeasureCloud(cloud);
-  const std::size_t finiteCount = localExtent.NumberOfFinitePoints;
-  const CloudExtent& extent = parameters.GlobalExtent ? *parameters.GlobalExtent : localExtent;
-  result.NumberOfNonFinitePoints = n - finiteCount;
+    return false;
+  }
+  run.Started = true;
+  if (!IsFiniteExtent(wholeCloud))
+  {
+    this->Stop(BilateralStatus::Failed, "the extent of the whole cloud is not finite");
+    return false;
+  }
+  run.WholeExtent = wholeCloud;
   if (result.NumberOfNonFinitePoints > 0)
   {
-    warn(std::to_string(result.NumberOfNonFinitePoints) +
-         " point(s) have NaN or infinite coordinates: they are passed through unchanged and are "
-         "never used as neighbours");
+    run.Warn(std::to_string(result.NumberOfNonFinitePoints) +
+             " point(s) have NaN or infinite coordinates: they are passed through unchanged and "
+             "are never used as neighbours");
   }
-  const RadiiUsed radii = ResolveRadii(parameters, extent);
-  result.RadiusUsed = radii.Radius;
-  result.NormalRadiusUsed = radii.NormalRadius;
-  result.Status = BilateralStatus::Completed;
-  if (finiteCount == 0 || parameters.NumberOfIterations == 0)
+  run.Radii = ResolveRadii(run.Parameters, wholeCloud);
+  result.RadiusUsed = run.Radii.Radius;
+  result.NormalRadiusUsed = run.Radii.NormalRadius;
+  if (wholeCloud.NumberOfFinitePoints == 0 || run.Parameters.NumberOfIterations == 0)
   {
-    return result;
+    return false;
   }
-  if (!(result.RadiusUsed > 0.0))
+  if (!(run.Radii.Radius > 0.0))
   {
-    warn("all points coincide, so no radius can be chosen automatically: the points are left "
-         "where they are");
-    return result;
+    run.Warn("all points coincide, so no radius can be chosen automatically: the points are "
+             "left where they are");
+    return false;
   }
-
-  const std::string problem = CheckPrecisionLimits(parameters, extent);
+  const std::string problem = CheckPrecisionLimits(run.Parameters, wholeCloud, run.Radii);
   if (!problem.empty())
   {
-    result.Status = BilateralStatus::Failed;
-    result.Error = problem;
-    return result;
+    this->Stop(BilateralStatus::Failed, problem);
+    return false;
   }
-  const KernelConstants constants(result.RadiusUsed, result.NormalRadiusUsed);
+  return true;
+}
 
-  const int threads = ResolveThreadCount(parameters.NumberOfThreads);
-  ProcessingOctree octree(extent.Min, extent.Max, result.RadiusUsed);
-  result.ProcessingDepth = octree.GetProcessingDepth();
-  octree.Load(cloud.Positions, n);
+bool BilateralRun::HasNextIteration() const
+{
+  const Internals& run = *this->Impl;
+  return run.Started && !run.Finished && run.Result.Status == BilateralStatus::Completed &&
+         run.Radii.Radius > 0.0 && run.WholeExtent.NumberOfFinitePoints > 0 &&
+         run.Iteration < run.Parameters.NumberOfIterations;
+}
 
+std::vector<double> BilateralRun::GetPositionsForOthers() const
+{
+  const BilateralResult& result = this->Impl->Result;
+  std::vector<double> positions;
+  for (std::size_t i = 0; i < result.Removed.size(); ++i)
+  {
+    const double* p = result.Positions.data() + 3 * i;
+    if (!result.Removed[i] && IsFinitePoint(p))
+    {
+      positions.insert(positions.end(), p, p + 3);
+    }
+  }
+  return positions;
+}
+
+void BilateralRun::GetGhostReach(double box[6]) const
+{
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    box[2 * axis] = std::numeric_limits<double>::max();
+    box[2 * axis + 1] = -std::numeric_limits<double>::max();
+  }
+  const std::vector<double> own = this->GetPositionsForOthers();
+  if (own.empty())
+  {
+    return;
+  }
+  double magnitude = 0.0;
+  for (std::size_t i = 0; i < own.size(); i += 3)
+  {
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      box[2 * axis] = std::min(box[2 * axis], own[i + axis]);
+      box[2 * axis + 1] = std::max(box[2 * axis + 1], own[i + axis]);
+      magnitude = std::max(magnitude, std::abs(own[i + axis]));
+    }
+  }
+  // Points move by less than a radius per iteration, but the box is taken from the current
+  // positions, so one radius of reach is enough.
+  const double margin = GhostMargin(this->Impl->Radii.Radius, magnitude);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    box[2 * axis] -= margin;
+    box[2 * axis + 1] += margin;
+  }
+}
+
+BilateralStatus BilateralRun::Step()
+{
+  Internals& run = *this->Impl;
+  if (!this->HasNextIteration())
+  {
+    return run.Result.Status;
+  }
+  if (!run.Engine)
+  {
+    // All points, their ids kept, for every iteration; the result's arrays become the engine's
+    // state and come back in Finish.
+    PointState state;
+    state.Positions = std::move(run.Result.Positions);
+    state.Normals = std::move(run.Result.Normals);
+    state.Removed = std::move(run.Result.Removed);
+    state.OrientationNormals = run.Cloud.OrientationNormals;
+    state.FirstGhost = run.Cloud.NumberOfPoints;
+    run.Engine = run.MakeEngine(std::move(state));
+  }
+  return run.EndIteration(run.Iterate(*run.Engine));
+}
+
+BilateralStatus BilateralRun::Step(const std::vector<double>& ghosts)
+{
+  Internals& run = *this->Impl;
+  if (!this->HasNextIteration())
+  {
+    return run.Result.Status;
+  }
+  BilateralResult& result = run.Result;
+  // This part's points that are not removed, then the ghosts; rebuilt for every iteration,
+  // since the ghosts change.
+  std::vector<std::size_t> active;
+  std::vector<double> view;
+  for (std::size_t i = 0; i < result.Removed.size(); ++i)
+  {
+    if (!result.Removed[i])
+    {
+      active.push_back(i);
+      view.insert(view.end(), &result.Positions[3 * i], &result.Positions[3 * i] + 3);
+    }
+  }
+  if (active.empty())
+  {
+    return run.EndIteration(true);
+  }
+  view.insert(view.end(), ghosts.begin(), ghosts.end());
+  // Orientation changes only the reported normals, which only the last iteration gives.
+  const bool last = run.Iteration + 1 == run.Parameters.NumberOfIterations;
+  const bool computeNormals = last && run.Parameters.ComputeNormals;
+  std::vector<double> orientation;
+  if (computeNormals && run.Cloud.OrientationNormals)
+  {
+    orientation.assign(view.size(), 0.0);
+    for (std::size_t j = 0; j < active.size(); ++j)
+    {
+      const double* o = run.Cloud.OrientationNormals + 3 * active[j];
+      std::copy(o, o + 3, orientation.begin() + 3 * j);
+    }
+  }
   PointState state;
-  state.Positions = std::move(result.Positions); // given back when the run ends
-  state.Normals = std::move(result.Normals);
-  state.Removed = std::move(result.Removed);
-  state.OrientationNormals = cloud.OrientationNormals;
-  state.FirstGhost = n - cloud.NumberOfGhostPoints;
-
-  CellColoringScheduler scheduler(
-    octree, constants, result.RadiusUsed, parameters.RemoveIsolatedPoints, threads);
-  const int iterations = parameters.NumberOfIterations;
-  int iteration = 0;
-  double lastReported = -1.0;
-  auto report = [&](double fraction)
+  state.Positions = std::move(view);
+  state.Removed.assign(state.Positions.size() / 3, 0);
+  if (computeNormals)
   {
-    if (observer.Progress && fraction - lastReported >= 0.01)
-    {
-      observer.Progress(fraction);
-      lastReported = fraction;
-    }
-  };
-  scheduler.ShouldAbort = observer.ShouldAbort;
-  scheduler.ReportPoints = [&](std::size_t pointsDone)
-  {
-    const std::size_t total = std::max<std::size_t>(1, scheduler.GetNumberOfPointsProcessed());
-    report((iteration + static_cast<double>(pointsDone) / static_cast<double>(total)) / iterations);
-  };
-
-  bool completed = true;
-  for (; iteration < iterations; ++iteration)
-  {
-    octree.Compact(threads);
-    if (iteration == 0)
-    {
-      const double neighbours = scheduler.EstimateNeighboursPerPoint(32);
-      if (neighbours > ManyNeighbours)
-      {
-        std::ostringstream warning;
-        warning << "the radius " << result.RadiusUsed << " gives about "
-                << static_cast<long long>(neighbours)
-                << " neighbours per point, so the run will be slow (its time grows with that "
-                   "number): lower the radius, a few times the point spacing is usually enough";
-        warn(warning.str());
-      }
-    }
-    if (!scheduler.RunIteration(state))
-    {
-      completed = false;
-      break;
-    }
-    result.NumberOfNeighbourEvaluations += scheduler.GetNumberOfNeighbourEvaluations();
-    report(static_cast<double>(iteration + 1) / iterations);
+    state.Normals.assign(state.Positions.size(), 0.0);
   }
-
-  // The points' last moves, from the octree's layout back to their ids.
+  state.OrientationNormals = orientation.empty() ? nullptr : orientation.data();
+  state.FirstGhost = active.size();
+  const std::unique_ptr<IterationEngine> engine = run.MakeEngine(std::move(state));
+  const bool completed = run.Iterate(*engine);
   if (completed)
   {
-    const std::uint32_t* ids = octree.GetIds();
-    const double* moved[3] = { octree.GetMovedX(), octree.GetMovedY(), octree.GetMovedZ() };
-    const auto count = static_cast<std::int64_t>(octree.GetNumberOfPoints());
-#pragma omp parallel for schedule(static) num_threads(threads)
-    for (std::int64_t i = 0; i < count; ++i)
+    engine->ScatterMoves();
+    const PointState& state = engine->State;
+    for (std::size_t j = 0; j < active.size(); ++j)
     {
-      if (!state.Removed[ids[i]])
+      const std::size_t i = active[j];
+      std::copy_n(state.Positions.data() + 3 * j, 3, result.Positions.data() + 3 * i);
+      result.Removed[i] = state.Removed[j];
+      if (computeNormals)
       {
-        for (int axis = 0; axis < 3; ++axis)
-        {
-          state.Positions[3 * static_cast<std::size_t>(ids[i]) + axis] = moved[axis][i];
-        }
+        std::copy_n(state.Normals.data() + 3 * j, 3, result.Normals.data() + 3 * i);
       }
     }
   }
-  result.Positions = std::move(state.Positions);
-  result.Normals = std::move(state.Normals);
-  result.Removed = std::move(state.Removed);
+  return run.EndIteration(completed);
+}
+
+void BilateralRun::Stop(BilateralStatus status, const std::string& error)
+{
+  BilateralResult& result = this->Impl->Result;
+  if (status == BilateralStatus::Completed || result.Status == BilateralStatus::Failed)
+  {
+    return;
+  }
+  result.Status = status;
+  if (status == BilateralStatus::Failed)
+  {
+    result.Error = error;
+  }
+}
+
+BilateralResult BilateralRun::Finish()
+{
+  Internals& run = *this->Impl;
+  BilateralResult& result = run.Result;
+  run.Finished = true;
+  if (run.Engine)
+  {
+    PointState& state = run.Engine->State;
+    if (result.Status == BilateralStatus::Completed)
+    {
+      run.Engine->ScatterMoves();
+    }
+    result.Positions = std::move(state.Positions);
+    result.Removed = std::move(state.Removed);
+    result.Normals = std::move(state.Normals);
+    run.Engine.reset();
+  }
   result.NumberOfRemovedPoints = static_cast<std::size_t>(
     std::count(result.Removed.begin(), result.Removed.end(), std::uint8_t{ 1 }));
-  if (!completed)
+  return std::move(result);
+}
+
+BilateralResult RunBilateralFilter(const PointCloudView& cloud,
+  const BilateralParameters& parameters,
+  const BilateralObserver& observer)
+{
+  BilateralRun run(cloud, parameters, observer);
+  if (run.Start(run.GetLocalExtent()))
   {
-    result.Status = BilateralStatus::Aborted;
+    while (run.HasNextIteration())
+    {
+      run.Step();
+    }
   }
-  return result;
+  return run.Finish();
 }
 
 } // namespace pcbilateral

@@ -1,12 +1,14 @@
 // Public entry point of the bilateral filter core: plain C++17, no VTK types. Every front end
-// (the VTK filter, the command-line program, the tests) drives this one function.
+// (the VTK filters, the command-line program, the tests) drives a BilateralRun, directly or
+// through RunBilateralFilter: one validation, one iteration loop, one place for progress,
+// warnings and counts.
 #ifndef pcbilateral_BilateralFilter_h
 #define pcbilateral_BilateralFilter_h
 
 #include <cstddef>
 #include <cstdint>
 #include <functional>
-#include <optional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -24,7 +26,17 @@ struct CloudExtent
   double LargestMagnitude() const;
 };
 
-/// Parameters in the paper's terms (section 5).
+/// Limits every front end enforces (the VTK class, the ParaView XML and the command line read
+/// them from here, so that they cannot disagree).
+namespace limits
+{
+/// More iterations than this are refused: the paper uses a few, and each one may move the points
+/// by up to the radius, so that thousands would only collapse the cloud, slowly.
+constexpr int MaximumIterations = 1000;
+} // namespace limits
+
+/// Parameters in the paper's terms (section 5). The member initialisers are the defaults of
+/// every front end.
 struct BilateralParameters
 {
   /// Neighbourhood radius r; sd = r / 3. Zero means automatic: sqrt(20 / number of points)
@@ -42,11 +54,11 @@ struct BilateralParameters
   int NumberOfThreads = 0;
   /// Also return the estimated normals of the last iteration.
   bool ComputeNormals = false;
-  /// Distributed runs: the extent of the whole cloud, all processes together. It fixes the
-  /// automatic radius and the octree's geometry, hence the order of every sum, so that each
-  /// process computes the bits a single process would. Empty: the extent of the given points.
-  std::optional<CloudExtent> GlobalExtent;
 };
+
+/// Why these parameters cannot run, in words for the user, or empty. The one check of every
+/// front end (a BilateralRun makes it first).
+std::string CheckParameters(const BilateralParameters& parameters);
 
 /// The points to filter. Arrays are interleaved x y z, NumberOfPoints triples.
 struct PointCloudView
@@ -55,10 +67,6 @@ struct PointCloudView
   const double* Positions = nullptr;
   /// Optional: each estimated normal is flipped to agree with this one.
   const double* OrientationNormals = nullptr;
-  /// The last NumberOfGhostPoints points are neighbours only: they are not filtered and keep
-  /// their positions. A distributed run passes here the points of other processes that lie
-  /// within reach of its own.
-  std::size_t NumberOfGhostPoints = 0;
 };
 
 /// Hooks called from the calling thread while the filter runs.
@@ -108,25 +116,95 @@ struct BilateralResult
 /// The automatic radius of the paper: sqrt(20 / numberOfPoints) * largestExtent.
 double AutomaticRadius(std::size_t numberOfPoints, double largestExtent);
 
+/// The extent of the finite points among a cloud's points.
 CloudExtent MeasureCloud(const PointCloudView& cloud);
+/// The extent of two parts of one cloud together.
+CloudExtent MergeExtents(const CloudExtent& a, const CloudExtent& b);
 
-/// The radius and normal radius a run uses on a cloud of this extent, the automatic choices
-/// resolved (both 0 when the cloud has no extent and the radius is automatic).
-struct RadiiUsed
+/// Whether p lies in box (xmin, xmax, ymin, ymax, zmin, zmax), bounds included.
+inline bool InsideBox(const double box[6], const double p[3])
 {
-  double Radius = 0.0;
-  double NormalRadius = 0.0;
+  return p[0] >= box[0] && p[0] <= box[1] && p[1] >= box[2] && p[1] <= box[3] && p[2] >= box[4] &&
+         p[2] <= box[5];
+}
+
+/**
+ * One run of the filter, one iteration at a time. RunBilateralFilter is the loop over it for a
+ * whole cloud; a distributed run (several parts of one cloud, in several processes) drives the
+ * same object on each part:
+ *
+ *   BilateralRun run(part, parameters, observer);    // checks the parameters and the part
+ *   run.Start(extent of the whole cloud);            // every part uses the same radii and octree
+ *   while (run.HasNextIteration())
+ *     run.Step(ghosts);   // ghosts: the other parts' points within GetGhostReach() of this one
+ *   BilateralResult result = run.Finish();
+ *
+ * With ghosts, each step rebuilds the octree from the part's points and the ghosts, which are
+ * neighbours only (never filtered, never moved). Because the octree's geometry comes from the
+ * whole cloud's extent and every sum runs in an order fixed by geometry, each part gets exactly
+ * the bits one run over the whole cloud gives its points. A run that is given no ghosts keeps
+ * its octree from one iteration to the next.
+ */
+class BilateralRun
+{
+public:
+  /// Checks the parameters and the cloud; a failure shows in GetStatus() and GetError(), and
+  /// the run then does nothing.
+  BilateralRun(const PointCloudView& cloud,
+    const BilateralParameters& parameters,
+    const BilateralObserver& observer = BilateralObserver());
+  ~BilateralRun();
+  BilateralRun(const BilateralRun&) = delete;
+  BilateralRun& operator=(const BilateralRun&) = delete;
+
+  /// Failed (with GetError()) or Aborted once the run ended that way, else Completed.
+  BilateralStatus GetStatus() const;
+  const std::string& GetError() const;
+
+  /// The extent of this run's own finite points.
+  const CloudExtent& GetLocalExtent() const;
+
+  /**
+   * Resolves the radii from the extent of the whole cloud (for a run on a whole cloud, its own
+   * GetLocalExtent()), warns about non-finite points, and checks the limits of double
+   * precision for the whole run. Returns whether there are iterations to run.
+   */
+  bool Start(const CloudExtent& wholeCloud);
+
+  /// Whether Step has an iteration left to run (false once the run failed or was aborted).
+  bool HasNextIteration() const;
+  /// The radius and normal radius used (valid after Start).
+  double GetRadius() const;
+  double GetNormalRadius() const;
+
+  /**
+   * The current positions, interleaved, of this run's points that other parts may need as
+   * neighbours (finite, not removed), and the box within reach of them: the other parts' points
+   * in it are this run's ghosts for the next step (more than needed is harmless, the kernel
+   * ignores candidates beyond the radius). The box is empty (min > max) when there are none.
+   */
+  std::vector<double> GetPositionsForOthers() const;
+  void GetGhostReach(double box[6]) const;
+
+  /// Runs the next iteration on this run's points alone. Returns the status after it.
+  BilateralStatus Step();
+  /// Runs the next iteration with ghost points (interleaved xyz) as extra neighbours.
+  BilateralStatus Step(const std::vector<double>& ghosts);
+
+  /// Ends the run early with this status, e.g. when another part failed or was aborted.
+  void Stop(BilateralStatus status, const std::string& error = std::string());
+
+  /// The result: positions by point id (each point's last position), normals, removed points,
+  /// counts. Call once, when no iteration is left or after Stop.
+  BilateralResult Finish();
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
 };
-RadiiUsed ResolveRadii(const BilateralParameters& parameters, const CloudExtent& extent);
 
-/// Why a run with these parameters on a cloud of this extent (radius > 0 once resolved) cannot
-/// be computed in double precision, or empty: coordinates and N x radius near overflow, radii
-/// whose Gaussians cannot be computed, a cloud too many radii wide. RunBilateralFilter checks
-/// it; a distributed run, which runs the core one iteration at a time, checks it for the whole
-/// run first.
-std::string CheckPrecisionLimits(const BilateralParameters& parameters, const CloudExtent& extent);
-
-/// Runs NumberOfIterations iterations of the bilateral filter on the cloud.
+/// Runs NumberOfIterations iterations of the bilateral filter on the cloud: a loop over a
+/// BilateralRun.
 BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   const BilateralParameters& parameters,
   const BilateralObserver& observer = BilateralObserver());

@@ -17,6 +17,7 @@
 #endif
 
 #include "BilateralKernel.h"
+#include "BitOperations.h"
 
 #include <cstdint>
 #include <cstring>
@@ -145,7 +146,7 @@ inline std::size_t SelectNeighbours(const double p[3],
     _mm512_storeu_pd(dx + neighbours, _mm512_maskz_compress_pd(inside, ox));
     _mm512_storeu_pd(dy + neighbours, _mm512_maskz_compress_pd(inside, oy));
     _mm512_storeu_pd(dz + neighbours, _mm512_maskz_compress_pd(inside, oz));
-    neighbours += static_cast<std::size_t>(__builtin_popcount(inside));
+    neighbours += static_cast<std::size_t>(PopCount(inside));
   }
 #else
   // Without a branch per candidate: most candidates are not neighbours, and a branch on that

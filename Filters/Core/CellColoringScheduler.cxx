@@ -1,5 +1,7 @@
 #include "CellColoringScheduler.h"
 
+#include "BitOperations.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -27,6 +29,11 @@ int CurrentThread()
 /// Report progress after this many points per thread, so the observer is called often
 /// enough for a smooth bar without costing anything next to the kernel.
 constexpr std::size_t PointsPerReport = 256;
+/// ... or after this many neighbour evaluations (some milliseconds), whichever comes first: with
+/// a radius as large as the cloud, 256 points are 256 times the whole cloud, which may take
+/// seconds on a busy machine, and the calling thread's reports are also when a GUI that runs the
+/// filter on its own thread (ParaView) repaints and sees its Abort button.
+constexpr std::uint64_t EvaluationsPerReport = 1u << 20;
 } // namespace
 
 CellColoringScheduler::CellColoringScheduler(ProcessingOctree& octree,
@@ -156,7 +163,7 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
 
   for (std::uint64_t leaves = this->Octree.GetLeafMask(cell); leaves != 0; leaves &= leaves - 1)
   {
-    const int localLeaf = __builtin_ctzll(leaves);
+    const int localLeaf = CountTrailingZeros(leaves);
     std::uint32_t begin, end;
     this->Octree.GetLeafRange(cell, localLeaf, begin, end);
     this->GatherCandidates(neighbours, localLeaf, scratch.Candidates);
@@ -173,10 +180,12 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
       }
       // Progress within the leaf: with a radius as large as the cloud, one leaf may hold every
       // point.
-      if (++scratch.PointsSinceReport >= PointsPerReport)
+      if (++scratch.PointsSinceReport >= PointsPerReport ||
+          scratch.EvaluationsSinceReport >= EvaluationsPerReport)
       {
         this->PointsDone.fetch_add(scratch.PointsSinceReport, std::memory_order_relaxed);
         scratch.PointsSinceReport = 0;
+        scratch.EvaluationsSinceReport = 0;
         if (isMaster && this->ReportPoints)
         {
           this->ReportPoints(this->PointsDone.load(std::memory_order_relaxed));
@@ -194,6 +203,7 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
       }
       const FilteredPoint filtered = FilterPoint(p, scratch.Candidates, this->Constants);
       scratch.NeighbourEvaluations += filtered.NeighbourCount;
+      scratch.EvaluationsSinceReport += scratch.Candidates.Size();
       const double moved[3] = { p[0] + filtered.Displacement * filtered.Normal[0],
         p[1] + filtered.Displacement * filtered.Normal[1],
         p[2] + filtered.Displacement * filtered.Normal[2] };
@@ -275,7 +285,7 @@ double CellColoringScheduler::EstimateNeighboursPerPoint(std::size_t samples)
     for (std::uint64_t leaves = this->Octree.GetLeafMask(cell); leaves != 0; leaves &= leaves - 1)
     {
       std::uint32_t begin, end;
-      localLeaf = __builtin_ctzll(leaves);
+      localLeaf = CountTrailingZeros(leaves);
       this->Octree.GetLeafRange(cell, localLeaf, begin, end);
       if (index < end)
       {
@@ -361,6 +371,7 @@ bool CellColoringScheduler::RunIteration(PointState& state)
   for (auto& scratch : this->Scratch)
   {
     scratch.PointsSinceReport = 0;
+    scratch.EvaluationsSinceReport = 0;
     this->NeighbourEvaluations += scratch.NeighbourEvaluations;
     scratch.NeighbourEvaluations = 0;
   }

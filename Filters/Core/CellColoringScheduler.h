@@ -75,6 +75,7 @@ private:
     CandidateNeighbours Candidates;
     std::vector<std::uint32_t> Deferred;
     std::size_t PointsSinceReport = 0;
+    std::uint64_t EvaluationsSinceReport = 0;
     std::uint64_t NeighbourEvaluations = 0;
   };
 

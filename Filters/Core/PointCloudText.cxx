@@ -5,9 +5,10 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <sstream>
-#include <sys/stat.h>
+#include <system_error>
 
 namespace pcbilateral
 {
@@ -273,14 +274,15 @@ std::string ParsePointCloudText(const char* text,
 
 std::string ReadPointCloudText(const std::string& path, bool hasNormals, PointCloudTable& table)
 {
-  struct stat status;
-  if (stat(path.c_str(), &status) != 0)
-  {
-    return path + ": " + std::strerror(errno);
-  }
-  if (S_ISDIR(status.st_mode))
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error))
   {
     return path + ": is a directory, not a point file";
+  }
+  const std::uintmax_t fileSize = std::filesystem::file_size(path, error);
+  if (error)
+  {
+    return path + ": " + error.message();
   }
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr)
@@ -288,7 +290,7 @@ std::string ReadPointCloudText(const std::string& path, bool hasNormals, PointCl
     return path + ": cannot be opened for reading (" + std::strerror(errno) + ")";
   }
   // Not zero-filled first: the read fills it.
-  const auto size = static_cast<std::size_t>(status.st_size);
+  const auto size = static_cast<std::size_t>(fileSize);
   const std::unique_ptr<char[]> text(new char[size + 1]);
   const std::size_t read = std::fread(text.get(), 1, size, file);
   const bool failed = std::ferror(file) != 0;
@@ -312,10 +314,27 @@ std::string WritePointCloudText(const std::string& path, const PointCloudTable& 
     table.Normals.size() == 3 * table.NumberOfPoints && !table.Normals.empty();
   const std::size_t columns = 3 + (withNormals ? 3 : 0) + table.ExtraColumns.size();
 
+  // A header line names the extra columns, so that reading the file back keeps their names. A
+  // file of x y z [nx ny nz] alone needs none, and stays in the authors' format, which their
+  // program reads.
+  std::string header = table.ExtraColumns.empty() ? ""
+                       : withNormals              ? "x\ty\tz\tnx\tny\tnz"
+                                                  : "x\ty\tz";
+  for (std::size_t c = 0; c < table.ExtraColumns.size(); ++c)
+  {
+    std::string name = c < table.ExtraColumnNames.size() ? table.ExtraColumnNames[c] : "";
+    // A name is one field of the line: no spaces, and never empty.
+    std::replace_if(
+      name.begin(), name.end(), [](char ch) { return IsSpace(ch) || ch == '\n'; }, '_');
+    header +=
+      "\t" + (name.empty() ? "column" + std::to_string(4 + (withNormals ? 3 : 0) + c) : name);
+  }
+  header += header.empty() ? "" : "\n";
+  bool ok = std::fwrite(header.data(), 1, header.size(), file) == header.size();
+
   // Blocks of lines formatted in parallel, written in order.
   constexpr std::size_t PointsPerBlock = 1 << 13;
   const std::size_t blockCount = (table.NumberOfPoints + PointsPerBlock - 1) / PointsPerBlock;
-  bool ok = true;
   constexpr std::size_t BlocksAtOnce = 16; // about 10 MB of text at a time
   std::vector<std::string> blocks(std::min(blockCount, BlocksAtOnce));
   for (std::size_t first = 0; first < blockCount && ok; first += BlocksAtOnce)

@@ -48,8 +48,10 @@ std::string ParsePointCloudText(const char* text,
 std::string ReadPointCloudText(const std::string& path, bool hasNormals, PointCloudTable& table);
 
 /**
- * Writes a table as text, one line per point, values separated by tabs, printed with the
- * shortest digits that read back to the same double. Writes to a temporary file beside `path`
+ * Writes a table as text: a header line naming the columns ("x y z", "nx ny nz" when there
+ * are normals, then the extra columns' names, with spaces replaced by '_'), then one line per
+ * point, values separated by tabs, printed with the shortest digits that read back to the
+ * same double. Writes to a temporary file beside `path`
  * and renames it, so that a failed write leaves no partial file. Returns an empty string on
  * success, else a one-line message.
  */

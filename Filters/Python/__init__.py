@@ -2,7 +2,15 @@
 
     from pointcloudbilateral import vtkPointCloudBilateralFilter
 
-Classes: vtkPointCloudBilateralFilter, vtkPointCloudTextReader, vtkPointCloudTextWriter.
+Classes: vtkPointCloudBilateralFilter, vtkPointCloudTextReader, vtkPointCloudTextWriter,
+vtkLASPointCloudReader, vtkLASPointCloudWriter (LAS files), vtkPointCloudFileIO, which picks a
+reader or writer by extension and checks files before reading them, and
+vtkPPointCloudBilateralFilter (distributed runs under MPI) when the package was built with MPI::
+
+    io = vtkPointCloudFileIO()
+    cloud = vtkPolyData()
+    if not io.Read("in.las", cloud):
+        raise SystemExit(io.GetErrorMessage())
 They work in pipelines with ParaView's ``vtkmodules``.
 """
 # The wrapped classes derive from VTK classes: their Python modules must be loaded first.
@@ -10,15 +18,30 @@ import vtkmodules.vtkCommonCore  # noqa: F401
 import vtkmodules.vtkCommonDataModel  # noqa: F401
 import vtkmodules.vtkCommonExecutionModel  # noqa: F401
 import vtkmodules.vtkIOCore  # noqa: F401
+import vtkmodules.vtkIOPLY  # noqa: F401
+import vtkmodules.vtkIOXML  # noqa: F401
 
 from .vtkFiltersPointCloudBilateral import (  # noqa: F401
+    vtkLASPointCloudReader,
+    vtkLASPointCloudWriter,
     vtkPointCloudBilateralFilter,
+    vtkPointCloudFileIO,
     vtkPointCloudTextReader,
     vtkPointCloudTextWriter,
 )
 
+try:
+    # Distributed runs, built when VTK has MPI.
+    import vtkmodules.vtkParallelCore  # noqa: F401
+    from .vtkFiltersParallelPointCloudBilateral import vtkPPointCloudBilateralFilter  # noqa: F401
+except ImportError:
+    pass
+
 __all__ = [
+    "vtkLASPointCloudReader",
+    "vtkLASPointCloudWriter",
     "vtkPointCloudBilateralFilter",
+    "vtkPointCloudFileIO",
     "vtkPointCloudTextReader",
     "vtkPointCloudTextWriter",
-]
+] + (["vtkPPointCloudBilateralFilter"] if "vtkPPointCloudBilateralFilter" in globals() else [])

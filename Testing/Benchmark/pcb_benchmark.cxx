@@ -10,11 +10,16 @@
 //       Each workload runs in a child process, so its peak resident memory is its own.
 //   pcb_benchmark --write-cube600k FILE.xyz
 //       writes the cube600k workload as an ASCII file, for other programs.
+//   pcb_benchmark [--runs N] --las FOLDER
+//       writes a 10,000,000-point LAS file (point format 3: GPS time and colours) in FOLDER,
+//       then times reading it (decoded into columns), writing it again, and a plain read and
+//       write of the file's bytes, in MB/s of the file (the file is in the page cache then).
 //   pcb_benchmark --end-to-end [--runs N] PROGRAM ARGUMENTS...
 //       times a whole program run (reading, filtering and writing), e.g. pcbilateral or the
 //       authors' program on the same file, and reports its peak resident memory.
 #include "BilateralFilter.h"
 #include "BilateralKernel.h"
+#include "LASFormat.h"
 #include "PointCloudText.h"
 #include "SampleShapes.h"
 
@@ -24,6 +29,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
+#include <memory>
 #include <string>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -211,6 +217,138 @@ int WriteCube(const char* path)
   return EXIT_SUCCESS;
 }
 
+/// The columns of a LAS file's dimensions, uninitialised (as a reader allocates them).
+struct LASColumns
+{
+  std::unique_ptr<double[]> Positions;
+  std::vector<std::unique_ptr<std::uint8_t[]>> Storage;
+  std::vector<void*> Columns;
+
+  LASColumns(const pcbilateral::LASFileInfo& info, std::size_t count)
+    : Positions(new double[3 * count])
+  {
+    for (const pcbilateral::LASDimension& dimension : info.Dimensions)
+    {
+      Storage.emplace_back(
+        new std::uint8_t[count * pcbilateral::LASSizeOf(dimension.Type) * dimension.Components]);
+      Columns.push_back(Storage.back().get());
+    }
+  }
+};
+
+int BenchmarkLAS(int runs, const std::string& folder)
+{
+  const std::size_t count = 10000000;
+  const std::string path = folder + "/pcb_benchmark_10M.las";
+  const std::string copy = folder + "/pcb_benchmark_10M_copy.las";
+  {
+    const Workload sphere{ "sphere10M", count, false, 0.0, 0.0, 1, 1 };
+    const std::vector<double> xyz = Generate(sphere);
+    const double bounds[6] = { -1.1, -1.1, -1.1, 1.1, 1.1, 1.1 };
+    const pcbilateral::LASFileInfo info =
+      pcbilateral::DefaultLASFileInfo(count, bounds, true, true);
+    LASColumns columns(info, count);
+    for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+    {
+      const std::size_t bytes =
+        count * pcbilateral::LASSizeOf(info.Dimensions[d].Type) * info.Dimensions[d].Components;
+      for (std::size_t b = 0; b < bytes; ++b)
+      {
+        columns.Storage[d][b] = static_cast<std::uint8_t>(b * 2654435761u >> 13);
+      }
+    }
+    const std::string error =
+      pcbilateral::WriteLAS(path, info, count, xyz.data(), columns.Columns.data());
+    if (!error.empty())
+    {
+      std::fprintf(stderr, "%s\n", error.c_str());
+      return EXIT_FAILURE;
+    }
+  }
+  std::vector<double> plain, plainWriting, reading, writing;
+  std::size_t size = 0;
+  for (int run = 0; run < runs; ++run)
+  {
+    {
+      // The bytes alone, in blocks of 64 MB, into memory allocated for them.
+      auto start = std::chrono::steady_clock::now();
+      std::FILE* file = std::fopen(path.c_str(), "rb");
+      std::fseek(file, 0, SEEK_END);
+      size = static_cast<std::size_t>(std::ftell(file));
+      std::fseek(file, 0, SEEK_SET);
+      std::unique_ptr<char[]> bytes(new char[size]);
+      for (std::size_t at = 0; at < size;)
+      {
+        const std::size_t read =
+          std::fread(bytes.get() + at, 1, std::min<std::size_t>(64 << 20, size - at), file);
+        if (read == 0)
+        {
+          break;
+        }
+        at += read;
+      }
+      std::fclose(file);
+      plain.push_back(Seconds(start));
+      // And written again as they are, in the same blocks: what any writer pays the system.
+      start = std::chrono::steady_clock::now();
+      file = std::fopen(copy.c_str(), "wb");
+      for (std::size_t at = 0; at < size; at += 64 << 20)
+      {
+        std::fwrite(bytes.get() + at, 1, std::min<std::size_t>(64 << 20, size - at), file);
+      }
+      std::fclose(file);
+      plainWriting.push_back(Seconds(start));
+      std::remove(copy.c_str());
+    }
+    auto start = std::chrono::steady_clock::now();
+    pcbilateral::LASFileBytes file;
+    pcbilateral::LASFileInfo info;
+    std::string error = file.Open(path);
+    if (error.empty())
+    {
+      error = pcbilateral::ParseLASHeader(file.Data(), file.Size(), path, info);
+    }
+    if (!error.empty())
+    {
+      std::fprintf(stderr, "%s\n", error.c_str());
+      return EXIT_FAILURE;
+    }
+    LASColumns columns(info, count);
+    pcbilateral::DecodeLASPoints(info,
+      file.Data() + info.Header.OffsetToPointData,
+      count,
+      columns.Positions.get(),
+      columns.Columns.data());
+    reading.push_back(Seconds(start));
+    start = std::chrono::steady_clock::now();
+    std::vector<const void*> constant(columns.Columns.begin(), columns.Columns.end());
+    error = pcbilateral::WriteLAS(copy, info, count, columns.Positions.get(), constant.data());
+    if (!error.empty())
+    {
+      std::fprintf(stderr, "%s\n", error.c_str());
+      return EXIT_FAILURE;
+    }
+    writing.push_back(Seconds(start));
+  }
+  const double megabytes = size / 1e6;
+  std::printf(
+    "LAS, 10,000,000 points of format 3 (%.0f MB), median of %d runs:\n", megabytes, runs);
+  std::printf(
+    "  plain read of the bytes: %7.3f s %8.0f MB/s\n", Median(plain), megabytes / Median(plain));
+  std::printf("  LAS read (decoded):      %7.3f s %8.0f MB/s\n",
+    Median(reading),
+    megabytes / Median(reading));
+  std::printf("  LAS write:               %7.3f s %8.0f MB/s\n",
+    Median(writing),
+    megabytes / Median(writing));
+  std::printf("  plain write of the bytes: %6.3f s %8.0f MB/s\n",
+    Median(plainWriting),
+    megabytes / Median(plainWriting));
+  std::remove(path.c_str());
+  std::remove(copy.c_str());
+  return EXIT_SUCCESS;
+}
+
 int EndToEnd(int runs, char* command[])
 {
   std::vector<double> times;
@@ -272,6 +410,10 @@ int main(int argc, char* argv[])
     {
       return WriteCube(argv[i + 1]);
     }
+    else if (argument == "--las" && i + 1 < argc)
+    {
+      return BenchmarkLAS(runs, argv[i + 1]);
+    }
     else if (argument == "--end-to-end" && i + 1 < argc)
     {
       return EndToEnd(runs, argv + i + 1);
@@ -280,7 +422,8 @@ int main(int argc, char* argv[])
     {
       std::fprintf(stderr,
         "usage: %s [--runs N] [--skip-10m] [--only cube600k|sphere1M|sphere10M] | "
-        "--write-cube600k FILE.xyz | [--runs N] --end-to-end PROGRAM ARGUMENTS...\n",
+        "--write-cube600k FILE.xyz | [--runs N] --las FOLDER | "
+        "[--runs N] --end-to-end PROGRAM ARGUMENTS...\n",
         argv[0]);
       return EXIT_FAILURE;
     }

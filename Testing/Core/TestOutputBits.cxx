@@ -6,6 +6,7 @@
 #include "BilateralFilter.h"
 #include "BilateralKernel.h"
 #include "CoreTesting.h"
+#include "SampleShapes.h"
 
 #include <cmath>
 #include <cstdint>
@@ -17,12 +18,13 @@ namespace
 {
 using namespace pcbilateral;
 
-/// A noisy cube surface, from the C++ standard's fully specified engine and uniform noise (the
-/// standard's distributions are not specified to the bit).
+/// A noisy cube surface with uniform noise, from the tests' generator (its uniform numbers come
+/// from the C++ standard's fully specified engine, not from its distributions, which are not
+/// specified to the bit).
 std::vector<double> NoisyCube(std::size_t count)
 {
-  std::mt19937_64 engine(20261122);
-  auto uniform = [&engine]() { return static_cast<double>(engine() >> 11) * 0x1.0p-53; };
+  pcbilateral_samples::Random random(20261122);
+  auto uniform = [&random]() { return random.Uniform(); };
   std::vector<double> xyz;
   for (std::size_t i = 0; i < count; ++i)
   {

@@ -1,13 +1,17 @@
 // What a distributed run relies on: a part of the cloud, numbered in any order, filtered with the
 // points of the other parts within reach as ghosts and with the whole cloud's extent, gives
-// exactly the bits that one run over the whole cloud gives its points. Iterations are run one at
-// a time, the ghosts refreshed in between, as the distributed VTK filter does.
+// exactly the bits that one run over the whole cloud gives its points. The parts are driven by
+// the shipped run loop (pcbilateral::BilateralRun, as the distributed VTK filter drives it on
+// each process) with an in-process ghost exchange.
 #include "BilateralFilter.h"
 #include "CoreTesting.h"
+#include "SampleShapes.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -23,9 +27,9 @@ using pcbilateral::PointCloudView;
 /// ties in the order of a leaf.
 std::vector<double> MakeCloud(std::size_t count, unsigned seed)
 {
-  std::mt19937_64 random(seed);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  std::normal_distribution<double> noise(0.0, 0.004);
+  pcbilateral_samples::Random random(seed);
+  auto uniform = [&random]() { return random.Uniform(); };
+  auto noise = [&random]() { return 0.004 * random.Gaussian(); };
   std::vector<double> xyz;
   for (std::size_t i = 0; i < count; ++i)
   {
@@ -34,11 +38,11 @@ std::vector<double> MakeCloud(std::size_t count, unsigned seed)
       xyz.insert(xyz.end(), xyz.end() - 3, xyz.end()); // an exact duplicate of the last point
       continue;
     }
-    const double u = uniform(random);
-    const double v = uniform(random);
-    xyz.push_back(u + noise(random));
-    xyz.push_back(v + noise(random));
-    xyz.push_back(0.3 * std::abs(u - 0.5) + noise(random));
+    const double u = uniform();
+    const double v = uniform();
+    xyz.push_back(u + noise());
+    xyz.push_back(v + noise());
+    xyz.push_back(0.3 * std::abs(u - 0.5) + noise());
   }
   return xyz;
 }
@@ -48,25 +52,17 @@ bool SameBits(const double* a, const double* b)
   return std::memcmp(a, b, 3 * sizeof(double)) == 0;
 }
 
-/// Filters `xyz` split into `parts` slabs along x, each part's points shuffled, with
-/// `iterations` single-iteration runs per part; returns the positions in the original order.
+/// In-process stand-in for the processes of a distributed run: each part is driven by its own
+/// pcbilateral::BilateralRun, exactly as vtkPPointCloudBilateralFilter drives one per process,
+/// and the ghost exchange between iterations hands each part the other parts' points within its
+/// reach box (the ranks' exchange, without MPI). Returns the positions in the original order.
 std::vector<double> RunPartitioned(const std::vector<double>& xyz,
   const BilateralParameters& parameters,
   int parts,
   unsigned seed)
 {
   const std::size_t n = xyz.size() / 3;
-  PointCloudView whole;
-  whole.NumberOfPoints = n;
-  whole.Positions = xyz.data();
-  BilateralParameters single = parameters;
-  single.GlobalExtent = pcbilateral::MeasureCloud(whole);
-  single.NumberOfIterations = 1;
-  const pcbilateral::RadiiUsed radii = pcbilateral::ResolveRadii(parameters, *single.GlobalExtent);
-  single.Radius = radii.Radius;
-  single.NormalRadius = radii.NormalRadius;
-
-  // Uneven slabs: part k holds x in [bounds[k], bounds[k+1]).
+  // Uneven slabs: part k holds x in [bounds[k], bounds[k+1]), its points shuffled.
   std::vector<double> bounds{ -1e9 };
   for (int k = 1; k < parts; ++k)
   {
@@ -74,80 +70,81 @@ std::vector<double> RunPartitioned(const std::vector<double>& xyz,
   }
   bounds.push_back(1e9);
   std::vector<std::vector<std::size_t>> owned(parts);
-  std::vector<int> owner(n);
   for (std::size_t i = 0; i < n; ++i)
   {
-    const int k = static_cast<int>(
-                    std::upper_bound(bounds.begin(), bounds.end(), xyz[3 * i]) - bounds.begin()) -
-                  1;
+    const auto k = std::upper_bound(bounds.begin(), bounds.end(), xyz[3 * i]) - bounds.begin() - 1;
     owned[k].push_back(i);
-    owner[i] = k;
   }
   std::mt19937 random(seed);
-  for (auto& ids : owned)
+  std::vector<std::vector<double>> partXyz(parts);
+  std::vector<std::unique_ptr<pcbilateral::BilateralRun>> runs;
+  for (int k = 0; k < parts; ++k)
   {
-    std::shuffle(ids.begin(), ids.end(), random);
+    std::shuffle(owned[k].begin(), owned[k].end(), random);
+    for (const std::size_t i : owned[k])
+    {
+      partXyz[k].insert(partXyz[k].end(), &xyz[3 * i], &xyz[3 * i] + 3);
+    }
+    PointCloudView part;
+    part.NumberOfPoints = owned[k].size();
+    part.Positions = partXyz[k].data();
+    runs.push_back(std::make_unique<pcbilateral::BilateralRun>(part, parameters));
   }
 
-  std::vector<double> current = xyz;
-  std::vector<std::uint8_t> removed(n, 0);
-  for (int iteration = 0; iteration < parameters.NumberOfIterations; ++iteration)
+  // The whole cloud's extent, as the processes' reduction gives it.
+  pcbilateral::CloudExtent whole;
+  for (const auto& run : runs)
   {
-    std::vector<double> next = current;
+    whole = pcbilateral::MergeExtents(whole, run->GetLocalExtent());
+  }
+  bool iterate = true;
+  for (const auto& run : runs)
+  {
+    iterate = run->Start(whole) && iterate;
+  }
+  while (iterate)
+  {
+    std::vector<std::vector<double>> offered(parts);
+    std::vector<std::array<double, 6>> reach(parts);
     for (int k = 0; k < parts; ++k)
     {
-      // Own points first, then the other parts' points within reach of this part's slab
-      // (more than needed: the filter masks what is out of reach), in reverse order.
-      std::vector<std::size_t> local;
-      for (const std::size_t i : owned[k])
-      {
-        if (!removed[i])
-        {
-          local.push_back(i);
-        }
-      }
-      const std::size_t ownedCount = local.size();
-      const double reach = 1.5 * single.Radius;
-      for (std::size_t i = n; i-- > 0;)
-      {
-        const double x = current[3 * i];
-        if (!removed[i] && owner[i] != k && x >= bounds[k] - reach && x < bounds[k + 1] + reach)
-        {
-          local.push_back(i);
-        }
-      }
-      std::vector<double> localXyz;
-      for (const std::size_t i : local)
-      {
-        localXyz.insert(localXyz.end(), &current[3 * i], &current[3 * i] + 3);
-      }
-      PointCloudView cloud;
-      cloud.NumberOfPoints = local.size();
-      cloud.Positions = localXyz.data();
-      cloud.NumberOfGhostPoints = local.size() - ownedCount;
-      const BilateralResult result = pcbilateral::RunBilateralFilter(cloud, single);
-      PCB_CHECK(
-        result.Status == BilateralStatus::Completed, "part %d: %s", k, result.Error.c_str());
-      if (result.Status != BilateralStatus::Completed)
-      {
-        return next;
-      }
-      for (std::size_t j = 0; j < local.size(); ++j)
-      {
-        const double* p = &result.Positions[3 * j];
-        if (j >= ownedCount)
-        {
-          PCB_CHECK(SameBits(p, &localXyz[3 * j]), "part %d: a ghost point moved", k);
-          PCB_CHECK(!result.Removed[j], "part %d: a ghost point was removed", k);
-          continue;
-        }
-        std::copy(p, p + 3, &next[3 * local[j]]);
-        removed[local[j]] = result.Removed[j];
-      }
+      offered[k] = runs[k]->GetPositionsForOthers();
+      runs[k]->GetGhostReach(reach[k].data());
     }
-    current = next;
+    for (int k = 0; k < parts; ++k)
+    {
+      // The other parts' points in this part's reach, in reverse order of parts.
+      std::vector<double> ghosts;
+      for (int other = parts; other-- > 0;)
+      {
+        for (std::size_t i = 0; other != k && i < offered[other].size(); i += 3)
+        {
+          const double* p = &offered[other][i];
+          if (pcbilateral::InsideBox(reach[k].data(), p))
+          {
+            ghosts.insert(ghosts.end(), p, p + 3);
+          }
+        }
+      }
+      const BilateralStatus status = runs[k]->Step(ghosts);
+      PCB_CHECK(
+        status == BilateralStatus::Completed, "part %d: %s", k, runs[k]->GetError().c_str());
+    }
+    iterate = runs[0]->HasNextIteration();
   }
-  return current;
+
+  std::vector<double> result(xyz.size());
+  for (int k = 0; k < parts; ++k)
+  {
+    const BilateralResult partResult = runs[k]->Finish();
+    PCB_CHECK(
+      partResult.Status == BilateralStatus::Completed, "part %d: %s", k, partResult.Error.c_str());
+    for (std::size_t j = 0; j < owned[k].size(); ++j)
+    {
+      std::copy_n(&partResult.Positions[3 * j], 3, &result[3 * owned[k][j]]);
+    }
+  }
+  return result;
 }
 
 void CheckSameBitsAsOneRun(const BilateralParameters& parameters, int parts, unsigned seed)

@@ -3,6 +3,7 @@
 #ifndef pcbilateral_RenderingScene_h
 #define pcbilateral_RenderingScene_h
 
+#include "VTKTesting.h"
 #include "vtkPointCloudBilateralFilter.h"
 
 #include "vtkActor.h"
@@ -40,18 +41,18 @@ inline vtkSmartPointer<vtkPolyData> ReadSample(const std::string& name)
   return cloud;
 }
 
+/// The filtered cloud, with the displacement length the scenes colour by.
 inline vtkSmartPointer<vtkPolyData> Filter(vtkPolyData* input, double r, double rn, int iterations)
 {
-  vtkNew<vtkPointCloudBilateralFilter> filter;
-  filter->SetInputData(input);
-  filter->SetRadius(r);
-  filter->SetNormalRadius(rn);
-  filter->SetNumberOfIterations(iterations);
-  filter->GenerateDisplacementLengthOn();
-  filter->Update();
-  auto output = vtkSmartPointer<vtkPolyData>::New();
-  output->ShallowCopy(filter->GetOutput());
-  return output;
+  return pcbilateral_testing::RunFilter(input,
+    [&](vtkPointCloudBilateralFilter* filter)
+    {
+      filter->SetRadius(r);
+      filter->SetNormalRadius(rn);
+      filter->SetNumberOfIterations(iterations);
+      filter->GenerateDisplacementLengthOn();
+    })
+    .Output;
 }
 
 /// The points with low <= z <= high: a cross-section that shows edges and corners in profile.

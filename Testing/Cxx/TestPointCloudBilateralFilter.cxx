@@ -1,6 +1,8 @@
 // Tests of vtkPointCloudBilateralFilter on synthetic clouds with known surfaces.
 // Run as: TestPointCloudBilateralFilter CASE, CASE one of the names in main().
 #include "CoreTesting.h"
+#include "TestClouds.h"
+#include "VTKTesting.h"
 #include "vtkPointCloudBilateralFilter.h"
 
 #include "vtkCallbackCommand.h"
@@ -30,39 +32,9 @@
 namespace
 {
 
-/// Deterministic Gaussian noise (Box-Muller on a fixed-seed generator).
-class Noise
-{
-public:
-  explicit Noise(std::uint64_t seed)
-    : Random(seed)
-  {
-  }
-  double Uniform() { return std::uniform_real_distribution<double>(0.0, 1.0)(this->Random); }
-  double Gaussian(double sigma)
-  {
-    const double u = std::max(this->Uniform(), 1e-300);
-    return sigma * std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * M_PI * this->Uniform());
-  }
+using namespace pcbilateral_testing;
 
-private:
-  std::mt19937_64 Random;
-};
-
-vtkSmartPointer<vtkPolyData> MakeCloud(const std::vector<double>& xyz, int pointType = VTK_DOUBLE)
-{
-  vtkNew<vtkPoints> points;
-  points->SetDataType(pointType);
-  points->SetNumberOfPoints(static_cast<vtkIdType>(xyz.size() / 3));
-  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
-  {
-    points->SetPoint(i, &xyz[3 * i]);
-  }
-  auto cloud = vtkSmartPointer<vtkPolyData>::New();
-  cloud->SetPoints(points);
-  return cloud;
-}
-
+/// Updates the filter with these parameters (and whatever `setup` sets) and returns its output.
 vtkSmartPointer<vtkPolyData> Filter(vtkPolyData* input,
   double radius,
   double normalRadius,
@@ -70,56 +42,19 @@ vtkSmartPointer<vtkPolyData> Filter(vtkPolyData* input,
   int threads = 0,
   const std::function<void(vtkPointCloudBilateralFilter*)>& setup = {})
 {
-  vtkNew<vtkPointCloudBilateralFilter> filter;
-  filter->SetInputData(input);
-  filter->SetRadius(radius);
-  filter->SetNormalRadius(normalRadius);
-  filter->SetNumberOfIterations(iterations);
-  filter->SetNumberOfThreads(threads);
-  if (setup)
-  {
-    setup(filter);
-  }
-  filter->Update();
-  auto output = vtkSmartPointer<vtkPolyData>::New();
-  output->ShallowCopy(filter->GetOutput());
-  return output;
-}
-
-/// A noisy square patch of the plane z = 0 (unit side, about 20,000 points).
-std::vector<double> NoisyPlane(double sigma, std::uint64_t seed)
-{
-  Noise noise(seed);
-  std::vector<double> xyz;
-  const int side = 140;
-  for (int j = 0; j < side; ++j)
-  {
-    for (int i = 0; i < side; ++i)
+  return RunFilter(input,
+    [&](vtkPointCloudBilateralFilter* filter)
     {
-      xyz.push_back((i + noise.Uniform()) / side);
-      xyz.push_back((j + noise.Uniform()) / side);
-      xyz.push_back(noise.Gaussian(sigma));
-    }
-  }
-  return xyz;
-}
-
-/// Points sampled uniformly on the surface of the cube [-0.5, 0.5]^3, with Gaussian noise.
-std::vector<double> NoisyCube(std::size_t count, double sigma, std::uint64_t seed)
-{
-  Noise noise(seed);
-  std::vector<double> xyz;
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    const int face = static_cast<int>(i % 6);
-    double p[3] = { noise.Uniform() - 0.5, noise.Uniform() - 0.5, noise.Uniform() - 0.5 };
-    p[face / 2] = face % 2 ? 0.5 : -0.5;
-    for (double c : p)
-    {
-      xyz.push_back(c + noise.Gaussian(sigma));
-    }
-  }
-  return xyz;
+      filter->SetRadius(radius);
+      filter->SetNormalRadius(normalRadius);
+      filter->SetNumberOfIterations(iterations);
+      filter->SetNumberOfThreads(threads);
+      if (setup)
+      {
+        setup(filter);
+      }
+    })
+    .Output;
 }
 
 double RootMeanSquareZ(vtkPolyData* cloud, double trim)
@@ -582,7 +517,7 @@ void TestDegenerateNeighbourhoods()
 {
   // Flat, linear and single-point neighbourhoods: the eigen solver must give a usable normal or
   // none, never NaN, and no point may move by r or more.
-  Noise noise(23);
+  pcbilateral_samples::Random noise(23);
   std::vector<double> line, repeated, mixed;
   for (int i = 0; i < 2000; ++i)
   {
@@ -594,7 +529,7 @@ void TestDegenerateNeighbourhoods()
     // Half the points are copies of ten points, the others a noisy patch around them.
     const double patch[3] = { i % 2 ? double(i % 10) * 0.01 : noise.Uniform() * 0.1,
       i % 2 ? 0.0 : noise.Uniform() * 0.1,
-      i % 2 ? 0.0 : noise.Gaussian(0.002) };
+      i % 2 ? 0.0 : 0.002 * noise.Gaussian() };
     mixed.insert(mixed.end(), patch, patch + 3);
   }
   struct Case

@@ -2,6 +2,8 @@
 // (finite, no point moved by r or more per iteration, arrays intact) or a clear message.
 // Run as: TestRobustness CASE.
 #include "CoreTesting.h"
+#include "TestClouds.h"
+#include "VTKTesting.h"
 #include "vtkPointCloudBilateralFilter.h"
 
 #include "vtkCallbackCommand.h"
@@ -32,36 +34,15 @@
 namespace
 {
 
-/// Counts the filter's warnings and errors instead of printing them.
-class MessageCounter : public vtkCommand
-{
-public:
-  static MessageCounter* New() { return new MessageCounter; }
-  void Execute(vtkObject*, unsigned long event, void* text) override
-  {
-    (event == vtkCommand::ErrorEvent ? this->Errors : this->Warnings) += 1;
-    this->Messages += text ? static_cast<const char*>(text) : "";
-  }
-  int Errors = 0;
-  int Warnings = 0;
-  /// All of them, one after the other.
-  std::string Messages;
-};
+using namespace pcbilateral_testing;
 
+/// A cloud whose points carry their ids in the point array "Tag", to check that arrays follow.
 vtkSmartPointer<vtkPolyData> Cloud(const std::vector<double>& xyz, int type = VTK_DOUBLE)
 {
-  vtkNew<vtkPoints> points;
-  points->SetDataType(type);
-  points->SetNumberOfPoints(static_cast<vtkIdType>(xyz.size() / 3));
-  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
-  {
-    points->SetPoint(i, &xyz[3 * i]);
-  }
-  auto cloud = vtkSmartPointer<vtkPolyData>::New();
-  cloud->SetPoints(points);
+  auto cloud = MakeCloud(xyz, type);
   vtkNew<vtkDoubleArray> tag;
   tag->SetName("Tag");
-  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  for (vtkIdType i = 0; i < cloud->GetNumberOfPoints(); ++i)
   {
     tag->InsertNextValue(static_cast<double>(i));
   }
@@ -69,14 +50,7 @@ vtkSmartPointer<vtkPolyData> Cloud(const std::vector<double>& xyz, int type = VT
   return cloud;
 }
 
-struct Run
-{
-  vtkSmartPointer<vtkPolyData> Output;
-  int Errors = 0;
-  int Warnings = 0;
-  std::string Message;
-  double Radius = 0.0;
-};
+using Run = FilterRun;
 
 /// Filters `input`; counts the progress events into `progressEvents` if given.
 Run Filter(vtkPolyData* input,
@@ -85,30 +59,17 @@ Run Filter(vtkPolyData* input,
   double normalRadius = 0.0,
   int* progressEvents = nullptr)
 {
-  vtkNew<vtkPointCloudBilateralFilter> filter;
-  vtkNew<MessageCounter> counter;
-  filter->AddObserver(vtkCommand::ErrorEvent, counter);
-  filter->AddObserver(vtkCommand::WarningEvent, counter);
-  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, counter);
-  vtkNew<vtkCallbackCommand> progress;
+  Run run = RunFilter(input,
+    [&](vtkPointCloudBilateralFilter* filter)
+    {
+      filter->SetRadius(radius);
+      filter->SetNormalRadius(normalRadius);
+      filter->SetNumberOfIterations(iterations);
+    });
   if (progressEvents)
   {
-    progress->SetClientData(progressEvents);
-    progress->SetCallback(
-      [](vtkObject*, unsigned long, void* count, void*) { ++*static_cast<int*>(count); });
-    filter->AddObserver(vtkCommand::ProgressEvent, progress);
+    *progressEvents = run.ProgressEvents;
   }
-  filter->SetInputData(input);
-  filter->SetRadius(radius);
-  filter->SetNormalRadius(normalRadius);
-  filter->SetNumberOfIterations(iterations);
-  filter->Update();
-  Run run;
-  run.Output = filter->GetOutput();
-  run.Errors = counter->Errors;
-  run.Warnings = counter->Warnings;
-  run.Message = counter->Messages;
-  run.Radius = filter->GetRadiusUsed();
   return run;
 }
 
@@ -163,15 +124,13 @@ void CheckSane(const char* what, vtkPolyData* input, const Run& run, double reac
 
 std::vector<double> NoisyPatch(std::size_t count, double offset, unsigned seed)
 {
-  std::mt19937_64 random(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::normal_distribution<double> noise(0.0, 0.003);
+  pcbilateral_samples::Random random(seed);
   std::vector<double> xyz;
   for (std::size_t i = 0; i < count; ++i)
   {
-    xyz.push_back(offset + unit(random));
-    xyz.push_back(offset + unit(random));
-    xyz.push_back(offset + noise(random));
+    xyz.push_back(offset + random.Uniform());
+    xyz.push_back(offset + random.Uniform());
+    xyz.push_back(offset + 0.003 * random.Gaussian());
   }
   return xyz;
 }
@@ -187,7 +146,7 @@ void TestSmallClouds()
     {
       const Run run = Filter(input, radius);
       PCB_CHECK(
-        run.Errors == 0, "%zu points, radius %g: error '%s'", count, radius, run.Message.c_str());
+        run.Errors == 0, "%zu points, radius %g: error '%s'", count, radius, run.Messages.c_str());
       CheckSane(("small cloud of " + std::to_string(count)).c_str(), input, run, 1e-300);
     }
   }
@@ -231,7 +190,7 @@ void TestCoincidentAndDegenerate()
   }
   auto flatCloud = Cloud(flat);
   const Run flatRun = Filter(flatCloud, 0.0, 2);
-  CheckSane("a flat 2D scan, automatic radius", flatCloud, flatRun, 2 * flatRun.Radius);
+  CheckSane("a flat 2D scan, automatic radius", flatCloud, flatRun, 2 * flatRun.RadiusUsed);
 }
 
 void TestNonFinitePoints()
@@ -250,17 +209,17 @@ void TestNonFinitePoints()
     "expected): %s",
     run.Errors,
     run.Warnings,
-    run.Message.c_str());
-  PCB_CHECK(run.Message.find("40 point(s)") != std::string::npos,
+    run.Messages.c_str());
+  PCB_CHECK(run.Messages.find("40 point(s)") != std::string::npos,
     "the warning does not count 40 "
     "points: %s",
-    run.Message.c_str());
+    run.Messages.c_str());
   CheckSane("40 NaN/Inf points in a patch", input, run, 0.1);
   // The automatic radius ignores them too.
   const Run automatic = Filter(input, 0.0);
-  PCB_CHECK(std::isfinite(automatic.Radius) && automatic.Radius > 0,
+  PCB_CHECK(std::isfinite(automatic.RadiusUsed) && automatic.RadiusUsed > 0,
     "automatic radius %g",
-    automatic.Radius);
+    automatic.RadiusUsed);
 }
 
 void TestRadiusLargerThanCloud()
@@ -272,20 +231,20 @@ void TestRadiusLargerThanCloud()
   const Run run = Filter(input, 50.0, 1, 0.01, &progressEvents);
   std::printf("radius 50: %d warning(s): %s; %d progress events\n",
     run.Warnings,
-    run.Message.c_str(),
+    run.Messages.c_str(),
     progressEvents);
   CheckSane("radius 50 on a unit patch", input, run, 50.0);
   PCB_CHECK(
     run.Errors == 0 && run.Warnings == 1, "%d errors, %d warnings", run.Errors, run.Warnings);
-  PCB_CHECK(run.Message.find("neighbours per point") != std::string::npos &&
-              run.Message.find("lower the radius") != std::string::npos,
+  PCB_CHECK(run.Messages.find("neighbours per point") != std::string::npos &&
+              run.Messages.find("lower the radius") != std::string::npos,
     "the warning does not say what to lower: %s",
-    run.Message.c_str());
+    run.Messages.c_str());
   PCB_CHECK(progressEvents >= 20, "only %d progress events", progressEvents);
 
   // A radius of the right size does not warn.
   const Run usual = Filter(input, 0.05, 1, 0.01);
-  PCB_CHECK(usual.Warnings == 0, "a usual radius warned: %s", usual.Message.c_str());
+  PCB_CHECK(usual.Warnings == 0, "a usual radius warned: %s", usual.Messages.c_str());
 }
 
 void TestOtherPointSets()
@@ -301,20 +260,15 @@ void TestOtherPointSets()
   const vtkIdType tetra[4] = { 0, 1, 2, 3 };
   grid->InsertNextCell(VTK_TETRA, 4, tetra);
 
-  vtkNew<vtkPointCloudBilateralFilter> fromPolyData, fromGrid;
-  vtkNew<MessageCounter> polyDataMessages, gridMessages;
-  fromPolyData->AddObserver(vtkCommand::WarningEvent, polyDataMessages);
-  fromGrid->AddObserver(vtkCommand::WarningEvent, gridMessages);
-  fromPolyData->SetInputData(cloud);
-  fromGrid->SetInputData(grid);
-  for (vtkPointCloudBilateralFilter* filter : { fromPolyData.Get(), fromGrid.Get() })
+  auto setup = [](vtkPointCloudBilateralFilter* filter)
   {
     filter->SetRadius(0.05);
     filter->SetNormalRadius(0.02);
-    filter->Update();
-  }
-  vtkPolyData* a = fromPolyData->GetOutput();
-  vtkPolyData* b = fromGrid->GetOutput();
+  };
+  const Run fromPolyData = RunFilter(cloud, setup);
+  const Run fromGrid = RunFilter(grid, setup);
+  vtkPolyData* a = fromPolyData.Output;
+  vtkPolyData* b = fromGrid.Output;
   PCB_CHECK(b->GetNumberOfPoints() == a->GetNumberOfPoints() && b->GetNumberOfVerts() == 3000,
     "unstructured grid: %lld points, %lld vertices",
     (long long)b->GetNumberOfPoints(),
@@ -329,28 +283,22 @@ void TestOtherPointSets()
     same = std::memcmp(p, q, sizeof(p)) == 0;
   }
   PCB_CHECK(same, "unstructured grid: the points differ from the polydata's");
-  PCB_CHECK(polyDataMessages->Warnings == 0 && gridMessages->Warnings == 1 &&
-              gridMessages->Messages.find("cells") != std::string::npos,
+  PCB_CHECK(fromPolyData.Warnings == 0 && fromGrid.Warnings == 1 &&
+              fromGrid.Messages.find("cells") != std::string::npos,
     "warnings: %d for the polydata, %d for the grid: %s",
-    polyDataMessages->Warnings,
-    gridMessages->Warnings,
-    gridMessages->Messages.c_str());
+    fromPolyData.Warnings,
+    fromGrid.Warnings,
+    fromGrid.Messages.c_str());
 
   vtkNew<vtkImageData> image;
   image->SetDimensions(4, 4, 4);
-  vtkNew<vtkPointCloudBilateralFilter> fromImage;
-  vtkNew<MessageCounter> imageMessages;
-  fromImage->AddObserver(vtkCommand::ErrorEvent, imageMessages);
-  fromImage->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, imageMessages);
-  fromImage->SetInputData(image);
-  fromImage->Update();
-  PCB_CHECK(imageMessages->Errors >= 1 &&
-              imageMessages->Messages.find("vtkPointSet") != std::string::npos &&
-              fromImage->GetOutput()->GetNumberOfPoints() == 0,
+  const Run fromImage = RunFilter(image, {});
+  PCB_CHECK(fromImage.Errors >= 1 && fromImage.Messages.find("vtkPointSet") != std::string::npos &&
+              fromImage.Output->GetNumberOfPoints() == 0,
     "image data: %d errors, %lld points: %s",
-    imageMessages->Errors,
-    (long long)fromImage->GetOutput()->GetNumberOfPoints(),
-    imageMessages->Messages.c_str());
+    fromImage.Errors,
+    (long long)fromImage.Output->GetNumberOfPoints(),
+    fromImage.Messages.c_str());
 }
 
 void TestBadParameters()
@@ -376,16 +324,17 @@ void TestBadParameters()
          Bad{ "a huge number of iterations", 0.05, 0.0, 1000000, "at most 1000" } })
   {
     const Run run = Filter(input, bad.Radius, bad.Iterations, bad.NormalRadius);
-    PCB_CHECK(run.Errors >= 1 && run.Output->GetNumberOfPoints() == 0,
+    // Exactly one: the filter's own message, without the executive's "returned failure" dump.
+    PCB_CHECK(run.Errors == 1 && run.Output->GetNumberOfPoints() == 0,
       "%s: %d errors, %lld output points",
       bad.Name,
       run.Errors,
       (long long)run.Output->GetNumberOfPoints());
-    PCB_CHECK(run.Message.find(bad.Says) != std::string::npos,
+    PCB_CHECK(run.Messages.find(bad.Says) != std::string::npos,
       "%s: the message does not say '%s': %s",
       bad.Name,
       bad.Says,
-      run.Message.c_str());
+      run.Messages.c_str());
   }
   const Run none = Filter(input, 0.05, 0);
   PCB_CHECK(none.Errors == 0 && none.Output->GetNumberOfPoints() == input->GetNumberOfPoints(),

@@ -165,8 +165,9 @@ else:
 
 # The same filter, serially, on the gathered input: points of the same type, the same arrays.
 
+# The serial class never communicates: made in a script under mpirun, it runs on this rank alone
+# (before the parallel module existed it waited for the other ranks unless given no controller).
 serial = vtkPointCloudBilateralFilter()
-serial.SetController(None)  # this runs on rank 0 alone
 serial.SetInputData(gathered_input)
 serial.SetRadius(args.radius)
 serial.SetNormalRadius(args.normal_radius)

@@ -65,7 +65,8 @@ count, text = run(Radius=-0.1)
 check(count == 0 and "the radius must be a finite number >= 0" in text,
       f"negative radius: {count} points out, and the message says why")
 
-count, text = run(Radius=0.05, OrientNormalsBy="Orient", OutputEstimatedNormals=1)
+count, text = run(Radius=0.05, OrientEstimatedNormals=1, OrientNormalsBy="Orient",
+                  OutputEstimatedNormals=1)
 check(count == 0 and "another process could not start the distributed run" in text,
       f"a 2-component orientation array on rank 1: {count} points out, and rank 0 says why")
 

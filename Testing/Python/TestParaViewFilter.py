@@ -22,8 +22,15 @@ reader = simple.XMLPolyDataReader(FileName=[os.path.join(scratch, "plane.vtp")])
 reader.UpdatePipeline()
 bilateral = simple.PointCloudBilateralFilter(Input=reader)
 largest_extent = np.max(np.ptp(points, axis=0))
-check(abs(bilateral.Radius - 0.025 * largest_extent) < 1e-6,
-      f"the default radius is 2.5% of the largest extent: {bilateral.Radius:.6g}")
+# The proxy's defaults are the core's (configured into the XML from Filters/Core/BilateralFilter.h).
+check(bilateral.Radius == 0 and bilateral.NormalRadius == 0 and bilateral.NumberOfIterations == 1,
+      f"the defaults are the core's: radius {bilateral.Radius}, normal radius "
+      f"{bilateral.NormalRadius}, iterations {bilateral.NumberOfIterations}")
+# RequestInformation reports metadata only: nothing is "used" before the filter has run.
+bilateral.UpdatePipelineInformation()
+bilateral.UpdatePropertyInformation()
+check(bilateral.RadiusUsed == 0 and bilateral.NormalRadiusUsed == 0,
+      f"nothing used before a run: radius used {bilateral.RadiusUsed}")
 bilateral.Radius = 0.05
 bilateral.NumberOfIterations = 2
 bilateral.OutputDisplacementLength = 1

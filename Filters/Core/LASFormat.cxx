@@ -1,0 +1,1133 @@
+#include "LASFormat.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <future>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <system_error>
+
+#if defined(__unix__) || defined(__APPLE__)
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <unistd.h>
+#define PCB_LAS_MMAP 1
+#endif
+
+namespace pcbilateral
+{
+
+namespace
+{
+constexpr std::size_t LegacyHeaderSize = 227;
+constexpr std::size_t VLRHeaderSize = 54;
+constexpr std::size_t EVLRHeaderSize = 60;
+constexpr std::size_t ExtraBytesDescriptorSize = 192;
+
+bool HostIsLittleEndian()
+{
+  const std::uint16_t one = 1;
+  std::uint8_t first;
+  std::memcpy(&first, &one, 1);
+  return first == 1;
+}
+
+// The file is little-endian, as is every host this is built on (checked at run time).
+template<typename T>
+T Load(const std::uint8_t* at)
+{
+  T value;
+  std::memcpy(&value, at, sizeof(T));
+  return value;
+}
+
+template<typename T>
+void Store(std::uint8_t* at, T value)
+{
+  std::memcpy(at, &value, sizeof(T));
+}
+
+std::string FixedString(const std::uint8_t* at, std::size_t length)
+{
+  const auto* begin = reinterpret_cast<const char*>(at);
+  return std::string(begin, strnlen(begin, length));
+}
+
+void StoreString(std::uint8_t* at, const std::string& text, std::size_t length)
+{
+  std::memset(at, 0, length);
+  std::memcpy(at, text.data(), std::min(text.size(), length));
+}
+
+std::string Str(std::uint64_t value)
+{
+  return std::to_string(value);
+}
+
+void Add(std::vector<LASDimension>& dimensions,
+  const char* name,
+  LASValueType type,
+  std::size_t offset,
+  int shift = 0,
+  int bits = 0,
+  int components = 1)
+{
+  LASDimension dimension;
+  dimension.Name = name;
+  dimension.Type = type;
+  dimension.ByteOffset = offset;
+  dimension.BitShift = shift;
+  dimension.BitCount = bits;
+  dimension.Components = components;
+  dimensions.push_back(dimension);
+}
+
+void AddWavePacket(std::vector<LASDimension>& dimensions, std::size_t at)
+{
+  Add(dimensions, "WavePacketDescriptorIndex", LASValueType::UInt8, at);
+  Add(dimensions, "WaveformDataOffset", LASValueType::UInt64, at + 1);
+  Add(dimensions, "WaveformPacketSize", LASValueType::UInt32, at + 9);
+  Add(dimensions, "ReturnPointWaveformLocation", LASValueType::Float32, at + 13);
+  Add(dimensions, "WaveformXYZt", LASValueType::Float32, at + 17, 0, 0, 3);
+}
+
+const LASRecord* FindExtraBytesRecord(const std::vector<LASRecord>& records)
+{
+  for (const LASRecord& record : records)
+  {
+    if (record.UserId == "LASF_Spec" && record.RecordId == 4)
+    {
+      return &record;
+    }
+  }
+  return nullptr;
+}
+
+bool IsLAZRecord(const LASRecord& record)
+{
+  return record.UserId == "laszip encoded" && record.RecordId == 22204;
+}
+
+std::string CompressedMessage(const std::string& source)
+{
+  return source + ": is compressed (LAZ); decompress it first, e.g. with 'laszip -i " +
+         std::filesystem::path(source).filename().string() +
+         " -o out.las' or 'pdal translate in.laz out.las'";
+}
+
+/// Copies whole values of `bytes` bytes from records of `stride` bytes into a packed column.
+template<std::size_t Bytes>
+void Gather(const std::uint8_t* from, std::size_t stride, std::uint8_t* to, std::size_t count)
+{
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    std::memcpy(to + i * Bytes, from + i * stride, Bytes);
+  }
+}
+
+template<std::size_t Bytes>
+void Scatter(const std::uint8_t* from, std::uint8_t* to, std::size_t stride, std::size_t count)
+{
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    std::memcpy(to + i * stride, from + i * Bytes, Bytes);
+  }
+}
+
+void GatherBytes(const std::uint8_t* from,
+  std::size_t stride,
+  std::uint8_t* to,
+  std::size_t bytes,
+  std::size_t count)
+{
+  switch (bytes)
+  {
+    case 1:
+      return Gather<1>(from, stride, to, count);
+    case 2:
+      return Gather<2>(from, stride, to, count);
+    case 4:
+      return Gather<4>(from, stride, to, count);
+    case 6:
+      return Gather<6>(from, stride, to, count);
+    case 8:
+      return Gather<8>(from, stride, to, count);
+    case 12:
+      return Gather<12>(from, stride, to, count);
+    default:
+      for (std::size_t i = 0; i < count; ++i)
+      {
+        std::memcpy(to + i * bytes, from + i * stride, bytes);
+      }
+  }
+}
+
+void ScatterBytes(const std::uint8_t* from,
+  std::uint8_t* to,
+  std::size_t stride,
+  std::size_t bytes,
+  std::size_t count)
+{
+  switch (bytes)
+  {
+    case 1:
+      return Scatter<1>(from, to, stride, count);
+    case 2:
+      return Scatter<2>(from, to, stride, count);
+    case 4:
+      return Scatter<4>(from, to, stride, count);
+    case 6:
+      return Scatter<6>(from, to, stride, count);
+    case 8:
+      return Scatter<8>(from, to, stride, count);
+    case 12:
+      return Scatter<12>(from, to, stride, count);
+    default:
+      for (std::size_t i = 0; i < count; ++i)
+      {
+        std::memcpy(to + i * stride, from + i * bytes, bytes);
+      }
+  }
+}
+
+constexpr std::size_t PointsPerBlock = 8192;
+} // namespace
+
+std::size_t LASSizeOf(LASValueType type)
+{
+  switch (type)
+  {
+    case LASValueType::UInt8:
+    case LASValueType::Int8:
+      return 1;
+    case LASValueType::UInt16:
+    case LASValueType::Int16:
+      return 2;
+    case LASValueType::UInt32:
+    case LASValueType::Int32:
+    case LASValueType::Float32:
+      return 4;
+    default:
+      return 8;
+  }
+}
+
+std::size_t LASStandardRecordLength(int pointFormat)
+{
+  static const std::size_t lengths[] = { 20, 28, 26, 34, 57, 63, 30, 36, 38, 59, 67 };
+  return pointFormat >= 0 && pointFormat <= 10 ? lengths[pointFormat] : 0;
+}
+
+std::string LASDimensionsFor(int pointFormat,
+  std::size_t recordLength,
+  const std::vector<LASRecord>& vlrs,
+  std::vector<LASDimension>& dimensions)
+{
+  dimensions.clear();
+  const std::size_t standard = LASStandardRecordLength(pointFormat);
+  if (standard == 0)
+  {
+    return "point format " + std::to_string(pointFormat) +
+           " is not supported (LAS defines point formats 0 to 10)";
+  }
+  if (recordLength < standard)
+  {
+    return "the point record length " + Str(recordLength) + " is shorter than point format " +
+           std::to_string(pointFormat) + " needs (" + Str(standard) + " bytes)";
+  }
+  using T = LASValueType;
+  Add(dimensions, "Intensity", T::UInt16, 12);
+  if (pointFormat <= 5)
+  {
+    Add(dimensions, "ReturnNumber", T::UInt8, 14, 0, 3);
+    Add(dimensions, "NumberOfReturns", T::UInt8, 14, 3, 3);
+    Add(dimensions, "ScanDirectionFlag", T::UInt8, 14, 6, 1);
+    Add(dimensions, "EdgeOfFlightLine", T::UInt8, 14, 7, 1);
+    Add(dimensions, "Classification", T::UInt8, 15, 0, 5);
+    Add(dimensions, "Synthetic", T::UInt8, 15, 5, 1);
+    Add(dimensions, "KeyPoint", T::UInt8, 15, 6, 1);
+    Add(dimensions, "Withheld", T::UInt8, 15, 7, 1);
+    Add(dimensions, "ScanAngleRank", T::Int8, 16);
+    Add(dimensions, "UserData", T::UInt8, 17);
+    Add(dimensions, "PointSourceId", T::UInt16, 18);
+    const bool gps = pointFormat == 1 || pointFormat >= 3;
+    if (gps)
+    {
+      Add(dimensions, "GpsTime", T::Float64, 20);
+    }
+    if (pointFormat == 2 || pointFormat == 3 || pointFormat == 5)
+    {
+      Add(dimensions, "RGB", T::UInt16, gps ? 28 : 20, 0, 0, 3);
+    }
+    if (pointFormat == 4 || pointFormat == 5)
+    {
+      AddWavePacket(dimensions, pointFormat == 4 ? 28 : 34);
+    }
+  }
+  else
+  {
+    Add(dimensions, "ReturnNumber", T::UInt8, 14, 0, 4);
+    Add(dimensions, "NumberOfReturns", T::UInt8, 14, 4, 4);
+    Add(dimensions, "Synthetic", T::UInt8, 15, 0, 1);
+    Add(dimensions, "KeyPoint", T::UInt8, 15, 1, 1);
+    Add(dimensions, "Withheld", T::UInt8, 15, 2, 1);
+    Add(dimensions, "Overlap", T::UInt8, 15, 3, 1);
+    Add(dimensions, "ScannerChannel", T::UInt8, 15, 4, 2);
+    Add(dimensions, "ScanDirectionFlag", T::UInt8, 15, 6, 1);
+    Add(dimensions, "EdgeOfFlightLine", T::UInt8, 15, 7, 1);
+    Add(dimensions, "Classification", T::UInt8, 16);
+    Add(dimensions, "UserData", T::UInt8, 17);
+    Add(dimensions, "ScanAngle", T::Int16, 18);
+    Add(dimensions, "PointSourceId", T::UInt16, 20);
+    Add(dimensions, "GpsTime", T::Float64, 22);
+    if (pointFormat == 7 || pointFormat == 8 || pointFormat == 10)
+    {
+      Add(dimensions, "RGB", T::UInt16, 30, 0, 0, 3);
+    }
+    if (pointFormat == 8 || pointFormat == 10)
+    {
+      Add(dimensions, "NIR", T::UInt16, 36);
+    }
+    if (pointFormat == 9 || pointFormat == 10)
+    {
+      AddWavePacket(dimensions, pointFormat == 9 ? 30 : 38);
+    }
+  }
+
+  // The extra bytes, named by their descriptors.
+  std::size_t at = standard;
+  std::set<std::string> names;
+  for (const LASDimension& dimension : dimensions)
+  {
+    names.insert(dimension.Name);
+  }
+  const LASRecord* described = FindExtraBytesRecord(vlrs);
+  const std::size_t descriptors = described ? described->Data.size() / ExtraBytesDescriptorSize : 0;
+  for (std::size_t k = 0; k < descriptors; ++k)
+  {
+    const std::uint8_t* d = described->Data.data() + k * ExtraBytesDescriptorSize;
+    const int dataType = d[2];
+    const int options = d[3];
+    LASDimension dimension;
+    if (dataType == 0)
+    {
+      // Undocumented bytes: the options byte gives their number.
+      dimension.Type = T::UInt8;
+      dimension.Components = options;
+    }
+    else if (dataType <= 30)
+    {
+      dimension.Type = static_cast<T>((dataType - 1) % 10);
+      dimension.Components = 1 + (dataType - 1) / 10; // 11-30: deprecated arrays of 2 and 3
+      if (options & 8)
+      {
+        dimension.Scale = Load<double>(d + 112);
+      }
+      if (options & 16)
+      {
+        dimension.Offset = Load<double>(d + 136);
+      }
+    }
+    else
+    {
+      return "the extra-bytes record describes an unknown data type " + std::to_string(dataType);
+    }
+    const std::size_t bytes = LASSizeOf(dimension.Type) * dimension.Components;
+    if (at + bytes > recordLength)
+    {
+      return "the extra-bytes record describes more bytes than the point records hold (" +
+             Str(recordLength - standard) + ")";
+    }
+    if (bytes == 0)
+    {
+      continue;
+    }
+    std::string name = FixedString(d + 4, 32);
+    if (name.empty())
+    {
+      name = "ExtraBytes" + Str(k + 1);
+    }
+    for (int suffix = 2; names.count(name) != 0; ++suffix)
+    {
+      name = FixedString(d + 4, 32) + "_" + std::to_string(suffix);
+    }
+    names.insert(name);
+    dimension.Name = name;
+    dimension.ByteOffset = at;
+    at += bytes;
+    dimensions.push_back(dimension);
+  }
+  if (at < recordLength)
+  {
+    // Bytes no descriptor names are kept as they are, so that they are written back.
+    LASDimension rest;
+    rest.Name = names.count("ExtraBytes") ? "ExtraBytesUndescribed" : "ExtraBytes";
+    rest.Type = T::UInt8;
+    rest.Components = static_cast<int>(recordLength - at);
+    rest.ByteOffset = at;
+    dimensions.push_back(rest);
+  }
+  return std::string();
+}
+
+std::string ParseLASHeader(const std::uint8_t* data,
+  std::size_t size,
+  const std::string& source,
+  LASFileInfo& info)
+{
+  info = LASFileInfo();
+  if (!HostIsLittleEndian())
+  {
+    return source + ": LAS files are read on little-endian machines only";
+  }
+  if (size < 4 || std::memcmp(data, "LASF", 4) != 0)
+  {
+    return source + ": not a LAS file (it does not start with the signature 'LASF')";
+  }
+  if (size < LegacyHeaderSize)
+  {
+    return source + ": truncated: " + Str(size) + " bytes, shorter than a LAS header (" +
+           Str(LegacyHeaderSize) + " bytes)";
+  }
+  LASHeader& h = info.Header;
+  h.FileSourceId = Load<std::uint16_t>(data + 4);
+  h.GlobalEncoding = Load<std::uint16_t>(data + 6);
+  std::memcpy(h.ProjectId, data + 8, 16);
+  h.VersionMajor = data[24];
+  h.VersionMinor = data[25];
+  h.SystemIdentifier = FixedString(data + 26, 32);
+  h.GeneratingSoftware = FixedString(data + 58, 32);
+  h.CreationDay = Load<std::uint16_t>(data + 90);
+  h.CreationYear = Load<std::uint16_t>(data + 92);
+  h.HeaderSize = Load<std::uint16_t>(data + 94);
+  h.OffsetToPointData = Load<std::uint32_t>(data + 96);
+  const std::uint32_t vlrCount = Load<std::uint32_t>(data + 100);
+  const std::uint8_t formatByte = data[104];
+  h.RecordLength = Load<std::uint16_t>(data + 105);
+  const std::string version = std::to_string(h.VersionMajor) + "." + std::to_string(h.VersionMinor);
+  if (h.VersionMajor != 1 || h.VersionMinor > 4)
+  {
+    return source + ": unsupported LAS version " + version + " (versions 1.0 to 1.4 are read)";
+  }
+  // LASzip marks its files by setting the top bits of the point format.
+  if (formatByte & 0xC0)
+  {
+    return CompressedMessage(source);
+  }
+  h.PointFormat = formatByte;
+  if (h.PointFormat > 10)
+  {
+    return source + ": point format " + std::to_string(h.PointFormat) +
+           " is not supported (LAS defines point formats 0 to 10)";
+  }
+  const std::size_t versionHeaderSize =
+    h.VersionMinor >= 4 ? 375 : (h.VersionMinor == 3 ? 235 : LegacyHeaderSize);
+  if (h.HeaderSize < versionHeaderSize)
+  {
+    return source + ": the header size " + Str(h.HeaderSize) + " is too small for LAS " + version +
+           " (" + Str(versionHeaderSize) + " bytes)";
+  }
+  if (h.HeaderSize > size)
+  {
+    return source + ": truncated: the header announces " + Str(h.HeaderSize) +
+           " bytes of header, the file has " + Str(size);
+  }
+  if (h.OffsetToPointData < h.HeaderSize || h.OffsetToPointData > size)
+  {
+    return source + ": the offset to the point data (" + Str(h.OffsetToPointData) +
+           ") is outside the file (header " + Str(h.HeaderSize) + " bytes, file " + Str(size) +
+           " bytes)";
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    h.Scale[axis] = Load<double>(data + 131 + 8 * axis);
+    h.Offset[axis] = Load<double>(data + 155 + 8 * axis);
+    h.Bounds[3 + axis] = Load<double>(data + 179 + 16 * axis);
+    h.Bounds[axis] = Load<double>(data + 187 + 16 * axis);
+    if (!std::isfinite(h.Scale[axis]) || h.Scale[axis] == 0.0 || !std::isfinite(h.Offset[axis]))
+    {
+      return source + ": the header's scale or offset of " + "xyz"[axis] +
+             " is zero or not a finite number";
+    }
+  }
+
+  // The VLRs, between the header and the point data.
+  std::size_t at = h.HeaderSize;
+  if (vlrCount > (h.OffsetToPointData - at) / VLRHeaderSize)
+  {
+    return source + ": the header announces " + Str(vlrCount) +
+           " variable-length records, more than fit before the point data at byte " +
+           Str(h.OffsetToPointData);
+  }
+  for (std::uint32_t k = 0; k < vlrCount; ++k)
+  {
+    const std::size_t length =
+      at + VLRHeaderSize <= h.OffsetToPointData ? Load<std::uint16_t>(data + at + 20) : 0;
+    if (at + VLRHeaderSize + length > h.OffsetToPointData)
+    {
+      return source + ": the header announces " + Str(vlrCount) + " variable-length records but " +
+             "record " + Str(k + 1) + " runs past the start of the point data at byte " +
+             Str(h.OffsetToPointData);
+    }
+    LASRecord record;
+    record.Reserved = Load<std::uint16_t>(data + at);
+    record.UserId = FixedString(data + at + 2, 16);
+    record.RecordId = Load<std::uint16_t>(data + at + 18);
+    record.Description = FixedString(data + at + 22, 32);
+    record.Data.assign(data + at + VLRHeaderSize, data + at + VLRHeaderSize + length);
+    if (IsLAZRecord(record))
+    {
+      return CompressedMessage(source);
+    }
+    info.VLRs.push_back(std::move(record));
+    at += VLRHeaderSize + length;
+  }
+
+  // The number of points: LAS 1.4 has a 64-bit count, and its 32-bit one may be 0.
+  const std::uint64_t legacyCount = Load<std::uint32_t>(data + 107);
+  h.NumberOfPoints = legacyCount;
+  for (int r = 0; r < 5; ++r)
+  {
+    h.PointsByReturn[r] = Load<std::uint32_t>(data + 111 + 4 * r);
+  }
+  if (h.VersionMinor >= 4)
+  {
+    const std::uint64_t count = Load<std::uint64_t>(data + 247);
+    if (count != 0 || h.PointFormat > 5)
+    {
+      h.NumberOfPoints = count;
+      for (int r = 0; r < 15; ++r)
+      {
+        h.PointsByReturn[r] = Load<std::uint64_t>(data + 255 + 8 * r);
+      }
+    }
+  }
+  std::string problem = LASDimensionsFor(h.PointFormat, h.RecordLength, info.VLRs, info.Dimensions);
+  if (!problem.empty())
+  {
+    return source + ": " + problem;
+  }
+  const std::size_t pointBytes = size - h.OffsetToPointData;
+  const std::size_t available = pointBytes / h.RecordLength;
+  if (h.NumberOfPoints > available)
+  {
+    return source + ": truncated: the header announces " + Str(h.NumberOfPoints) +
+           " points, the file holds " + Str(available) + " (" + Str(pointBytes) +
+           " bytes of point records of " + Str(h.RecordLength) + " bytes)";
+  }
+
+  // The extended VLRs (LAS 1.4), after the point data.
+  if (h.VersionMinor >= 4)
+  {
+    const std::uint64_t start = Load<std::uint64_t>(data + 235);
+    const std::uint32_t count = Load<std::uint32_t>(data + 243);
+    const std::uint64_t pointsEnd = h.OffsetToPointData + h.NumberOfPoints * h.RecordLength;
+    if (count > 0 && (start < pointsEnd || start > size || count > (size - start) / EVLRHeaderSize))
+    {
+      return source + ": the header announces " + Str(count) +
+             " extended variable-length records at byte " + Str(start) + ", outside the file's " +
+             Str(size) + " bytes after its points";
+    }
+    std::uint64_t e = start;
+    for (std::uint32_t k = 0; k < count; ++k)
+    {
+      const std::uint64_t length =
+        e + EVLRHeaderSize <= size ? Load<std::uint64_t>(data + e + 20) : size;
+      if (e + EVLRHeaderSize > size || length > size - e - EVLRHeaderSize)
+      {
+        return source + ": truncated: extended variable-length record " + Str(k + 1) +
+               " runs past the end of the file";
+      }
+      LASRecord record;
+      record.Extended = true;
+      record.Reserved = Load<std::uint16_t>(data + e);
+      record.UserId = FixedString(data + e + 2, 16);
+      record.RecordId = Load<std::uint16_t>(data + e + 18);
+      record.Description = FixedString(data + e + 28, 32);
+      record.Data.assign(data + e + EVLRHeaderSize, data + e + EVLRHeaderSize + length);
+      info.EVLRs.push_back(std::move(record));
+      e += EVLRHeaderSize + length;
+    }
+    // An extra-bytes description may sit in an EVLR.
+    if (!FindExtraBytesRecord(info.VLRs) && FindExtraBytesRecord(info.EVLRs))
+    {
+      problem = LASDimensionsFor(h.PointFormat, h.RecordLength, info.EVLRs, info.Dimensions);
+      if (!problem.empty())
+      {
+        return source + ": " + problem;
+      }
+    }
+  }
+  return std::string();
+}
+
+void DecodeLASPoints(const LASFileInfo& info,
+  const std::uint8_t* records,
+  std::size_t count,
+  double* positions,
+  void* const* columns)
+{
+  const std::size_t stride = info.Header.RecordLength;
+  const double* scale = info.Header.Scale;
+  const double* offset = info.Header.Offset;
+  const auto blocks = static_cast<std::int64_t>((count + PointsPerBlock - 1) / PointsPerBlock);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t b = 0; b < blocks; ++b)
+  {
+    const std::size_t first = static_cast<std::size_t>(b) * PointsPerBlock;
+    const std::size_t n = std::min(PointsPerBlock, count - first);
+    const std::uint8_t* block = records + first * stride;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const std::uint8_t* record = block + i * stride;
+      double* p = positions + 3 * (first + i);
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        p[axis] = Load<std::int32_t>(record + 4 * axis) * scale[axis] + offset[axis];
+      }
+    }
+    for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+    {
+      const LASDimension& dimension = info.Dimensions[d];
+      if (!columns[d])
+      {
+        continue;
+      }
+      const std::size_t bytes = LASSizeOf(dimension.Type) * dimension.Components;
+      auto* to = static_cast<std::uint8_t*>(columns[d]) + first * bytes;
+      const std::uint8_t* from = block + dimension.ByteOffset;
+      if (dimension.BitCount > 0)
+      {
+        const unsigned mask = (1u << dimension.BitCount) - 1u;
+        for (std::size_t i = 0; i < n; ++i)
+        {
+          to[i] = static_cast<std::uint8_t>((from[i * stride] >> dimension.BitShift) & mask);
+        }
+      }
+      else
+      {
+        GatherBytes(from, stride, to, bytes, n);
+      }
+    }
+  }
+}
+
+LASFileBytes::~LASFileBytes()
+{
+#ifdef PCB_LAS_MMAP
+  if (this->Mapped)
+  {
+    munmap(const_cast<std::uint8_t*>(this->Bytes), this->Length);
+  }
+#endif
+}
+
+std::string LASFileBytes::Open(const std::string& path)
+{
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (error || !std::filesystem::exists(status))
+  {
+    return path + ": " + std::strerror(ENOENT);
+  }
+  if (std::filesystem::is_directory(status))
+  {
+    return path + ": is a directory, not a point file";
+  }
+  const std::uintmax_t size = std::filesystem::file_size(path, error);
+  if (error)
+  {
+    return path + ": " + error.message();
+  }
+  this->Length = static_cast<std::size_t>(size);
+  static const std::uint8_t empty = 0;
+  this->Bytes = &empty;
+  if (this->Length == 0)
+  {
+    return std::string();
+  }
+#ifdef PCB_LAS_MMAP
+  // Mapped: no copy. The pages are mapped all at once where the system can (Linux's
+  // MAP_POPULATE): a fault per 4 KB page as the decoding touches them made reading take twice
+  // as long as a plain read of the bytes (pcb_benchmark --las); with it, about as long.
+#ifdef MAP_POPULATE
+  constexpr int PopulateFlag = MAP_POPULATE;
+#else
+  constexpr int PopulateFlag = 0;
+#endif
+  const int descriptor = ::open(path.c_str(), O_RDONLY);
+  if (descriptor >= 0)
+  {
+    void* mapped =
+      mmap(nullptr, this->Length, PROT_READ, MAP_PRIVATE | PopulateFlag, descriptor, 0);
+    ::close(descriptor);
+    if (mapped != MAP_FAILED)
+    {
+      madvise(mapped, this->Length, MADV_WILLNEED);
+      this->Bytes = static_cast<const std::uint8_t*>(mapped);
+      this->Mapped = true;
+      return std::string();
+    }
+  }
+#endif
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file)
+  {
+    return path + ": cannot be opened for reading (" + std::strerror(errno) + ")";
+  }
+  this->Buffer.reset(new std::uint8_t[this->Length]);
+  const std::size_t read = std::fread(this->Buffer.get(), 1, this->Length, file);
+  std::fclose(file);
+  if (read != this->Length)
+  {
+    return path + ": read error";
+  }
+  this->Bytes = this->Buffer.get();
+  return std::string();
+}
+
+namespace
+{
+/// The header block of a LAS file to write, with its counts, bounds and offsets filled in.
+std::vector<std::uint8_t> EncodeHeader(const LASFileInfo& info,
+  std::size_t headerSize,
+  std::size_t offsetToPoints,
+  std::uint32_t vlrs,
+  std::uint32_t evlrs,
+  std::uint64_t count,
+  const std::uint64_t byReturn[15],
+  const double bounds[6])
+{
+  const LASHeader& h = info.Header;
+  std::vector<std::uint8_t> out(headerSize, 0);
+  std::uint8_t* d = out.data();
+  std::memcpy(d, "LASF", 4);
+  Store<std::uint16_t>(d + 4, h.FileSourceId);
+  // Bit 1 says waveform data is inside the file: it is not kept, so it is not written.
+  Store<std::uint16_t>(d + 6, static_cast<std::uint16_t>(h.GlobalEncoding & ~2u));
+  std::memcpy(d + 8, h.ProjectId, 16);
+  d[24] = h.VersionMajor;
+  d[25] = h.VersionMinor;
+  StoreString(d + 26, h.SystemIdentifier, 32);
+  StoreString(d + 58, h.GeneratingSoftware, 32);
+  Store<std::uint16_t>(d + 90, h.CreationDay);
+  Store<std::uint16_t>(d + 92, h.CreationYear);
+  Store<std::uint16_t>(d + 94, static_cast<std::uint16_t>(headerSize));
+  Store<std::uint32_t>(d + 96, static_cast<std::uint32_t>(offsetToPoints));
+  Store<std::uint32_t>(d + 100, vlrs);
+  d[104] = h.PointFormat;
+  Store<std::uint16_t>(d + 105, h.RecordLength);
+  const bool legacy = h.PointFormat <= 5 && count <= std::numeric_limits<std::uint32_t>::max();
+  Store<std::uint32_t>(d + 107, legacy ? static_cast<std::uint32_t>(count) : 0u);
+  for (int r = 0; r < 5; ++r)
+  {
+    Store<std::uint32_t>(d + 111 + 4 * r,
+      legacy ? static_cast<std::uint32_t>(std::min<std::uint64_t>(byReturn[r], 0xFFFFFFFFu)) : 0u);
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    Store<double>(d + 131 + 8 * axis, h.Scale[axis]);
+    Store<double>(d + 155 + 8 * axis, h.Offset[axis]);
+    Store<double>(d + 179 + 16 * axis, bounds[3 + axis]);
+    Store<double>(d + 187 + 16 * axis, bounds[axis]);
+  }
+  if (h.VersionMinor >= 4)
+  {
+    const std::uint64_t evlrStart =
+      evlrs ? offsetToPoints + count * static_cast<std::uint64_t>(h.RecordLength) : 0;
+    Store<std::uint64_t>(d + 235, evlrStart);
+    Store<std::uint32_t>(d + 243, evlrs);
+    Store<std::uint64_t>(d + 247, count);
+    for (int r = 0; r < 15; ++r)
+    {
+      Store<std::uint64_t>(d + 255 + 8 * r, byReturn[r]);
+    }
+  }
+  return out;
+}
+
+struct PackedField
+{
+  const std::uint8_t* Column;
+  unsigned Mask;
+  unsigned Shift;
+};
+
+struct PackedByte
+{
+  std::size_t ByteOffset;
+  std::vector<PackedField> Fields;
+};
+
+void AppendRecord(std::vector<std::uint8_t>& out, const LASRecord& record, bool extended)
+{
+  const std::size_t headerSize = extended ? EVLRHeaderSize : VLRHeaderSize;
+  const std::size_t at = out.size();
+  out.resize(at + headerSize + record.Data.size(), 0);
+  std::uint8_t* d = out.data() + at;
+  Store<std::uint16_t>(d, record.Reserved);
+  StoreString(d + 2, record.UserId, 16);
+  Store<std::uint16_t>(d + 18, record.RecordId);
+  if (extended)
+  {
+    Store<std::uint64_t>(d + 20, record.Data.size());
+    StoreString(d + 28, record.Description, 32);
+  }
+  else
+  {
+    Store<std::uint16_t>(d + 20, static_cast<std::uint16_t>(record.Data.size()));
+    StoreString(d + 22, record.Description, 32);
+  }
+  std::copy(record.Data.begin(), record.Data.end(), d + headerSize);
+}
+} // namespace
+
+std::vector<std::uint8_t> EncodeLASRecords(const std::vector<LASRecord>& records, bool extended)
+{
+  std::vector<std::uint8_t> bytes;
+  for (const LASRecord& record : records)
+  {
+    AppendRecord(bytes, record, extended);
+  }
+  return bytes;
+}
+
+bool DecodeLASRecords(const std::uint8_t* bytes,
+  std::size_t size,
+  bool extended,
+  std::vector<LASRecord>& records)
+{
+  records.clear();
+  const std::size_t headerSize = extended ? EVLRHeaderSize : VLRHeaderSize;
+  for (std::size_t at = 0; at < size;)
+  {
+    if (size - at < headerSize)
+    {
+      return false;
+    }
+    const std::uint64_t length =
+      extended ? Load<std::uint64_t>(bytes + at + 20) : Load<std::uint16_t>(bytes + at + 20);
+    if (length > size - at - headerSize)
+    {
+      return false;
+    }
+    LASRecord record;
+    record.Extended = extended;
+    record.Reserved = Load<std::uint16_t>(bytes + at);
+    record.UserId = FixedString(bytes + at + 2, 16);
+    record.RecordId = Load<std::uint16_t>(bytes + at + 18);
+    record.Description = FixedString(bytes + at + (extended ? 28 : 22), 32);
+    record.Data.assign(bytes + at + headerSize, bytes + at + headerSize + length);
+    records.push_back(std::move(record));
+    at += headerSize + length;
+  }
+  return true;
+}
+
+std::string WriteLAS(const std::string& path,
+  const LASFileInfo& info,
+  std::size_t count,
+  const double* positions,
+  const void* const* columns)
+{
+  const LASHeader& h = info.Header;
+  const std::size_t standard = LASStandardRecordLength(h.PointFormat);
+  if (standard == 0 || h.RecordLength < standard)
+  {
+    return path + ": cannot write point format " + std::to_string(h.PointFormat) +
+           " with records of " + Str(h.RecordLength) + " bytes";
+  }
+  if (h.VersionMajor != 1 || h.VersionMinor > 4 || (h.PointFormat > 5 && h.VersionMinor < 4))
+  {
+    return path + ": cannot write point format " + std::to_string(h.PointFormat) + " in LAS " +
+           std::to_string(h.VersionMajor) + "." + std::to_string(h.VersionMinor);
+  }
+  if (h.VersionMinor < 4 && count > std::numeric_limits<std::uint32_t>::max())
+  {
+    return path + ": " + Str(count) + " points do not fit in LAS 1." +
+           std::to_string(h.VersionMinor) + " (at most 4294967295; LAS 1.4 holds more)";
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (!std::isfinite(h.Scale[axis]) || h.Scale[axis] == 0.0 || !std::isfinite(h.Offset[axis]))
+    {
+      return path + ": the scale or offset of " + "xyz"[axis] + " is zero or not finite";
+    }
+  }
+  const std::size_t headerSize =
+    h.VersionMinor >= 4 ? 375 : (h.VersionMinor == 3 ? 235 : LegacyHeaderSize);
+  std::vector<std::uint8_t> vlrBytes;
+  std::uint32_t vlrCount = 0;
+  std::vector<const LASRecord*> extended;
+  for (const LASRecord& record : info.VLRs)
+  {
+    if (record.Extended || record.Data.size() > 0xFFFF)
+    {
+      extended.push_back(&record);
+      continue;
+    }
+    AppendRecord(vlrBytes, record, false);
+    ++vlrCount;
+  }
+  for (const LASRecord& record : info.EVLRs)
+  {
+    extended.push_back(&record);
+  }
+  if (!extended.empty() && h.VersionMinor < 4)
+  {
+    return path + ": a variable-length record longer than 65535 bytes needs LAS 1.4";
+  }
+  const std::size_t offsetToPoints = headerSize + vlrBytes.size();
+  if (offsetToPoints > std::numeric_limits<std::uint32_t>::max())
+  {
+    return path + ": the variable-length records are too long for a LAS header";
+  }
+
+  const std::string temporary = path + ".partial";
+  std::FILE* file = std::fopen(temporary.c_str(), "wb");
+  if (!file)
+  {
+    return path + ": cannot be written (" + std::strerror(errno) + ")";
+  }
+  auto fail = [&](const std::string& message)
+  {
+    std::fclose(file);
+    std::remove(temporary.c_str());
+    return path + ": " + message;
+  };
+
+  // The header's place first; it is written again at the end with the bounds and counts.
+  std::vector<std::uint8_t> header(headerSize, 0);
+  bool ok = std::fwrite(header.data(), 1, header.size(), file) == header.size() &&
+            std::fwrite(vlrBytes.data(), 1, vlrBytes.size(), file) == vlrBytes.size();
+
+  int returnDimension = -1;
+  for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+  {
+    if (info.Dimensions[d].Name == "ReturnNumber" && columns[d])
+    {
+      returnDimension = static_cast<int>(d);
+    }
+  }
+  // The fields packed in bits of a byte, by byte: each byte is made in one pass over the
+  // points rather than one pass per field.
+  std::vector<PackedByte> packedBytes;
+  for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+  {
+    const LASDimension& dimension = info.Dimensions[d];
+    if (dimension.BitCount == 0 || !columns[d])
+    {
+      continue;
+    }
+    auto byte = std::find_if(packedBytes.begin(),
+      packedBytes.end(),
+      [&](const PackedByte& packed) { return packed.ByteOffset == dimension.ByteOffset; });
+    if (byte == packedBytes.end())
+    {
+      packedBytes.push_back(PackedByte{ dimension.ByteOffset, {} });
+      byte = packedBytes.end() - 1;
+    }
+    byte->Fields.push_back(PackedField{ static_cast<const std::uint8_t*>(columns[d]),
+      (1u << dimension.BitCount) - 1u,
+      static_cast<unsigned>(dimension.BitShift) });
+  }
+  const std::size_t stride = h.RecordLength;
+  constexpr std::size_t BlocksAtOnce = 128; // about 1M points, tens of MB, per write
+  const std::size_t blockCount = (count + PointsPerBlock - 1) / PointsPerBlock;
+  // Two chunks: one is written (by another thread) while the next is encoded.
+  std::vector<std::uint8_t> chunks[2];
+  std::future<bool> writing;
+  auto finishWriting = [&]() { return !writing.valid() || writing.get(); };
+  struct BlockSummary
+  {
+    double Bounds[6];
+    std::uint64_t ByReturn[15];
+    bool OutOfRange;
+  };
+  std::vector<BlockSummary> summaries(blockCount);
+  for (std::size_t firstBlock = 0; firstBlock < blockCount && ok; firstBlock += BlocksAtOnce)
+  {
+    std::vector<std::uint8_t>& chunk = chunks[(firstBlock / BlocksAtOnce) % 2];
+    chunk.resize(std::min(blockCount, BlocksAtOnce) * PointsPerBlock * stride);
+    const auto blocks = static_cast<std::int64_t>(std::min(BlocksAtOnce, blockCount - firstBlock));
+#pragma omp parallel for schedule(static)
+    for (std::int64_t b = 0; b < blocks; ++b)
+    {
+      const std::size_t first = (firstBlock + static_cast<std::size_t>(b)) * PointsPerBlock;
+      const std::size_t n = std::min(PointsPerBlock, count - first);
+      std::uint8_t* block = chunk.data() + static_cast<std::size_t>(b) * PointsPerBlock * stride;
+      std::memset(block, 0, n * stride);
+      BlockSummary& summary = summaries[firstBlock + static_cast<std::size_t>(b)];
+      summary = BlockSummary{ { std::numeric_limits<double>::infinity(),
+                                std::numeric_limits<double>::infinity(),
+                                std::numeric_limits<double>::infinity(),
+                                -std::numeric_limits<double>::infinity(),
+                                -std::numeric_limits<double>::infinity(),
+                                -std::numeric_limits<double>::infinity() },
+        {},
+        false };
+      // The extremes of the stored integers, in locals the loop keeps in registers; the
+      // bounds are computed from them once.
+      const double scale[3] = { h.Scale[0], h.Scale[1], h.Scale[2] };
+      const double offset[3] = { h.Offset[0], h.Offset[1], h.Offset[2] };
+      std::int32_t low[3] = { INT32_MAX, INT32_MAX, INT32_MAX };
+      std::int32_t high[3] = { INT32_MIN, INT32_MIN, INT32_MIN };
+      bool outOfRange = false;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const double* p = positions + 3 * (first + i);
+        for (int axis = 0; axis < 3; ++axis)
+        {
+          const double q = std::floor((p[axis] - offset[axis]) / scale[axis] + 0.5);
+          // Also false for NaN.
+          const bool fits = q >= -2147483648.0 && q <= 2147483647.0;
+          outOfRange = outOfRange || !fits;
+          const auto stored = fits ? static_cast<std::int32_t>(q) : 0;
+          Store<std::int32_t>(block + i * stride + 4 * axis, stored);
+          low[axis] = std::min(low[axis], stored);
+          high[axis] = std::max(high[axis], stored);
+        }
+      }
+      summary.OutOfRange = outOfRange;
+      for (int axis = 0; axis < 3 && n > 0; ++axis)
+      {
+        const double a = low[axis] * scale[axis] + offset[axis];
+        const double z = high[axis] * scale[axis] + offset[axis];
+        summary.Bounds[axis] = std::min(a, z); // a negative scale swaps them
+        summary.Bounds[3 + axis] = std::max(a, z);
+      }
+      for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+      {
+        const LASDimension& dimension = info.Dimensions[d];
+        if (!columns[d])
+        {
+          continue;
+        }
+        const std::size_t bytes = LASSizeOf(dimension.Type) * dimension.Components;
+        const auto* from = static_cast<const std::uint8_t*>(columns[d]) + first * bytes;
+        std::uint8_t* to = block + dimension.ByteOffset;
+        if (dimension.BitCount == 0)
+        {
+          ScatterBytes(from, to, stride, bytes, n);
+        }
+      }
+      for (const PackedByte& packed : packedBytes)
+      {
+        std::uint8_t* to = block + packed.ByteOffset;
+        for (std::size_t i = 0; i < n; ++i)
+        {
+          unsigned value = 0;
+          for (const PackedField& field : packed.Fields)
+          {
+            value |= (field.Column[first + i] & field.Mask) << field.Shift;
+          }
+          to[i * stride] = static_cast<std::uint8_t>(value);
+        }
+      }
+      if (returnDimension >= 0)
+      {
+        const auto* returns = static_cast<const std::uint8_t*>(columns[returnDimension]) + first;
+        const int limit = h.PointFormat > 5 ? 15 : 5;
+        for (std::size_t i = 0; i < n; ++i)
+        {
+          if (returns[i] >= 1 && returns[i] <= limit)
+          {
+            ++summary.ByReturn[returns[i] - 1];
+          }
+        }
+      }
+    }
+    for (std::int64_t b = 0; b < blocks; ++b)
+    {
+      if (summaries[firstBlock + static_cast<std::size_t>(b)].OutOfRange)
+      {
+        finishWriting();
+        return fail("a point's coordinates do not fit the LAS records' 32-bit integers with "
+                    "the scale and offset of the header (or are not finite)");
+      }
+    }
+    const std::size_t first = firstBlock * PointsPerBlock;
+    const std::size_t bytes =
+      (std::min(count, first + static_cast<std::size_t>(blocks) * PointsPerBlock) - first) * stride;
+    ok = finishWriting();
+    writing = std::async(std::launch::async,
+      [&chunk, bytes, file]() { return std::fwrite(chunk.data(), 1, bytes, file) == bytes; });
+  }
+  ok = finishWriting() && ok;
+
+  std::vector<std::uint8_t> evlrBytes;
+  for (const LASRecord* record : extended)
+  {
+    AppendRecord(evlrBytes, *record, true);
+  }
+  ok = ok && std::fwrite(evlrBytes.data(), 1, evlrBytes.size(), file) == evlrBytes.size();
+
+  double bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  std::uint64_t byReturn[15] = {};
+  for (std::size_t b = 0; b < summaries.size(); ++b)
+  {
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      bounds[axis] =
+        b == 0 ? summaries[b].Bounds[axis] : std::min(bounds[axis], summaries[b].Bounds[axis]);
+      bounds[3 + axis] = b == 0 ? summaries[b].Bounds[3 + axis]
+                                : std::max(bounds[3 + axis], summaries[b].Bounds[3 + axis]);
+    }
+    for (int r = 0; r < 15; ++r)
+    {
+      byReturn[r] += summaries[b].ByReturn[r];
+    }
+  }
+  header = EncodeHeader(info,
+    headerSize,
+    offsetToPoints,
+    vlrCount,
+    static_cast<std::uint32_t>(extended.size()),
+    count,
+    byReturn,
+    bounds);
+  ok = ok && std::fseek(file, 0, SEEK_SET) == 0 &&
+       std::fwrite(header.data(), 1, header.size(), file) == header.size();
+  ok = (std::fclose(file) == 0) && ok;
+  if (!ok || std::rename(temporary.c_str(), path.c_str()) != 0)
+  {
+    const std::string reason = std::strerror(errno);
+    std::remove(temporary.c_str());
+    return path + ": write failed (" + reason + ")";
+  }
+  return std::string();
+}
+
+LASFileInfo DefaultLASFileInfo(std::size_t count, const double bounds[6], bool gpsTime, bool rgb)
+{
+  LASFileInfo info;
+  LASHeader& h = info.Header;
+  const bool huge = count > std::numeric_limits<std::uint32_t>::max();
+  h.VersionMinor = huge ? 4 : 2;
+  h.PointFormat = huge ? static_cast<std::uint8_t>(rgb ? 7 : 6)
+                       : static_cast<std::uint8_t>((gpsTime ? 1 : 0) + (rgb ? 2 : 0));
+  h.RecordLength = static_cast<std::uint16_t>(LASStandardRecordLength(h.PointFormat));
+  h.SystemIdentifier = "pcbilateral";
+  h.GeneratingSoftware = "PointCloudBilateral";
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const double low = std::isfinite(bounds[axis]) ? bounds[axis] : 0.0;
+    const double high = std::isfinite(bounds[3 + axis]) ? bounds[3 + axis] : low;
+    // A round offset at or below the lowest value; the finest power of ten that keeps the
+    // whole extent within 2^31 steps, but no finer than a nanometre of a metre's units.
+    h.Offset[axis] = std::floor(low);
+    const double extent = std::max(high - h.Offset[axis], 1e-300);
+    const double exponent = std::ceil(std::log10(extent / 2.0e9));
+    h.Scale[axis] = std::pow(10.0, std::max(exponent, -9.0));
+  }
+  LASDimensionsFor(h.PointFormat, h.RecordLength, info.VLRs, info.Dimensions);
+  return info;
+}
+
+} // namespace pcbilateral

@@ -1,0 +1,244 @@
+// Distributed runs: each process holds a part of the cloud and drives a pcbilateral::BilateralRun
+// on it, with the points of the other parts within reach as ghosts, so that the union of the
+// parts' results is, bit for bit, what one process filtering the whole cloud computes. This file
+// only communicates: the checks, the loop, progress, warnings and counts are the core's.
+//
+// Ghosts are exchanged again before every iteration rather than fetched once in a halo wide
+// enough for all of them. The core never moves ghost points, so a one-time halo would have to
+// be filtered along with the own points (its outer layers growing stale by one radius per
+// iteration): a halo about 2 N radii wide, filtered redundantly on every process that holds it,
+// and a special case for points removed as isolated inside it. Exchanging every iteration sends
+// only a layer one radius wide, filters every point exactly once, and is the recipe the core's
+// exactness test (Testing/Core/TestPartitionedRun.cxx) runs in one process; its cost is one
+// collective exchange per iteration, small next to filtering (N is 1 to a few).
+//
+// Every function here that communicates is collective: all processes call it in the same order.
+// Decisions that end a run early are taken either from values every process shares (the
+// parameters, the whole cloud's extent) or after a reduction of each process's status, so a
+// failure on one process never leaves the others waiting.
+#include "vtkPPointCloudBilateralFilter.h"
+
+#include "BilateralFilter.h"
+
+#include "vtkCommunicator.h"
+#include "vtkDistributedPointCloudFilter.h"
+#include "vtkDoubleArray.h"
+#include "vtkIntArray.h"
+#include "vtkMPIController.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+#include <algorithm>
+#include <limits>
+#include <vector>
+
+vtkStandardNewMacro(vtkPPointCloudBilateralFilter);
+vtkCxxSetObjectMacro(vtkPPointCloudBilateralFilter, Controller, vtkMultiProcessController);
+
+namespace
+{
+using pcbilateral::BilateralResult;
+using pcbilateral::BilateralStatus;
+using pcbilateral::CloudExtent;
+
+/// Names of the arrays the ghost exchange carries; vtkPoints travel as float.
+constexpr const char* PositionArrayName = "vtkPointCloudBilateralPosition";
+constexpr const char* ProcessArrayName = "vtkPointCloudBilateralProcess";
+
+/// The whole cloud's extent (finite points only), and whether any process failed to prepare.
+CloudExtent ShareExtent(vtkMultiProcessController* controller,
+  const CloudExtent& local,
+  bool failedHere,
+  bool& anyFailed)
+{
+  const long long counts[2] = { failedHere ? 1 : 0,
+    static_cast<long long>(local.NumberOfFinitePoints) };
+  long long totals[2] = { 0, 0 };
+  controller->AllReduce(counts, totals, 2, vtkCommunicator::SUM_OP);
+  // A process without finite points must not widen the bounds.
+  const bool empty = local.NumberOfFinitePoints == 0;
+  double lower[3], upper[3];
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    lower[axis] = empty ? std::numeric_limits<double>::max() : local.Min[axis];
+    upper[axis] = empty ? -std::numeric_limits<double>::max() : local.Max[axis];
+  }
+  CloudExtent whole;
+  controller->AllReduce(lower, whole.Min, 3, vtkCommunicator::MIN_OP);
+  controller->AllReduce(upper, whole.Max, 3, vtkCommunicator::MAX_OP);
+  anyFailed = totals[0] > 0;
+  whole.NumberOfFinitePoints = static_cast<std::size_t>(totals[1]);
+  return whole.NumberOfFinitePoints == 0 ? CloudExtent() : whole;
+}
+
+/// Every process learns the worst status of this step; Failed outranks Aborted.
+BilateralStatus ShareStatus(vtkMultiProcessController* controller, BilateralStatus status)
+{
+  const int local = status == BilateralStatus::Failed    ? 2
+                    : status == BilateralStatus::Aborted ? 1
+                                                         : 0;
+  int worst = 0;
+  controller->AllReduce(&local, &worst, 1, vtkCommunicator::MAX_OP);
+  return worst == 2   ? BilateralStatus::Failed
+         : worst == 1 ? BilateralStatus::Aborted
+                      : BilateralStatus::Completed;
+}
+
+/// The totals a single process would report, on every process.
+void ShareTotals(vtkMultiProcessController* controller, BilateralResult& result)
+{
+  const long long counts[2] = { static_cast<long long>(result.NumberOfRemovedPoints),
+    static_cast<long long>(result.NumberOfNonFinitePoints) };
+  long long totals[2] = { 0, 0 };
+  controller->AllReduce(counts, totals, 2, vtkCommunicator::SUM_OP);
+  result.NumberOfRemovedPoints = static_cast<std::size_t>(totals[0]);
+  result.NumberOfNonFinitePoints = static_cast<std::size_t>(totals[1]);
+  // Processes without points of their own build no octree; the others agree on its depth.
+  int depth = result.ProcessingDepth;
+  controller->AllReduce(&depth, &result.ProcessingDepth, 1, vtkCommunicator::MAX_OP);
+}
+
+/**
+ * The current positions of the other processes' points within this process's reach box,
+ * fetched with VTK's vtkDistributedPointCloudFilter::GetPointsInsideBounds. `own` holds this
+ * process's points that others may need. The positions travel in a double array: the exchanged
+ * vtkPoints are float, and ghosts rounded to float would change the sums.
+ */
+std::vector<double> FetchGhosts(vtkMPIController* controller,
+  const std::vector<double>& own,
+  const double box[6])
+{
+  const int processes = controller->GetNumberOfProcesses();
+  const int self = controller->GetLocalProcessId();
+  std::vector<double> boxes(6 * static_cast<std::size_t>(processes));
+  controller->AllGather(box, boxes.data(), 6);
+
+  // Only the points some other process reaches are offered: GetPointsInsideBounds also sends a
+  // process its own points within its box, and most of those would be all of them.
+  vtkNew<vtkPoints> points;
+  points->SetDataType(VTK_DOUBLE);
+  vtkNew<vtkDoubleArray> positions;
+  positions->SetName(PositionArrayName);
+  positions->SetNumberOfComponents(3);
+  vtkNew<vtkIntArray> owner;
+  owner->SetName(ProcessArrayName);
+  for (std::size_t i = 0; i < own.size(); i += 3)
+  {
+    const double* p = own.data() + i;
+    for (int other = 0; other < processes; ++other)
+    {
+      if (other != self && pcbilateral::InsideBox(boxes.data() + 6 * other, p))
+      {
+        points->InsertNextPoint(p);
+        positions->InsertNextTuple(p);
+        owner->InsertNextValue(self);
+        break;
+      }
+    }
+  }
+  vtkNew<vtkPolyData> offered;
+  offered->SetPoints(points);
+  offered->GetPointData()->AddArray(positions);
+  offered->GetPointData()->AddArray(owner);
+
+  vtkNew<vtkPolyData> received;
+  vtkDistributedPointCloudFilter::GetPointsInsideBounds(controller, offered, received, box);
+
+  std::vector<double> ghosts;
+  auto* receivedPositions =
+    vtkDoubleArray::SafeDownCast(received->GetPointData()->GetAbstractArray(PositionArrayName));
+  auto* receivedOwners =
+    vtkIntArray::SafeDownCast(received->GetPointData()->GetAbstractArray(ProcessArrayName));
+  if (!receivedPositions || !receivedOwners)
+  {
+    return ghosts; // nothing was received
+  }
+  const vtkIdType count = receivedPositions->GetNumberOfTuples();
+  ghosts.reserve(3 * static_cast<std::size_t>(count));
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    if (receivedOwners->GetValue(i) != self) // this process's own points come back too
+    {
+      const double* p = receivedPositions->GetPointer(3 * i);
+      ghosts.insert(ghosts.end(), p, p + 3);
+    }
+  }
+  return ghosts;
+}
+} // namespace
+
+vtkPPointCloudBilateralFilter::vtkPPointCloudBilateralFilter()
+{
+  this->SetController(vtkMultiProcessController::GetGlobalController());
+}
+
+vtkPPointCloudBilateralFilter::~vtkPPointCloudBilateralFilter()
+{
+  this->SetController(nullptr);
+}
+
+BilateralResult vtkPPointCloudBilateralFilter::RunCore(const pcbilateral::PointCloudView& cloud,
+  const pcbilateral::BilateralParameters& parameters,
+  const pcbilateral::BilateralObserver& observer,
+  bool preparedHere)
+{
+  if (!this->Controller || this->Controller->GetNumberOfProcesses() <= 1)
+  {
+    return this->Superclass::RunCore(cloud, parameters, observer, preparedHere);
+  }
+  // The parameters are the same on every process: a run they make fail fails everywhere
+  // before any communication.
+  pcbilateral::BilateralRun run(cloud, parameters, observer);
+  if (run.GetStatus() == BilateralStatus::Failed)
+  {
+    return run.Finish();
+  }
+  auto* controller = vtkMPIController::SafeDownCast(this->Controller);
+  if (!controller)
+  {
+    run.Stop(BilateralStatus::Failed,
+      std::string("a distributed run needs a vtkMPIController, not a ") +
+        this->Controller->GetClassName());
+    return run.Finish();
+  }
+
+  bool anyFailed = false;
+  const CloudExtent whole = ShareExtent(controller, run.GetLocalExtent(), !preparedHere, anyFailed);
+  if (anyFailed)
+  {
+    run.Stop(BilateralStatus::Failed,
+      preparedHere ? "another process could not start the distributed run (see its error); "
+                     "nothing was filtered"
+                   : "");
+    return run.Finish();
+  }
+  // Start decides from the whole cloud's extent and the parameters only: the same everywhere.
+  if (run.Start(whole))
+  {
+    while (run.HasNextIteration())
+    {
+      double reach[6];
+      run.GetGhostReach(reach);
+      const std::vector<double> ghosts =
+        FetchGhosts(controller, run.GetPositionsForOthers(), reach);
+      const BilateralStatus status = ShareStatus(controller, run.Step(ghosts));
+      if (status != BilateralStatus::Completed)
+      {
+        run.Stop(status, "another process failed (see its error); nothing was filtered");
+      }
+    }
+  }
+  BilateralResult result = run.Finish();
+  ShareTotals(controller, result);
+  return result;
+}
+
+void vtkPPointCloudBilateralFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Controller: " << this->Controller << "\n";
+}

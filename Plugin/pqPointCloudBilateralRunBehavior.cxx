@@ -1,0 +1,283 @@
+#include "pqPointCloudBilateralRunBehavior.h"
+
+#include "pqApplicationCore.h"
+#include "pqCoreUtilities.h"
+#include "pqDataRepresentation.h"
+#include "pqPipelineSource.h"
+#include "pqProgressManager.h"
+#include "pqRepresentation.h"
+#include "pqServer.h"
+#include "pqServerManagerModel.h"
+#include "vtkAlgorithm.h"
+#include "vtkCommand.h"
+#include "vtkOutputWindow.h"
+#include "vtkPVDataInformation.h"
+#include "vtkPVRepresentedArrayListSettings.h"
+#include "vtkSMProperty.h"
+#include "vtkSMPropertyHelper.h"
+#include "vtkSMProxy.h"
+#include "vtkSMSettings.h"
+#include "vtkSMStringListDomain.h"
+
+#include <QApplication>
+#include <QEvent>
+#include <QMouseEvent>
+#include <QPointer>
+#include <QThread>
+#include <QTimer>
+#include <QWidget>
+#include <QWindow>
+
+#include <cstring>
+
+namespace
+{
+/// Qt's events are processed at most this often during a run (ParaView's progress interval).
+constexpr qint64 EventsIntervalMs = 100;
+
+/**
+ * Installed on the application while events are processed during a run:
+ * - timer events wait until the run has ended (a timer that is not handled fires again later),
+ *   so nothing a timer starts (a render of the view, a dialog with its own event loop, such as
+ *   the welcome dialog at start-up) runs in the middle of the filter;
+ * - key and mouse input is dropped unless it is for the progress manager's non-blockable
+ *   objects (its progress bar and Abort button). pqProgressManager's own filter means the same
+ *   but drops the press that Qt 5 first delivers to the window, so the Abort button never gets
+ *   it: the manager's filter is switched off meanwhile (pqProgressManager::unblockEvents), and
+ *   this one finds the widget under a window's mouse event.
+ * Repaints and queued calls (the Output Messages window showing a warning) are handled.
+ */
+class RunEventGate : public QObject
+{
+public:
+  explicit RunEventGate(const QList<QPointer<QObject>>& allowed)
+    : Allowed(allowed)
+  {
+  }
+
+  bool eventFilter(QObject* object, QEvent* event) override
+  {
+    switch (event->type())
+    {
+      case QEvent::Timer:
+        return true;
+      case QEvent::MouseButtonPress:
+      case QEvent::MouseButtonRelease:
+      case QEvent::MouseButtonDblClick:
+      {
+        QWidget* target = qobject_cast<QWidget*>(object);
+        if (!target && qobject_cast<QWindow*>(object))
+        {
+          target = QApplication::widgetAt(static_cast<QMouseEvent*>(event)->globalPos());
+        }
+        for (; target; target = target->parentWidget())
+        {
+          if (this->Allowed.contains(target))
+          {
+            return false;
+          }
+        }
+        return true;
+      }
+      case QEvent::KeyPress:
+      case QEvent::KeyRelease:
+      case QEvent::ShortcutOverride:
+      case QEvent::Wheel:
+        return true;
+      default:
+        return false;
+    }
+  }
+
+private:
+  const QList<QPointer<QObject>>& Allowed;
+};
+}
+
+pqPointCloudBilateralRunBehavior::pqPointCloudBilateralRunBehavior(QObject* parent)
+  : Superclass(parent)
+{
+}
+
+pqPointCloudBilateralRunBehavior::~pqPointCloudBilateralRunBehavior() = default;
+
+void pqPointCloudBilateralRunBehavior::startup()
+{
+  pqApplicationCore* core = pqApplicationCore::instance();
+  pqServerManagerModel* model = core->getServerManagerModel();
+  QObject::connect(model,
+    &pqServerManagerModel::sourceAdded,
+    this,
+    &pqPointCloudBilateralRunBehavior::onSourceAdded);
+  for (pqPipelineSource* source : model->findItems<pqPipelineSource*>())
+  {
+    this->onSourceAdded(source); // filters made before the plugin was loaded
+  }
+  // The radii the filter records in its output's field data are for the Information panel and
+  // for scripts, not for colouring: keep them out of the colour-by lists (ParaView's "Filter
+  // Expressions" of the colour array list; editing that setting in the Settings dialog replaces
+  // these until the next start).
+  vtkPVRepresentedArrayListSettings* colourArrays =
+    vtkPVRepresentedArrayListSettings::GetInstance();
+  for (const char* expression : { "^BilateralRadius$", "^BilateralNormalRadius$" })
+  {
+    const int count = colourArrays->GetNumberOfFilterExpressions();
+    colourArrays->SetNumberOfFilterExpressions(count + 1);
+    colourArrays->SetFilterExpression(count, expression);
+  }
+  // A .xyz file opens with the Point Cloud Text Reader: ParaView 5.11's open dialog offers the
+  // PLOT3D reader first (it claims .xyz too, and gives an empty multiblock for a point file).
+  // This is ParaView's "default reader" setting, at a priority below the user's own settings
+  // (which then win) and never saved to them.
+  vtkSMSettings::GetInstance()->AddCollectionFromString(
+    R"json({ "settings": { "RepresentedArrayListSettings": { "ReaderDetails": [
+      "*.xyz", "Point Cloud Text Files", "PointCloudTextReader" ] } } })json",
+    0.1);
+  QObject::connect(core->getProgressManager(),
+    &pqProgressManager::abort,
+    this,
+    &pqPointCloudBilateralRunBehavior::onAbort);
+}
+
+void pqPointCloudBilateralRunBehavior::shutdown()
+{
+  this->disconnect();
+}
+
+void pqPointCloudBilateralRunBehavior::onSourceAdded(pqPipelineSource* source)
+{
+  if (!source)
+  {
+    return;
+  }
+  QObject::connect(source,
+    &pqPipelineSource::representationAdded,
+    this,
+    [this](pqPipelineSource*, pqDataRepresentation* display, int)
+    { this->onRepresentationAdded(display); });
+  for (pqDataRepresentation* display : source->getRepresentations(nullptr))
+  {
+    this->onRepresentationAdded(display); // shown before the plugin's GUI part started
+  }
+
+  vtkSMProxy* proxy = source->getProxy();
+  if (!proxy->GetXMLName() || std::strcmp(proxy->GetXMLName(), "PointCloudBilateralFilter") != 0 ||
+      source->getServer()->isRemote())
+  {
+    return;
+  }
+  auto* algorithm = vtkAlgorithm::SafeDownCast(proxy->GetClientSideObject());
+  if (!algorithm)
+  {
+    return;
+  }
+  this->Sources[algorithm] = source;
+  // The connections end with either object.
+  pqCoreUtilities::connect(algorithm, vtkCommand::StartEvent, this, SLOT(onRunStarted(vtkObject*)));
+  pqCoreUtilities::connect(
+    algorithm, vtkCommand::ProgressEvent, this, SLOT(onRunProgress(vtkObject*)));
+  pqCoreUtilities::connect(algorithm, vtkCommand::EndEvent, this, SLOT(onRunEnded(vtkObject*)));
+}
+
+void pqPointCloudBilateralRunBehavior::onRepresentationAdded(pqRepresentation* representation)
+{
+  QPointer<pqDataRepresentation> display = qobject_cast<pqDataRepresentation*>(representation);
+  if (!display || !display->getProxy()->GetProperty("Representation"))
+  {
+    return;
+  }
+  // Once ParaView has set the new display up: Show chooses its representation type after
+  // registering it.
+  QTimer::singleShot(0,
+    this,
+    [display]()
+    {
+      vtkPVDataInformation* information = display ? display->getInputDataInformation() : nullptr;
+      if (!information || information->GetNumberOfPoints() == 0 ||
+          information->GetNumberOfCells() != 0)
+      {
+        return;
+      }
+      vtkSMProxy* proxy = display->getProxy();
+      vtkSMPropertyHelper type(proxy, "Representation");
+      auto* domain = proxy->GetProperty("Representation")->FindDomain<vtkSMStringListDomain>();
+      unsigned int index = 0;
+      if (!type.GetAsString() || std::strcmp(type.GetAsString(), "Surface") != 0 || !domain ||
+          !domain->IsInDomain("Point Gaussian", index))
+      {
+        return; // not the default, or not a render view's display
+      }
+      type.Set("Point Gaussian");
+      if (proxy->GetProperty("ShaderPreset"))
+      {
+        vtkSMPropertyHelper(proxy, "ShaderPreset").Set("Sphere");
+      }
+      proxy->UpdateVTKObjects();
+      display->renderViewEventually();
+    });
+}
+
+void pqPointCloudBilateralRunBehavior::onRunStarted(vtkObject* algorithm)
+{
+  this->Running = vtkAlgorithm::SafeDownCast(algorithm);
+  this->SinceEvents.start();
+  pqApplicationCore::instance()->getProgressManager()->setEnableAbort(true);
+}
+
+void pqPointCloudBilateralRunBehavior::onRunProgress(vtkObject* algorithm)
+{
+  // The filter reports from its calling thread, the GUI's; a nested event loop is only safe there
+  // and only once at a time.
+  if (algorithm != this->Running || this->InEvents ||
+      QThread::currentThread() != QCoreApplication::instance()->thread() ||
+      this->SinceEvents.elapsed() < EventsIntervalMs)
+  {
+    return;
+  }
+  this->InEvents = true;
+  pqProgressManager* progress = pqApplicationCore::instance()->getProgressManager();
+  RunEventGate gate(progress->nonBlockableObjects());
+  QCoreApplication::instance()->installEventFilter(&gate);
+  const bool wasUnblocked = progress->unblockEvents(true);
+  QCoreApplication::processEvents(QEventLoop::ExcludeSocketNotifiers);
+  progress->unblockEvents(wasUnblocked);
+  QCoreApplication::instance()->removeEventFilter(&gate);
+  this->InEvents = false;
+  this->SinceEvents.start();
+}
+
+void pqPointCloudBilateralRunBehavior::onRunEnded(vtkObject* algorithm)
+{
+  // Once the Apply has finished (a pipeline request cannot be made from within one).
+  QPointer<pqPipelineSource> source = this->Sources.value(algorithm);
+  QTimer::singleShot(0,
+    this,
+    [source]()
+    {
+      if (source)
+      {
+        source->getProxy()->UpdatePropertyInformation();
+      }
+    });
+  if (algorithm == this->Running)
+  {
+    this->Running = nullptr;
+    pqApplicationCore::instance()->getProgressManager()->setEnableAbort(false);
+    if (static_cast<vtkAlgorithm*>(algorithm)->GetAbortExecute())
+    {
+      // The pipeline takes the aborted run as up to date: Apply alone would not run it again.
+      vtkOutputWindow::GetInstance()->DisplayWarningText(
+        "Point Cloud Bilateral Filter: aborted, the output is empty. Change a property and "
+        "Apply to run it again.");
+    }
+  }
+}
+
+void pqPointCloudBilateralRunBehavior::onAbort()
+{
+  if (this->Running)
+  {
+    // Polled by the filter between points; the run ends with an empty output.
+    this->Running->SetAbortExecute(1);
+  }
+}

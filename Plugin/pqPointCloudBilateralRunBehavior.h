@@ -1,0 +1,80 @@
+/**
+ * @class   pqPointCloudBilateralRunBehavior
+ * @brief   keeps ParaView 5.11's GUI alive while a Point Cloud Bilateral Filter runs, and makes
+ *          its Abort button stop the run
+ *
+ * In ParaView 5.11 a filter runs on the GUI thread (built-in session) and the GUI does not
+ * process events meanwhile: its progress manager's call to processEvents is commented out,
+ * and its Abort button only emits pqProgressManager::abort(), which nothing in 5.11 receives.
+ * So during a long run the window does not repaint, the Output Messages window shows the
+ * run's warnings only after it, and Abort does nothing. ParaView 5.12 does both in its
+ * progress manager; this auto-start object does the same for this plugin's filter only:
+ * - while the filter executes, Abort is enabled, and the filter's progress events (one per
+ *   0.1 s or so) let Qt process its pending events, at most every 0.1 s, timers excepted (they
+ *   fire after the run). The progress manager's event filter still drops key and mouse presses
+ *   everywhere but on the progress bar and its Abort button, so nothing else can be started
+ *   meanwhile;
+ * - pqProgressManager::abort() (the Abort button) sets the running filter's AbortExecute flag,
+ *   which the filter polls from its calling thread; the run stops and the output is empty.
+ * Only in a built-in session: with a remote server the filter runs in another process.
+ *
+ * It also shows point clouds without cells: ParaView 5.11 reads a PLY scan without faces (and a
+ * VTP without vertex cells) as points with no cells, which its default Surface representation,
+ * and Points too, draw as nothing, so a new user takes the file for empty. A new display in a
+ * render view whose data has points but no cells gets the Point Gaussian representation (it
+ * draws points, not cells) with the sphere shader; the user may change it as usual.
+ *
+ * After each run it refreshes the filter's information properties (Radius Used, Normal Radius
+ * Used): the Properties panel reads them when Apply pushes the properties, before the run, so
+ * they showed the previous run's values.
+ *
+ * And it keeps the filter's field arrays BilateralRadius and BilateralNormalRadius (one value
+ * each) out of the colour-by lists, and makes the Point Cloud Text Reader the default reader of
+ * .xyz files (ParaView's "default reader" setting, below the user's settings).
+ */
+#ifndef pqPointCloudBilateralRunBehavior_h
+#define pqPointCloudBilateralRunBehavior_h
+
+#include <QElapsedTimer>
+#include <QMap>
+#include <QObject>
+#include <QPointer>
+
+#include "vtkWeakPointer.h"
+
+class pqPipelineSource;
+class pqRepresentation;
+class vtkAlgorithm;
+class vtkObject;
+
+class pqPointCloudBilateralRunBehavior : public QObject
+{
+  Q_OBJECT
+  typedef QObject Superclass;
+
+public:
+  pqPointCloudBilateralRunBehavior(QObject* parent = nullptr);
+  ~pqPointCloudBilateralRunBehavior() override;
+
+  // The plugin's auto-start hooks.
+  void startup();
+  void shutdown();
+
+private Q_SLOTS:
+  void onSourceAdded(pqPipelineSource* source);
+  void onRepresentationAdded(pqRepresentation* representation);
+  void onRunStarted(vtkObject* algorithm);
+  void onRunProgress(vtkObject* algorithm);
+  void onRunEnded(vtkObject* algorithm);
+  void onAbort();
+
+private:
+  vtkWeakPointer<vtkAlgorithm> Running;
+  QMap<vtkObject*, QPointer<pqPipelineSource>> Sources;
+  QElapsedTimer SinceEvents;
+  bool InEvents = false;
+
+  Q_DISABLE_COPY(pqPointCloudBilateralRunBehavior)
+};
+
+#endif

@@ -1,0 +1,458 @@
+// The LAS reader and writer: every point format 0-10 written, read back and written again
+// (same values, same point records byte for byte), extra bytes named by their record, the
+// header chosen for points from elsewhere, and damaged files through the VTK reader (one
+// error, an empty output).
+#include "CoreTesting.h"
+
+#include "vtkLASPointCloudReader.h"
+#include "vtkLASPointCloudWriter.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnsignedShortArray.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+namespace
+{
+std::vector<char> FileBytes(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<char>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+template<typename T>
+T At(const std::vector<char>& bytes, std::size_t offset)
+{
+  T value{};
+  if (offset + sizeof(T) <= bytes.size())
+  {
+    std::memcpy(&value, bytes.data() + offset, sizeof(T));
+  }
+  return value;
+}
+
+/// The point records of a LAS file, as the file's header places them.
+std::vector<char> PointRecords(const std::vector<char>& bytes)
+{
+  const auto offset = At<std::uint32_t>(bytes, 96);
+  const auto length = At<std::uint16_t>(bytes, 105);
+  std::uint64_t count = At<std::uint32_t>(bytes, 107);
+  if (bytes.size() > 255 && bytes[25] >= 4)
+  {
+    count = At<std::uint64_t>(bytes, 247);
+  }
+  const std::size_t end = offset + count * length;
+  return end <= bytes.size() ? std::vector<char>(bytes.begin() + offset, bytes.begin() + end)
+                             : std::vector<char>();
+}
+
+void AddFieldValues(vtkFieldData* fieldData, const char* name, int type, std::vector<double> values)
+{
+  auto array = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(type));
+  array->SetName(name);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  for (std::size_t k = 0; k < values.size(); ++k)
+  {
+    array->SetTuple1(static_cast<vtkIdType>(k), values[k]);
+  }
+  fieldData->AddArray(array);
+}
+
+/// A cloud whose every field gets values that fill its bits, deterministically.
+vtkSmartPointer<vtkPolyData> MakeCloud(int format, vtkIdType count)
+{
+  auto cloud = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    // On the 0.001 grid of the header below, so they read back exactly.
+    points->InsertNextPoint(
+      1000.0 + 0.001 * (i * 7919 % 100003), 2000.0 - 0.001 * i, -5.0 + 0.001 * (i % 977));
+  }
+  cloud->SetPoints(points);
+  vtkFieldData* fieldData = cloud->GetFieldData();
+  AddFieldValues(fieldData, "LAS Version", VTK_UNSIGNED_CHAR, { 1, 4 });
+  AddFieldValues(fieldData, "LAS Point Format", VTK_UNSIGNED_CHAR, { double(format) });
+  const int standard[] = { 20, 28, 26, 34, 57, 63, 30, 36, 38, 59, 67 };
+  AddFieldValues(
+    fieldData, "LAS Point Record Length", VTK_UNSIGNED_SHORT, { double(standard[format]) });
+  AddFieldValues(fieldData, "LAS Scale", VTK_DOUBLE, { 0.001, 0.001, 0.001 });
+  AddFieldValues(fieldData, "LAS Offset", VTK_DOUBLE, { 1000, 2000, 0 });
+  return cloud;
+}
+
+/// Fills every point array of `like` (a cloud read from a LAS file) in `cloud` with
+/// pseudo-random values within each field's range.
+void FillArraysLike(vtkPolyData* like, vtkPolyData* cloud)
+{
+  const vtkIdType count = cloud->GetNumberOfPoints();
+  vtkPointData* from = like->GetPointData();
+  for (int a = 0; a < from->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* model = from->GetArray(a);
+    if (!model || std::strcmp(model->GetName(), "Colors") == 0)
+    {
+      continue;
+    }
+    auto array = vtkSmartPointer<vtkDataArray>::Take(model->NewInstance());
+    array->SetName(model->GetName());
+    array->SetNumberOfComponents(model->GetNumberOfComponents());
+    array->SetNumberOfTuples(count);
+    const std::string name = model->GetName();
+    double range = 255;
+    if (name == "ReturnNumber" || name == "NumberOfReturns")
+    {
+      range = cloud->GetFieldData()->GetArray("LAS Point Format")->GetTuple1(0) > 5 ? 15 : 7;
+    }
+    else if (name == "Classification")
+    {
+      range = cloud->GetFieldData()->GetArray("LAS Point Format")->GetTuple1(0) > 5 ? 255 : 31;
+    }
+    else if (name == "ScannerChannel")
+    {
+      range = 3;
+    }
+    else if (name == "Synthetic" || name == "KeyPoint" || name == "Withheld" || name == "Overlap" ||
+             name == "ScanDirectionFlag" || name == "EdgeOfFlightLine")
+    {
+      range = 1;
+    }
+    else if (array->GetDataType() == VTK_SIGNED_CHAR)
+    {
+      range = 127;
+    }
+    else if (array->GetDataTypeSize() >= 2)
+    {
+      range = 30000;
+    }
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+      {
+        double value =
+          static_cast<double>((i * 2654435761u + c * 40503u) % 1000003u) / 1000003.0 * (range + 1);
+        value = std::floor(value);
+        if (array->GetDataType() == VTK_DOUBLE || array->GetDataType() == VTK_FLOAT)
+        {
+          value = 0.25 * i + c; // exact in float too for these sizes
+        }
+        array->SetComponent(i, c, value);
+      }
+    }
+    cloud->GetPointData()->AddArray(array);
+  }
+}
+
+struct ErrorCounter
+{
+  int Errors = 0;
+  vtkNew<vtkCallbackCommand> Command;
+  void Observe(vtkObject* object)
+  {
+    this->Command->SetClientData(this);
+    this->Command->SetCallback([](vtkObject*, unsigned long, void* self, void*)
+      { ++static_cast<ErrorCounter*>(self)->Errors; });
+    object->AddObserver(vtkCommand::ErrorEvent, this->Command);
+  }
+};
+
+vtkSmartPointer<vtkPolyData> Read(const std::string& path, std::string* error = nullptr)
+{
+  vtkNew<vtkLASPointCloudReader> reader;
+  ErrorCounter errors;
+  errors.Observe(reader);
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  if (error)
+  {
+    *error = reader->GetErrorMessage();
+  }
+  PCB_CHECK(errors.Errors == (reader->GetErrorMessage()[0] ? 1 : 0),
+    "%s: %d errors reported",
+    path.c_str(),
+    errors.Errors);
+  auto cloud = vtkSmartPointer<vtkPolyData>::New();
+  cloud->ShallowCopy(reader->GetOutput());
+  return cloud;
+}
+
+bool Write(vtkPolyData* cloud, const std::string& path)
+{
+  vtkNew<vtkLASPointCloudWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(cloud);
+  writer->Write();
+  PCB_CHECK(writer->GetErrorMessage()[0] == '\0', "%s", writer->GetErrorMessage());
+  return writer->GetErrorMessage()[0] == '\0';
+}
+
+void TestEveryPointFormat()
+{
+  const vtkIdType count = 20000; // more than two blocks of the parallel coder
+  for (int format = 0; format <= 10; ++format)
+  {
+    const std::string name = "format" + std::to_string(format);
+    // First an empty file of the format, for the reader to tell its arrays.
+    vtkSmartPointer<vtkPolyData> empty = MakeCloud(format, 0);
+    if (!Write(empty, name + "-empty.las"))
+    {
+      continue;
+    }
+    vtkSmartPointer<vtkPolyData> model = Read(name + "-empty.las");
+    vtkSmartPointer<vtkPolyData> cloud = MakeCloud(format, count);
+    FillArraysLike(model, cloud);
+    if (!Write(cloud, name + ".las"))
+    {
+      continue;
+    }
+    vtkSmartPointer<vtkPolyData> read = Read(name + ".las");
+    PCB_CHECK(read->GetNumberOfPoints() == count,
+      "%s: %lld points",
+      name.c_str(),
+      static_cast<long long>(read->GetNumberOfPoints()));
+    PCB_CHECK(read->GetNumberOfVerts() == count, "%s: one vertex per point", name.c_str());
+    PCB_CHECK(read->GetPoints()->GetDataType() == VTK_DOUBLE, "%s: double points", name.c_str());
+    if (read->GetNumberOfPoints() != count)
+    {
+      continue;
+    }
+    double worst = 0;
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      double a[3], b[3];
+      cloud->GetPoint(i, a);
+      read->GetPoint(i, b);
+      for (int k = 0; k < 3; ++k)
+      {
+        worst = std::max(worst, std::abs(a[k] - b[k]));
+      }
+    }
+    PCB_CHECK(worst < 1e-9, "%s: points moved by %g", name.c_str(), worst);
+    for (int a = 0; a < cloud->GetPointData()->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* written = cloud->GetPointData()->GetArray(a);
+      vtkDataArray* back = read->GetPointData()->GetArray(written->GetName());
+      PCB_CHECK(back != nullptr, "%s: no array %s", name.c_str(), written->GetName());
+      if (!back)
+      {
+        continue;
+      }
+      PCB_CHECK(back->GetDataType() == written->GetDataType() &&
+                  back->GetNumberOfComponents() == written->GetNumberOfComponents(),
+        "%s: %s changed type",
+        name.c_str(),
+        written->GetName());
+      bool same = true;
+      for (vtkIdType i = 0; i < count && same; ++i)
+      {
+        for (int c = 0; c < written->GetNumberOfComponents(); ++c)
+        {
+          same = same && written->GetComponent(i, c) == back->GetComponent(i, c);
+        }
+      }
+      PCB_CHECK(same, "%s: the values of %s changed", name.c_str(), written->GetName());
+    }
+    // Read, then written again without a change: the same point records, byte for byte.
+    if (Write(read, name + "-again.las"))
+    {
+      const std::vector<char> first = PointRecords(FileBytes(name + ".las"));
+      const std::vector<char> second = PointRecords(FileBytes(name + "-again.las"));
+      PCB_CHECK(!first.empty() && first == second, "%s: the point records differ", name.c_str());
+      PCB_CHECK(FileBytes(name + ".las")[104] == format,
+        "%s: written as format %d",
+        name.c_str(),
+        FileBytes(name + ".las")[104]);
+    }
+  }
+}
+
+void TestDefaultHeader()
+{
+  // Float points from elsewhere, with GPS times and 8-bit colours: LAS 1.2 format 3, colours
+  // scaled to 16 bits, the precision of the points kept.
+  auto cloud = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToFloat();
+  vtkNew<vtkDoubleArray> times;
+  times->SetName("GpsTime");
+  vtkNew<vtkUnsignedCharArray> colours;
+  colours->SetName("RGB");
+  colours->SetNumberOfComponents(3);
+  for (int i = 0; i < 100; ++i)
+  {
+    points->InsertNextPoint(0.01f * i, 1.0f - 0.01f * i, 0.5f);
+    times->InsertNextValue(1e5 + i);
+    colours->InsertNextTuple3(i, 2 * i, 255);
+  }
+  cloud->SetPoints(points);
+  cloud->GetPointData()->AddArray(times);
+  cloud->GetPointData()->AddArray(colours);
+  if (!Write(cloud, "default.las"))
+  {
+    return;
+  }
+  const std::vector<char> bytes = FileBytes("default.las");
+  PCB_CHECK(bytes[24] == 1 && bytes[25] == 2 && bytes[104] == 3,
+    "LAS %d.%d format %d",
+    bytes[24],
+    bytes[25],
+    bytes[104]);
+  vtkSmartPointer<vtkPolyData> read = Read("default.las");
+  PCB_CHECK(read->GetNumberOfPoints() == 100,
+    "%lld points",
+    static_cast<long long>(read->GetNumberOfPoints()));
+  double worst = 0;
+  for (vtkIdType i = 0; i < read->GetNumberOfPoints(); ++i)
+  {
+    double a[3], b[3];
+    cloud->GetPoint(i, a);
+    read->GetPoint(i, b);
+    for (int k = 0; k < 3; ++k)
+    {
+      worst = std::max(worst, std::abs(a[k] - b[k]));
+    }
+  }
+  PCB_CHECK(worst < 1e-8, "points moved by %g", worst);
+  auto* rgb = vtkUnsignedShortArray::SafeDownCast(read->GetPointData()->GetArray("RGB"));
+  PCB_CHECK(rgb && rgb->GetComponent(10, 1) == 20 * 257 && rgb->GetComponent(10, 2) == 65535,
+    "8-bit colours scaled to 16 bits");
+  vtkDataArray* display = read->GetPointData()->GetArray("Colors");
+  PCB_CHECK(
+    display && display->GetDataType() == VTK_UNSIGNED_CHAR && display->GetComponent(10, 1) == 20,
+    "8-bit display colours");
+  PCB_CHECK(read->GetPointData()->GetArray("GpsTime")->GetComponent(7, 0) == 1e5 + 7, "GPS time");
+}
+
+void TestExtraBytes()
+{
+  // A record of format 0 with 12 extra bytes: a described float "Height", a described
+  // unsigned short "Label", and 6 bytes no descriptor names.
+  vtkSmartPointer<vtkPolyData> cloud = MakeCloud(0, 10);
+  vtkFieldData* fieldData = cloud->GetFieldData();
+  fieldData->RemoveArray("LAS Point Record Length");
+  AddFieldValues(fieldData, "LAS Point Record Length", VTK_UNSIGNED_SHORT, { 20 + 12 });
+  std::vector<unsigned char> vlr(54 + 2 * 192, 0);
+  std::memcpy(vlr.data() + 2, "LASF_Spec", 9);
+  vlr[18] = 4;
+  const std::uint16_t length = 2 * 192;
+  std::memcpy(vlr.data() + 20, &length, 2);
+  vlr[54 + 2] = 9; // float
+  std::memcpy(vlr.data() + 54 + 4, "Height", 6);
+  vlr[54 + 192 + 2] = 3; // unsigned short
+  std::memcpy(vlr.data() + 54 + 192 + 4, "Label", 5);
+  vtkNew<vtkUnsignedCharArray> vlrs;
+  vlrs->SetName("LAS VLRs");
+  for (unsigned char byte : vlr)
+  {
+    vlrs->InsertNextValue(byte);
+  }
+  fieldData->AddArray(vlrs);
+  vtkNew<vtkFloatArray> height;
+  height->SetName("Height");
+  vtkNew<vtkUnsignedShortArray> label;
+  label->SetName("Label");
+  for (int i = 0; i < 10; ++i)
+  {
+    height->InsertNextValue(0.5f * i);
+    label->InsertNextValue(static_cast<unsigned short>(1000 + i));
+  }
+  cloud->GetPointData()->AddArray(height);
+  cloud->GetPointData()->AddArray(label);
+  if (!Write(cloud, "extra.las"))
+  {
+    return;
+  }
+  vtkSmartPointer<vtkPolyData> read = Read("extra.las");
+  vtkDataArray* h = read->GetPointData()->GetArray("Height");
+  vtkDataArray* l = read->GetPointData()->GetArray("Label");
+  vtkDataArray* rest = read->GetPointData()->GetArray("ExtraBytes");
+  PCB_CHECK(h && h->GetDataType() == VTK_FLOAT && h->GetComponent(3, 0) == 1.5, "Height");
+  PCB_CHECK(l && l->GetDataType() == VTK_UNSIGNED_SHORT && l->GetComponent(9, 0) == 1009, "Label");
+  PCB_CHECK(rest && rest->GetNumberOfComponents() == 6, "the undescribed bytes");
+}
+
+void TestDamagedFiles()
+{
+  vtkSmartPointer<vtkPolyData> cloud = MakeCloud(6, 1000);
+  if (!Write(cloud, "whole.las"))
+  {
+    return;
+  }
+  const std::vector<char> whole = FileBytes("whole.las");
+  auto damaged = [&](const char* name, std::vector<char> bytes, const char* expected)
+  {
+    {
+      std::ofstream out(name, std::ios::binary);
+      out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    }
+    std::string error;
+    vtkSmartPointer<vtkPolyData> read = Read(name, &error);
+    PCB_CHECK(error.find(expected) != std::string::npos && error.find(name) != std::string::npos &&
+                error.find('\n') == std::string::npos,
+      "%s: the error is '%s', expected '%s'",
+      name,
+      error.c_str(),
+      expected);
+    PCB_CHECK(read->GetNumberOfPoints() == 0,
+      "%s: %lld points read from a damaged file",
+      name,
+      static_cast<long long>(read->GetNumberOfPoints()));
+  };
+  damaged("cut.las", std::vector<char>(whole.begin(), whole.end() - 1), "truncated");
+  damaged("header-only.las", std::vector<char>(whole.begin(), whole.begin() + 100), "truncated");
+  damaged("empty.las", {}, "not a LAS file");
+  std::vector<char> bytes = whole;
+  bytes[104] = static_cast<char>(0x86);
+  damaged("compressed.las", bytes, "compressed (LAZ)");
+  bytes = whole;
+  bytes[104] = 42;
+  damaged("format42.las", bytes, "point format 42 is not supported");
+  bytes = whole;
+  bytes[105] = 10; // record length 10, shorter than format 6 needs
+  bytes[106] = 0;
+  damaged("short-records.las", bytes, "shorter than point format 6 needs");
+  bytes = whole;
+  std::memset(bytes.data() + 247, 0xff, 8); // 2^64 - 1 points
+  damaged("count.las", bytes, "truncated: the header announces 18446744073709551615 points");
+  bytes = whole;
+  std::memset(bytes.data() + 131, 0, 8); // x scale 0
+  damaged("scale.las", bytes, "scale or offset of x");
+  bytes = whole;
+  bytes[25] = 9;
+  damaged("version.las", bytes, "unsupported LAS version 1.9");
+  damaged("missing.las", {}, "not a LAS file");
+  std::remove("missing.las");
+  std::string error;
+  Read("missing.las", &error);
+  PCB_CHECK(error.find("No such file") != std::string::npos, "missing file: %s", error.c_str());
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  const std::map<std::string, std::function<void()>> cases = {
+    { "every-point-format", TestEveryPointFormat },
+    { "default-header", TestDefaultHeader },
+    { "extra-bytes", TestExtraBytes },
+    { "damaged-files", TestDamagedFiles },
+  };
+  return RunNamedCase(argc, argv, cases);
+}

@@ -1,0 +1,38 @@
+"""Run inside the ParaView GUI (paraview --script=... --exit) by TestGUIScript.sh; checks what the
+plugin's GUI part sets up, and writes "ok: ..." or "FAILED: ..." lines to PCB_LOG:
+- after the filter has run, the arrays its display offers for colouring: the field arrays
+  BilateralRadius and BilateralNormalRadius (the radii used, for the Information panel and
+  scripts) must not be among them; DisplacementLength must;
+- the default reader of .xyz files (what File > Open uses without asking) is the Point Cloud
+  Text Reader, not PLOT3D's."""
+import os
+
+from paraview import servermanager, simple
+
+data = os.path.join(os.environ["PCB_SOURCE_DIR"], "Data", "sharp_edge_noise0.5.ply")
+reader = simple.PLYReader(FileNames=[data])
+bilateral = simple.PointCloudBilateralFilter(Input=reader, Radius=0.06, NormalRadius=0.02,
+                                             OutputDisplacementLength=1)
+display = simple.Show(bilateral)
+simple.Render()
+domain = display.GetProperty("ColorArrayName").SMProperty.FindDomain("vtkSMArrayListDomain")
+offered = [domain.GetString(i) for i in range(domain.GetNumberOfStrings())]
+field = [array.GetName() for array in bilateral.FieldData]
+with open(os.environ["PCB_LOG"], "w") as log:
+    def check(condition, message):
+        log.write(("ok:     " if condition else "FAILED: ") + message + "\n")
+    check("BilateralRadius" in field and "BilateralNormalRadius" in field,
+          f"the output's field data has the radii used: {field}")
+    check("DisplacementLength" in offered, f"colour-by offers {offered}")
+    check("BilateralRadius" not in offered and "BilateralNormalRadius" not in offered,
+          "colour-by does not offer the radii")
+
+    # ParaView's open dialog (pqLoadDataReaction) reads this setting: pattern, description,
+    # reader name, three strings per entry, the last matching entry first.
+    settings = servermanager.vtkSMSettings.GetInstance()
+    key = ".settings.RepresentedArrayListSettings.ReaderDetails"
+    entries = [settings.GetSettingAsString(key, i, "")
+               for i in range(settings.GetSettingNumberOfElements(key))]
+    readers = {entries[i]: entries[i + 2] for i in range(0, len(entries) - 2, 3)}
+    check(readers.get("*.xyz") == "PointCloudTextReader",
+          f"the default reader of *.xyz is the Point Cloud Text Reader ({readers})")

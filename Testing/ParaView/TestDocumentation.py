@@ -1,0 +1,29 @@
+"""The documentation behind ParaView's "?" button: the plugin's compiled Qt help file (built
+with XML_DOCUMENTATION ON and embedded in the plugin) has a page for each proxy, with the
+proxy's long help and its properties' documentation.
+
+    python3 TestDocumentation.py PointCloudBilateral.qch
+"""
+import sqlite3
+import sys
+import zlib
+
+pages = {}
+with sqlite3.connect(sys.argv[1]) as help_file:  # a .qch is an SQLite database
+    for name, data in help_file.execute(
+            "SELECT n.Name, d.Data FROM FileNameTable n JOIN FileDataTable d ON n.FileId = d.Id"):
+        if data:  # Qt's qCompress: a 4-byte length, then a zlib stream
+            pages[name] = zlib.decompress(bytes(data)[4:]).decode()
+
+failures = 0
+for page, expected in [
+        ("filters.PointCloudBilateralFilter.html",
+         ["Digne and C. de Franchis", "Neighbourhood radius r", "Number of iterations N"]),
+        ("sources.PointCloudTextReader.html", ["Has Normals", "lines starting with #"]),
+        ("writers.PointCloudTextWriter.html", ["one line per point"])]:
+    text = " ".join(pages.get(page, "").split())
+    missing = [phrase for phrase in expected if phrase not in text]
+    print(("ok:     " if not missing else "FAILED: ") + f"{page}: {len(text)} characters" +
+          (f", missing {missing}" if missing else ""))
+    failures += bool(missing)
+sys.exit(1 if failures else 0)

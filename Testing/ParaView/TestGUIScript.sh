@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Runs a Python script inside the ParaView GUI (with the plugin auto-loaded) that writes
+# "ok: ..." / "FAILED: ..." lines to the file PCB_LOG; prints them and fails on any FAILED line or
+# none at all. Needs an X display (the test command runs ctest under xvfb-run).
+#   TestGUIScript.sh PLUGIN_DIR SOURCE_DIR SCRIPT LOG
+set -euo pipefail
+plugin_dir=$1 source_dir=$2 script=$3 log=$4
+rm -f "$log"
+PCB_LOG=$log PCB_SOURCE_DIR=$source_dir PV_PLUGIN_PATH=$plugin_dir \
+  paraview --dr "--script=$script" --exit > "$log.paraview" 2>&1 || true
+cat "$log"
+grep -q "^ok:" "$log" && ! grep -q "^FAILED" "$log"

@@ -1,0 +1,81 @@
+"""vtkPointCloudFileIO from Python: the reader and writer of each extension, a write-then-read
+round trip through every format, and damaged or unsupported files as one line.
+
+    python3 TestFileIO.py SCRATCH_FOLDER
+"""
+import os
+import sys
+
+from pointcloudbilateral import vtkPointCloudFileIO
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkPolyData
+
+scratch = sys.argv[1]
+os.makedirs(scratch, exist_ok=True)
+failures = []
+
+
+def check(condition, message):
+    print(("ok: " if condition else "FAILED: ") + message)
+    if not condition:
+        failures.append(message)
+
+
+expected = {".txt": ("vtkPointCloudTextReader", "vtkPointCloudTextWriter"),
+            ".XYZ": ("vtkPointCloudTextReader", "vtkPointCloudTextWriter"),
+            ".las": ("vtkLASPointCloudReader", "vtkLASPointCloudWriter"),
+            ".ply": ("vtkPLYReader", "vtkPLYWriter"),
+            ".vtp": ("vtkXMLPolyDataReader", "vtkXMLPolyDataWriter")}
+for extension, (reader, writer) in expected.items():
+    r = vtkPointCloudFileIO.NewReader("cloud" + extension)
+    w = vtkPointCloudFileIO.NewWriter("cloud" + extension)
+    check(r is not None and r.GetClassName() == reader and r.GetFileName() == "cloud" + extension,
+          f"{extension}: {r.GetClassName() if r else None}")
+    check(w is not None and w.GetClassName() == writer, f"{extension}: {w.GetClassName() if w else None}")
+check(vtkPointCloudFileIO.NewReader("cloud.obj") is None, "no reader for .obj")
+check(vtkPointCloudFileIO.NewWriter("cloud.laz") is None, "no writer for .laz")
+check(vtkPointCloudFileIO.NewReader("cloud.laz").GetClassName() == "vtkLASPointCloudReader",
+      ".laz is read by the LAS reader (which explains compressed files)")
+
+cloud = vtkPolyData()
+points = vtkPoints()
+points.SetDataTypeToDouble()
+intensity = vtkDoubleArray()
+intensity.SetName("Intensity")
+for i in range(100):
+    points.InsertNextPoint(0.25 * (i % 10), 0.5 * (i // 10), 0.125 * (i % 7))
+    intensity.InsertNextValue(i)
+cloud.SetPoints(points)
+cloud.GetPointData().AddArray(intensity)
+io = vtkPointCloudFileIO()
+for extension in (".xyz", ".las", ".ply", ".vtp"):
+    path = os.path.join(scratch, "cloud" + extension)
+    check(io.Write(cloud, path), f"write {extension}: {io.GetErrorMessage()}")
+    back = vtkPolyData()
+    check(io.Read(path, back) and back.GetNumberOfPoints() == 100,
+          f"read {extension}: {back.GetNumberOfPoints()} points {io.GetErrorMessage()}")
+    check(back.GetPoint(57) == cloud.GetPoint(57), f"{extension}: point 57 {back.GetPoint(57)}")
+    array = back.GetPointData().GetArray("Intensity")
+    if extension != ".ply":  # PLY keeps positions, normals and colours only
+        check(array is not None and array.GetTuple1(57) == 57, f"{extension}: Intensity kept")
+
+damaged = os.path.join(scratch, "cut.ply")
+with open(os.path.join(scratch, "cloud.ply"), "rb") as whole:
+    data = whole.read()
+with open(damaged, "wb") as cut:
+    cut.write(data[: len(data) - 500])
+back = vtkPolyData()
+check(not io.Read(damaged, back) and back.GetNumberOfPoints() == 0, "a cut PLY file is not read")
+message = io.GetErrorMessage()
+check(message.startswith(damaged + ": truncated") and "\n" not in message, message)
+problem = vtkPointCloudFileIO.CheckInputFile(os.path.join(scratch, "missing.vtp"))
+check(problem.endswith("missing.vtp: No such file or directory"), problem)
+check(not io.Write(cloud, os.path.join(scratch, "cloud.obj")) and
+      "unsupported file type '.obj'" in io.GetErrorMessage(), io.GetErrorMessage())
+check(not os.path.exists(os.path.join(scratch, "no", "out.las")) and
+      not io.Write(cloud, os.path.join(scratch, "no", "out.las")) and
+      io.GetErrorMessage().startswith(os.path.join(scratch, "no", "out.las")), io.GetErrorMessage())
+
+if failures:
+    sys.exit(f"{len(failures)} check(s) failed")
+print("all checks passed")

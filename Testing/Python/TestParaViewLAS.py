@@ -1,0 +1,82 @@
+"""The LAS reader and writer in ParaView: OpenDataFile picks the plugin's reader for .las (no
+reader choice), the points are there with one vertex each, a damaged file gives one error and
+no points, and SaveData writes .las with the plugin's writer.
+
+    pvpython TestParaViewLAS.py PLUGIN LAS_FOLDER SCRATCH_FOLDER
+
+Exits with 77 (skipped) when LAS_FOLDER has no autzen_trim.las.
+"""
+import os
+import sys
+
+from paraview import simple
+
+# The wrapped classes, so that the reader's own methods are reachable from Python.
+import pointcloudbilateral  # noqa: F401
+
+plugin, folder, scratch = sys.argv[1], sys.argv[2], sys.argv[3]
+autzen = os.path.join(folder, "autzen_trim.las")
+if not folder or not os.path.isfile(autzen):
+    print(f"skipped: no autzen_trim.las in '{folder}' (set PCB_LAS_DATA_DIR)")
+    sys.exit(77)
+os.makedirs(scratch, exist_ok=True)
+failures = []
+
+
+def check(condition, message):
+    print(("ok: " if condition else "FAILED: ") + message)
+    if not condition:
+        failures.append(message)
+
+
+simple.LoadPlugin(plugin, remote=False, ns=vars(simple))
+reader = simple.OpenDataFile(autzen)
+check(reader is not None and reader.GetXMLName() == "LASPointCloudReader",
+      f"OpenDataFile picks the LAS reader: {reader.GetXMLName() if reader else None}")
+reader.UpdatePipeline()
+info = reader.GetDataInformation()
+check(info.GetNumberOfPoints() == 110000, f"{info.GetNumberOfPoints()} points")
+check(info.GetNumberOfCells() == 110000, f"{info.GetNumberOfCells()} vertex cells")
+arrays = [reader.PointData[k].GetName() for k in range(len(reader.PointData))]
+for name in ("Intensity", "Classification", "GpsTime", "RGB", "Colors"):
+    check(name in arrays, f"point array {name}")
+display = simple.Show(reader)
+check(display.Representation in ("Surface", "Points"), f"shown as {display.Representation}")
+
+# Written with the plugin's writer and read again.
+out = os.path.join(scratch, "autzen_copy.las")
+simple.SaveData(out, proxy=reader)
+again = simple.OpenDataFile(out)
+again.UpdatePipeline()
+check(again.GetDataInformation().GetNumberOfPoints() == 110000, "SaveData wrote the LAS file")
+a = open(autzen, "rb").read()
+b = open(out, "rb").read()
+check(a[2038:2038 + 110000 * 34] == b[2038:2038 + 110000 * 34] and b[104] == 3,
+      "the same point records and point format")
+
+# Filtered and written: the same header fields (point format, record length, scales,
+# offsets), the same VLRs (the coordinate system), every field but the coordinates unchanged.
+bilateral = simple.PointCloudBilateralFilter(Input=reader, Radius=10.0)
+filtered = os.path.join(scratch, "autzen_filtered.las")
+simple.SaveData(filtered, proxy=bilateral)
+c = open(filtered, "rb").read()
+check(len(c) == len(a) and c[94:107] == a[94:107] and c[131:179] == a[131:179],
+      "the filtered file keeps the header's offsets, counts, format, scales and offsets")
+check(c[227:2038] == a[227:2038], "and the VLRs (coordinate system)")
+moved = sum(1 for k in range(0, 110000, 97) if c[2038 + 34 * k: 2038 + 34 * k + 12] !=
+            a[2038 + 34 * k: 2038 + 34 * k + 12])
+unchanged = all(c[2038 + 34 * k + 12: 2038 + 34 * k + 34] == a[2038 + 34 * k + 12: 2038 + 34 * k + 34]
+                for k in range(0, 110000, 97))
+check(moved > 0 and unchanged, f"the coordinates moved ({moved} of 1134 sampled), nothing else")
+
+# A damaged file: one error, no points.
+damaged = os.path.join(folder, "permutations", "1.2-no-points.las")
+bad = simple.OpenDataFile(damaged)
+bad.UpdatePipeline()
+check(bad.GetDataInformation().GetNumberOfPoints() == 0, "a truncated file gives no points")
+message = bad.GetClientSideObject().GetErrorMessage()
+check("truncated" in message and "\n" not in message, f"and one error: {message}")
+
+if failures:
+    sys.exit(f"{len(failures)} check(s) failed")
+print("all checks passed")
