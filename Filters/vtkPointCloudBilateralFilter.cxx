@@ -23,6 +23,8 @@
 
 #include <cmath>
 #include <numeric>
+#include <sstream>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkPointCloudBilateralFilter);
@@ -112,6 +114,7 @@ vtkPointCloudBilateralFilter::vtkPointCloudBilateralFilter()
   this->Radius = defaults.Radius;
   this->NormalRadius = defaults.NormalRadius;
   this->NumberOfIterations = defaults.NumberOfIterations;
+  this->AutomaticParameters = static_cast<int>(defaults.Automatic);
   this->RemoveIsolatedPoints = defaults.RemoveIsolatedPoints;
   this->NumberOfThreads = defaults.NumberOfThreads;
 }
@@ -134,6 +137,8 @@ pcbilateral::BilateralParameters vtkPointCloudBilateralFilter::MakeParameters() 
   parameters.Radius = this->Radius;
   parameters.NormalRadius = this->NormalRadius;
   parameters.NumberOfIterations = this->NumberOfIterations;
+  // An out-of-range value is the core's to report (CheckParameters).
+  parameters.Automatic = static_cast<pcbilateral::AutomaticParameters>(this->AutomaticParameters);
   parameters.RemoveIsolatedPoints = this->RemoveIsolatedPoints;
   parameters.NumberOfThreads = this->NumberOfThreads;
   parameters.ComputeNormals = this->GenerateEstimatedNormals;
@@ -169,6 +174,7 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     {
       vtkErrorMacro(<< result.Error);
     }
+    this->LastRunSummary = "failed: " + (problem.empty() ? result.Error : problem);
     // A failed run is reported once, above, and gives an empty output; the request itself
     // succeeds. Returning 0 would add the executive's "returned failure for request" dump of
     // pipeline internals, and in ParaView it stops the update before the representation: the
@@ -178,6 +184,9 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     return 1;
   }
   this->RecordRunInformation(result);
+  this->LastRunSummary = result.Status == pcbilateral::BilateralStatus::Completed
+                           ? this->DescribeRun(result)
+                           : "aborted";
   if (result.Status == pcbilateral::BilateralStatus::Completed)
   {
     this->BuildOutput(input, cloud, result, output); // an aborted run leaves it empty
@@ -242,9 +251,26 @@ void vtkPointCloudBilateralFilter::RecordRunInformation(const pcbilateral::Bilat
 {
   this->RadiusUsed = result.RadiusUsed;
   this->NormalRadiusUsed = result.NormalRadiusUsed;
+  this->NumberOfIterationsUsed = result.NumberOfIterationsUsed;
+  this->PointSpacing = result.PointSpacing;
+  this->NoiseSigma = result.NoiseSigma;
   this->ProcessingDepth = result.ProcessingDepth;
   this->NumberOfRemovedPoints = static_cast<vtkIdType>(result.NumberOfRemovedPoints);
   this->NumberOfNonFinitePoints = static_cast<vtkIdType>(result.NumberOfNonFinitePoints);
+}
+
+std::string vtkPointCloudBilateralFilter::DescribeRun(
+  const pcbilateral::BilateralResult& result) const
+{
+  // Short enough for the Properties panel's field; the measured scales have their own getters.
+  std::ostringstream summary;
+  summary.precision(3);
+  summary << "r " << result.RadiusUsed << ", rn " << result.NormalRadiusUsed << ", N "
+          << result.NumberOfIterationsUsed;
+  const bool allGiven =
+    this->Radius > 0.0 && this->NormalRadius > 0.0 && this->NumberOfIterations > 0;
+  summary << (allGiven ? " (given)" : (result.Measured ? " (measured)" : " (paper's rule)"));
+  return summary.str();
 }
 
 void vtkPointCloudBilateralFilter::BuildOutput(vtkPointSet* input,
@@ -297,14 +323,22 @@ void vtkPointCloudBilateralFilter::BuildOutput(vtkPointSet* input,
   }
   output->SetPoints(points);
   output->SetVerts(vtkPointCloudVertices(outputCount));
-  // The radii used travel with the data (ParaView's Information panel shows them).
+  // The parameters used and the scales they came from travel with the data (ParaView's
+  // Information panel shows them).
   output->GetFieldData()->PassData(input->GetFieldData());
-  for (const auto& used : { std::make_pair("BilateralRadius", this->RadiusUsed),
-         std::make_pair("BilateralNormalRadius", this->NormalRadiusUsed) })
+  std::vector<std::pair<const char*, double>> used = { { "BilateralRadius", this->RadiusUsed },
+    { "BilateralNormalRadius", this->NormalRadiusUsed },
+    { "BilateralNumberOfIterations", this->NumberOfIterationsUsed } };
+  if (result.Measured)
+  {
+    used.emplace_back("BilateralPointSpacing", this->PointSpacing);
+    used.emplace_back("BilateralNoiseSigma", this->NoiseSigma);
+  }
+  for (const auto& [name, number] : used)
   {
     vtkNew<vtkDoubleArray> value;
-    value->SetName(used.first);
-    value->InsertNextValue(used.second);
+    value->SetName(name);
+    value->InsertNextValue(number);
     output->GetFieldData()->AddArray(value);
   }
 
@@ -365,10 +399,16 @@ void vtkPointCloudBilateralFilter::BuildOutput(vtkPointSet* input,
 void vtkPointCloudBilateralFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "AutomaticParameters: "
+     << (this->AutomaticParameters == MEASURED
+            ? "measured"
+            : (this->AutomaticParameters == PAPER ? "paper" : "(invalid)"))
+     << "\n";
   os << indent << "Radius: " << this->Radius << (this->Radius == 0.0 ? " (automatic)" : "") << "\n";
   os << indent << "NormalRadius: " << this->NormalRadius
-     << (this->NormalRadius == 0.0 ? " (same as the radius)" : "") << "\n";
-  os << indent << "NumberOfIterations: " << this->NumberOfIterations << "\n";
+     << (this->NormalRadius == 0.0 ? " (automatic)" : "") << "\n";
+  os << indent << "NumberOfIterations: " << this->NumberOfIterations
+     << (this->NumberOfIterations == 0 ? " (automatic)" : "") << "\n";
   os << indent << "OrientNormals: " << this->OrientNormals << "\n";
   os << indent << "OrientationArrayName: "
      << (this->OrientationArrayName ? this->OrientationArrayName : "(none: point normals)") << "\n";
@@ -378,7 +418,11 @@ void vtkPointCloudBilateralFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "GenerateDisplacementLength: " << this->GenerateDisplacementLength << "\n";
   os << indent << "RadiusUsed: " << this->RadiusUsed << "\n";
   os << indent << "NormalRadiusUsed: " << this->NormalRadiusUsed << "\n";
+  os << indent << "NumberOfIterationsUsed: " << this->NumberOfIterationsUsed << "\n";
+  os << indent << "PointSpacing: " << this->PointSpacing << "\n";
+  os << indent << "NoiseSigma: " << this->NoiseSigma << "\n";
   os << indent << "ProcessingDepth: " << this->ProcessingDepth << "\n";
   os << indent << "NumberOfRemovedPoints: " << this->NumberOfRemovedPoints << "\n";
   os << indent << "NumberOfNonFinitePoints: " << this->NumberOfNonFinitePoints << "\n";
+  os << indent << "LastRunSummary: " << this->LastRunSummary << "\n";
 }

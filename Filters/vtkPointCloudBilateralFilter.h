@@ -17,14 +17,19 @@
  *
  * Parameters, in the paper's terms:
  * - Radius r: the neighbourhood; a few times the point spacing, larger for stronger noise.
- *   0 (the default) chooses sqrt(20 / number of points) times the largest bounding-box
- *   extent, the paper's heuristic.
  * - NormalRadius rn: how far from the tangent plane a neighbour still counts. Small values
  *   (about the noise level) keep sharp edges; large values (rn >> r) smooth them like a
- *   plain Gaussian filter. 0 (the default) means rn = r.
- * - NumberOfIterations N: 1 by default; more iterations denoise more and sharpen edges.
- * The values actually used are readable after an update: GetRadiusUsed(),
- * GetNormalRadiusUsed().
+ *   plain Gaussian filter.
+ * - NumberOfIterations N: more iterations denoise more and sharpen edges.
+ * Each is automatic when 0 (the default), and each given value overrides only itself. With
+ * AutomaticParameters MEASURED (the default) the filter first measures the cloud's point
+ * spacing and noise sigma, then takes r = 5 spacings + 4 sigma, rn = 5 sigma, N = 2 (on a flat
+ * cloud 1.5 times that r and N = 3); README.md, "Automatic parameters", says where the rule
+ * comes from. With PAPER it takes the paper's heuristic: r = sqrt(20 / number of points) times
+ * the largest bounding-box extent, rn = r, N = 1.
+ * The values actually used, and the measured scales, are readable after an update:
+ * GetRadiusUsed(), GetNormalRadiusUsed(), GetNumberOfIterationsUsed(), GetPointSpacing(),
+ * GetNoiseSigma().
  *
  * The normals are estimated without orientation. If the input has point normals (or the
  * 3-component point array named by OrientationArrayName), each estimated normal is flipped
@@ -40,9 +45,10 @@
  *
  * The output is a point cloud: the input's points in the same order (less removed ones),
  * with the same point type, every point-data array passed through, and one vertex cell per
- * point. The input's field data passes through, with two more arrays: "BilateralRadius" and
- * "BilateralNormalRadius", the radii used. The input's other cells (lines, polygons,
- * volumes) are not carried over, with one warning. Optional arrays: the estimated
+ * point. The input's field data passes through, with more one-value arrays: "BilateralRadius",
+ * "BilateralNormalRadius" and "BilateralNumberOfIterations", the parameters used, and, when the
+ * cloud was measured, "BilateralPointSpacing" and "BilateralNoiseSigma". The input's other cells
+ * (lines, polygons, volumes) are not carried over, with one warning. Optional arrays: the estimated
  * normals ("EstimatedNormals", see GenerateEstimatedNormals) and the distance each point
  * moved ("DisplacementLength", see GenerateDisplacementLength).
  *
@@ -93,6 +99,23 @@ public:
   vtkTypeMacro(vtkPointCloudBilateralFilter, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  enum AutomaticParametersChoice
+  {
+    MEASURED = 0,
+    PAPER = 1
+  };
+
+  ///@{
+  /**
+   * How the parameters left at 0 are chosen: MEASURED (the default) from the cloud's measured
+   * point spacing and noise, PAPER by the paper's heuristic (see the class description).
+   */
+  vtkSetMacro(AutomaticParameters, int);
+  vtkGetMacro(AutomaticParameters, int);
+  void SetAutomaticParametersToMeasured() { this->SetAutomaticParameters(MEASURED); }
+  void SetAutomaticParametersToPaper() { this->SetAutomaticParameters(PAPER); }
+  ///@}
+
   ///@{
   /**
    * Neighbourhood radius r, in the input's length unit; 0 means automatic (the default).
@@ -104,8 +127,8 @@ public:
 
   ///@{
   /**
-   * Normal radius rn, in the input's length unit; 0 means "same as the radius used" (the
-   * default). Negative or non-finite values are an error.
+   * Normal radius rn, in the input's length unit; 0 means automatic (the default). Negative or
+   * non-finite values are an error.
    */
   vtkSetMacro(NormalRadius, double);
   vtkGetMacro(NormalRadius, double);
@@ -113,8 +136,8 @@ public:
 
   ///@{
   /**
-   * Number of iterations N (default 1). 0 passes the points through unchanged; more than
-   * 1000 is an error.
+   * Number of iterations N; 0 means automatic (the default). Negative values and more than
+   * 1000 are an error.
    */
   vtkSetMacro(NumberOfIterations, int);
   vtkGetMacro(NumberOfIterations, int);
@@ -174,16 +197,28 @@ public:
 
   ///@{
   /**
-   * What the last update used and did: the radius and normal radius (after the automatic
-   * choices), the octree's processing depth, and the numbers of removed and non-finite points.
-   * Zero until an update has run the filter, and after an update that failed.
+   * What the last update used and did: the radius, normal radius and number of iterations
+   * (after the automatic choices), the point spacing and noise sigma measured for them (0 when
+   * the cloud was not measured: every parameter given, the paper's heuristic, or a cloud too
+   * small to measure), the octree's processing depth, and the numbers of removed and
+   * non-finite points. Zero until an update has run the filter, and after an update that failed.
    */
   vtkGetMacro(RadiusUsed, double);
   vtkGetMacro(NormalRadiusUsed, double);
+  vtkGetMacro(NumberOfIterationsUsed, int);
+  vtkGetMacro(PointSpacing, double);
+  vtkGetMacro(NoiseSigma, double);
   vtkGetMacro(ProcessingDepth, int);
   vtkGetMacro(NumberOfRemovedPoints, vtkIdType);
   vtkGetMacro(NumberOfNonFinitePoints, vtkIdType);
   ///@}
+
+  /**
+   * The last update in one line, for a user interface: "not run yet" before the first, then the
+   * parameters used and where they came from (e.g. "r 0.0628, rn 0.0471, N 2 (measured)": from
+   * the measured scales; "(paper's rule)", "(given)"), "failed: " and the error, or "aborted".
+   */
+  const char* GetLastRunSummary() const { return this->LastRunSummary.c_str(); }
 
 protected:
   vtkPointCloudBilateralFilter();
@@ -207,6 +242,7 @@ protected:
   double Radius;
   double NormalRadius;
   int NumberOfIterations;
+  int AutomaticParameters;
   bool OrientNormals = true;
   char* OrientationArrayName = nullptr;
   bool RemoveIsolatedPoints;
@@ -216,9 +252,13 @@ protected:
 
   double RadiusUsed = 0.0;
   double NormalRadiusUsed = 0.0;
+  int NumberOfIterationsUsed = 0;
+  double PointSpacing = 0.0;
+  double NoiseSigma = 0.0;
   int ProcessingDepth = 0;
   vtkIdType NumberOfRemovedPoints = 0;
   vtkIdType NumberOfNonFinitePoints = 0;
+  std::string LastRunSummary = "not run yet";
 
 private:
   struct InputCloud;
@@ -226,6 +266,7 @@ private:
   /// The input's positions and orientation normals as doubles; why they cannot be had, or empty.
   std::string PrepareInput(vtkPointSet* input, InputCloud& cloud);
   void RecordRunInformation(const pcbilateral::BilateralResult& result);
+  std::string DescribeRun(const pcbilateral::BilateralResult& result) const;
   /// The output point cloud: the kept points, their arrays, the arrays the filter adds.
   void BuildOutput(vtkPointSet* input,
     const InputCloud& cloud,

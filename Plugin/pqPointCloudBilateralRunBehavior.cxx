@@ -19,6 +19,7 @@
 #include "vtkSMSettings.h"
 #include "vtkSMStringListDomain.h"
 
+#include <QAbstractItemView>
 #include <QApplication>
 #include <QEvent>
 #include <QMouseEvent>
@@ -39,7 +40,8 @@ constexpr qint64 EventsIntervalMs = 100;
  * Installed on the application while events are processed during a run:
  * - timer events wait until the run has ended (a timer that is not handled fires again later),
  *   so nothing a timer starts (a render of the view, a dialog with its own event loop, such as
- *   the welcome dialog at start-up) runs in the middle of the filter;
+ *   the welcome dialog at start-up) runs in the middle of the filter; item views' timers, which
+ *   only lay out their rows, are let through;
  * - key and mouse input is dropped unless it is for the progress manager's non-blockable
  *   objects (its progress bar and Abort button). pqProgressManager's own filter means the same
  *   but drops the press that Qt 5 first delivers to the window, so the Abort button never gets
@@ -60,7 +62,9 @@ public:
     switch (event->type())
     {
       case QEvent::Timer:
-        return true;
+        // Except an item view's own timers (its delayed layout): without them the Output
+        // Messages window lists a warning only after the run it warns about.
+        return qobject_cast<QAbstractItemView*>(object) == nullptr;
       case QEvent::MouseButtonPress:
       case QEvent::MouseButtonRelease:
       case QEvent::MouseButtonDblClick:
@@ -113,18 +117,16 @@ void pqPointCloudBilateralRunBehavior::startup()
   {
     this->onSourceAdded(source); // filters made before the plugin was loaded
   }
-  // The radii the filter records in its output's field data are for the Information panel and
-  // for scripts, not for colouring: keep them out of the colour-by lists (ParaView's "Filter
-  // Expressions" of the colour array list; editing that setting in the Settings dialog replaces
-  // these until the next start).
+  // The parameters and scales the filter records in its output's field data are for the
+  // Information panel and for scripts, not for colouring: keep them out of the colour-by lists
+  // (ParaView's "Filter Expressions" of the colour array list; editing that setting in the
+  // Settings dialog replaces this until the next start).
   vtkPVRepresentedArrayListSettings* colourArrays =
     vtkPVRepresentedArrayListSettings::GetInstance();
-  for (const char* expression : { "^BilateralRadius$", "^BilateralNormalRadius$" })
-  {
-    const int count = colourArrays->GetNumberOfFilterExpressions();
-    colourArrays->SetNumberOfFilterExpressions(count + 1);
-    colourArrays->SetFilterExpression(count, expression);
-  }
+  const int count = colourArrays->GetNumberOfFilterExpressions();
+  colourArrays->SetNumberOfFilterExpressions(count + 1);
+  colourArrays->SetFilterExpression(
+    count, "^Bilateral(Radius|NormalRadius|NumberOfIterations|PointSpacing|NoiseSigma)$");
   // A .xyz file opens with the Point Cloud Text Reader: ParaView 5.11's open dialog offers the
   // PLOT3D reader first (it claims .xyz too, and gives an empty multiblock for a point file).
   // This is ParaView's "default reader" setting, at a priority below the user's own settings

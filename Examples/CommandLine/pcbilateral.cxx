@@ -1,7 +1,8 @@
 // pcbilateral: denoise a point cloud file with the bilateral filter of Digne & de Franchis
 // (IPOL 2017), with the option letters of the authors' program.
 //
-//   pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [-R] [-t THREADS] [--remove-isolated]
+//   pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [--paper] [-R] [-t THREADS]
+//               [--remove-isolated]
 //
 // Formats by extension: .txt and .xyz (the authors' ASCII format), .las, .ply, .vtp. Errors
 // print one line and exit with status 1; a damaged input file is an error, never a cloud. Run with
@@ -36,15 +37,21 @@
 namespace
 {
 const char* const Usage =
-  "usage: pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [-R] [-t THREADS] [--remove-isolated]\n"
+  "usage: pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [--paper] [-R] [-t THREADS]\n"
+  "                   [--remove-isolated]\n"
   "\n"
   "Denoises a point cloud with the bilateral filter (Digne & de Franchis, IPOL 2017).\n"
   "INPUT and OUTPUT: .txt or .xyz (x y z [nx ny nz] [more columns]), .las (LiDAR,\n"
   "uncompressed), .ply or .vtp.\n"
   "\n"
-  "  -r R               neighbourhood radius (default: sqrt(20 / points) x largest extent)\n"
-  "  -n RN              normal radius, the tolerance to the tangent plane (default: R)\n"
-  "  -N ITER            number of iterations (default 1)\n"
+  "  -r R               neighbourhood radius\n"
+  "  -n RN              normal radius, the tolerance to the tangent plane\n"
+  "  -N ITER            number of iterations\n"
+  "                     Each is automatic when not given (or 0): chosen from the cloud's\n"
+  "                     measured point spacing and noise sigma (r = 5 spacings + 4 sigma,\n"
+  "                     rn = 5 sigma, N = 2; flat clouds 1.5 r and N = 3)\n"
+  "  --paper            parameters not given follow the paper's heuristic instead, as the\n"
+  "                     authors' program: r = sqrt(20 / points) x largest extent, rn = r, N = 1\n"
   "  -R                 text files carry oriented normals in columns 4-6; the estimated\n"
   "                     normals are oriented by them and they are written back\n"
   "  -t THREADS         threads (default 0: all cores); the result does not depend on it\n"
@@ -161,6 +168,7 @@ struct Options
   double Radius = pcbilateral::BilateralParameters().Radius;
   double NormalRadius = pcbilateral::BilateralParameters().NormalRadius;
   int Iterations = pcbilateral::BilateralParameters().NumberOfIterations;
+  pcbilateral::AutomaticParameters Automatic = pcbilateral::BilateralParameters().Automatic;
   bool OrientedNormals = false;
   int Threads = pcbilateral::BilateralParameters().NumberOfThreads;
   bool RemoveIsolated = pcbilateral::BilateralParameters().RemoveIsolatedPoints;
@@ -210,6 +218,10 @@ Options ParseArguments(int argc, char* argv[])
     {
       // The authors' "parallel" switch: always on here.
     }
+    else if (argument == "--paper")
+    {
+      options.Automatic = pcbilateral::AutomaticParameters::Paper;
+    }
     else if (argument == "--remove-isolated")
     {
       options.RemoveIsolated = true;
@@ -235,6 +247,7 @@ Options ParseArguments(int argc, char* argv[])
   parameters.Radius = options.Radius;
   parameters.NormalRadius = options.NormalRadius;
   parameters.NumberOfIterations = options.Iterations;
+  parameters.Automatic = options.Automatic;
   parameters.NumberOfThreads = options.Threads;
   const std::string problem = pcbilateral::CheckParameters(parameters);
   if (!problem.empty())
@@ -296,6 +309,7 @@ int main(int argc, char* argv[])
   filter->SetRadius(options.Radius);
   filter->SetNormalRadius(options.NormalRadius);
   filter->SetNumberOfIterations(options.Iterations);
+  filter->SetAutomaticParameters(static_cast<int>(options.Automatic));
   filter->SetNumberOfThreads(options.Threads);
   filter->SetRemoveIsolatedPoints(options.RemoveIsolated);
   const auto start = std::chrono::steady_clock::now();
@@ -312,13 +326,24 @@ int main(int argc, char* argv[])
   std::printf("input:         %s, %lld points\n",
     options.Input.c_str(),
     static_cast<long long>(input->GetNumberOfPoints()));
-  std::printf("radius:        %.9g%s\n",
-    filter->GetRadiusUsed(),
-    options.Radius > 0.0 ? "" : " (automatic: sqrt(20 / points) x largest extent)");
+  // What the automatic mode chose, and from what.
+  const bool measured = filter->GetPointSpacing() > 0.0;
+  if (measured)
+  {
+    std::printf("measured:      point spacing %.6g, noise sigma %.6g\n",
+      filter->GetPointSpacing(),
+      filter->GetNoiseSigma());
+  }
+  const char* automatic =
+    measured ? " (automatic, from the measured spacing and noise)" : " (automatic: the paper's)";
+  std::printf(
+    "radius:        %.9g%s\n", filter->GetRadiusUsed(), options.Radius > 0.0 ? "" : automatic);
   std::printf("normal radius: %.9g%s\n",
     filter->GetNormalRadiusUsed(),
-    options.NormalRadius > 0.0 ? "" : " (same as the radius)");
-  std::printf("iterations:    %d\n", options.Iterations);
+    options.NormalRadius > 0.0 ? "" : automatic);
+  std::printf("iterations:    %d%s\n",
+    filter->GetNumberOfIterationsUsed(),
+    options.Iterations > 0 ? "" : automatic);
   if (options.RemoveIsolated)
   {
     std::printf("removed:       %lld isolated points\n",

@@ -3,8 +3,8 @@
 //
 //   DenoiseCloud INPUT.ply OUTPUT.vtp [RADIUS [NORMAL_RADIUS [ITERATIONS]]]
 //
-// RADIUS and NORMAL_RADIUS default to 0 (automatic), ITERATIONS to 1. Built with the project
-// (build/bin/DenoiseCloud) and, from outside it, by Examples/Cxx/External.
+// Each defaults to 0: automatic, from the cloud's measured spacing and noise. Built with the
+// project (build/bin/DenoiseCloud) and, from outside it, by Examples/Cxx/External.
 #include "vtkPointCloudBilateralFilter.h"
 
 #include "vtkNew.h"
@@ -28,9 +28,18 @@ int main(int argc, char* argv[])
 
   vtkNew<vtkPointCloudBilateralFilter> bilateral;
   bilateral->SetInputConnection(reader->GetOutputPort());
-  bilateral->SetRadius(argc > 3 ? std::atof(argv[3]) : 0.0);
-  bilateral->SetNormalRadius(argc > 4 ? std::atof(argv[4]) : 0.0);
-  bilateral->SetNumberOfIterations(argc > 5 ? std::atoi(argv[5]) : 1);
+  if (argc > 3)
+  {
+    bilateral->SetRadius(std::atof(argv[3]));
+  }
+  if (argc > 4)
+  {
+    bilateral->SetNormalRadius(std::atof(argv[4]));
+  }
+  if (argc > 5)
+  {
+    bilateral->SetNumberOfIterations(std::atoi(argv[5]));
+  }
 
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputConnection(bilateral->GetOutputPort());

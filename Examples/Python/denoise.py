@@ -1,10 +1,13 @@
 """Denoise a point cloud with ParaView's Python, in a batch script.
 
-    pvpython Examples/Python/denoise.py IN OUT --radius R [--normal-radius RN] [--iterations N]
+    pvpython Examples/Python/denoise.py IN OUT [--radius R] [--normal-radius RN] [--iterations N]
+                                        [--paper]
     pvbatch  Examples/Python/denoise.py IN OUT ...
     mpirun -np 2 pvbatch Examples/Python/denoise.py IN OUT ...
 
-IN and OUT: .ply, .vtp, .las, or the authors' text format (.xyz, .txt). The script loads the
+IN and OUT: .ply, .vtp, .las, or the authors' text format (.xyz, .txt). The parameters not given
+are automatic: chosen from the cloud's measured point spacing and noise, or with --paper by the
+paper's heuristic (r = sqrt(20 / points) x largest extent, rn = r, N = 1). The script loads the
 PointCloudBilateral plugin itself: from --plugin, from PV_PLUGIN_PATH (auto-loaded), or from the
 build or install tree that holds this script.
 """
@@ -73,8 +76,10 @@ def open_cloud(path, oriented_normals):
 def add_filter_arguments(parser, threads_help="0 (default): all cores"):
     """The filter's options, shared with denoise_mpi.py."""
     parser.add_argument("--radius", type=float, default=0.0, help="0 (default): automatic")
-    parser.add_argument("--normal-radius", type=float, default=0.0, help="0 (default): the radius")
-    parser.add_argument("--iterations", type=int, default=1)
+    parser.add_argument("--normal-radius", type=float, default=0.0, help="0 (default): automatic")
+    parser.add_argument("--iterations", type=int, default=0, help="0 (default): automatic")
+    parser.add_argument("--paper", action="store_true",
+                        help="the parameters not given follow the paper's heuristic")
     parser.add_argument("--oriented-normals", action="store_true",
                         help="text files carry normals in columns 4-6")
     parser.add_argument("--remove-isolated", action="store_true")
@@ -89,9 +94,20 @@ def make_filter(source, args):
         Radius=args.radius,
         NormalRadius=args.normal_radius,
         NumberOfIterations=args.iterations,
+        AutomaticParameters="Paper" if args.paper else "Measured",
         RemoveIsolatedPoints=int(args.remove_isolated),
         NumberOfThreads=args.threads,
     )
+
+
+def describe_run(bilateral):
+    """What the last run measured and used (call UpdatePropertyInformation first)."""
+    measured = ""
+    if bilateral.PointSpacing > 0:
+        measured = (f"measured point spacing {bilateral.PointSpacing:.6g}, noise sigma "
+                    f"{bilateral.NoiseSigma:.6g}; ")
+    return (f"{measured}radius {bilateral.RadiusUsed:.6g}, normal radius "
+            f"{bilateral.NormalRadiusUsed:.6g}, {bilateral.NumberOfIterationsUsed} iteration(s)")
 
 
 def main():
@@ -115,8 +131,7 @@ def main():
     else:
         simple.SaveData(args.output, proxy=bilateral)
     print(f"plugin: {where}")
-    print(f"radius {bilateral.RadiusUsed:.6g}, normal radius {bilateral.NormalRadiusUsed:.6g}, "
-          f"{args.iterations} iteration(s): {points} points written to {args.output}")
+    print(f"{describe_run(bilateral)}: {points} points written to {args.output}")
 
 
 if __name__ == "__main__":

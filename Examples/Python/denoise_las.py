@@ -1,6 +1,7 @@
 """Denoise a LiDAR survey (an uncompressed LAS file) with the bilateral filter, in pvpython.
 
     pvpython denoise_las.py IN.las OUT.las [--radius R] [--normal-radius RN] [--iterations N]
+                                           [--paper]
 
 The output keeps the input's point format, scales, offsets, coordinate system and every
 per-point field (classification, GPS time, colours...): only the coordinates change, so the
@@ -16,7 +17,7 @@ import sys
 from paraview import simple
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from denoise import add_filter_arguments, load_plugin, make_filter  # noqa: E402
+from denoise import add_filter_arguments, describe_run, load_plugin, make_filter  # noqa: E402
 
 
 def main():
@@ -46,8 +47,7 @@ def main():
     # the field data the reader left, which the filter passes on.
     simple.SaveData(args.output, proxy=bilateral)
     print(f"plugin: {where}")
-    print(f"radius {bilateral.RadiusUsed:.6g}, normal radius {bilateral.NormalRadiusUsed:.6g}, "
-          f"{args.iterations} iteration(s): {points} points written to {args.output}")
+    print(f"{describe_run(bilateral)}: {points} points written to {args.output}")
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 """Denoise a point cloud on several processes (or machines) with ParaView's MPI engine.
 
-    mpirun -np 2 pvbatch Examples/Python/denoise_mpi.py IN OUT.pvtp --radius R [--threads 1]
+    mpirun -np 2 pvbatch Examples/Python/denoise_mpi.py IN OUT.pvtp [--radius R] [--threads 1]
 
 The cloud is read (by one process, for files that are not split in pieces), spread over the
 processes with ParaView's Distribute Points (equal point counts in compact regions), filtered by
@@ -27,7 +27,7 @@ from vtkmodules.vtkParallelCore import vtkMultiProcessController
 
 # The plugin search, the reader choice and the filter's options are denoise.py's, beside this.
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from denoise import add_filter_arguments, load_plugin, make_filter, open_cloud  # noqa: E402
+from denoise import add_filter_arguments, describe_run, load_plugin, make_filter, open_cloud  # noqa: E402
 
 
 def main():
@@ -58,8 +58,7 @@ def main():
     simple.SaveData(args.output, proxy=bilateral)
     written = time.perf_counter()
     print(f"plugin: {where}")
-    print(f"radius {bilateral.RadiusUsed:.6g}, normal radius {bilateral.NormalRadiusUsed:.6g}, "
-          f"{args.iterations} iteration(s) on {processes} process(es): {points} points written "
+    print(f"{describe_run(bilateral)} on {processes} process(es): {points} points written "
           f"to {args.output}")
     print(f"seconds: reading and distributing {read - start:.2f}, filtering "
           f"{filtered - read:.2f}, writing {written - filtered:.2f}")

@@ -2,6 +2,7 @@
 
 #include "BilateralKernel.h"
 #include "CellColoringScheduler.h"
+#include "CloudMeasurement.h"
 #include "HugePages.h"
 #include "ProcessingOctree.h"
 
@@ -25,16 +26,6 @@ std::string Describe(const char* what, double value)
   std::ostringstream message;
   message << what << " must be a finite number >= 0 (0 means automatic), got " << value;
   return message.str();
-}
-
-int ResolveThreadCount(int requested)
-{
-#ifdef _OPENMP
-  return requested > 0 ? requested : omp_get_max_threads();
-#else
-  (void)requested;
-  return 1;
-#endif
 }
 
 /// The largest extent of a cloud, in radii, whose octree lattice coordinates stay far inside
@@ -111,6 +102,16 @@ bool IsFiniteExtent(const CloudExtent& extent)
   return IsFinitePoint(extent.Min) && IsFinitePoint(extent.Max);
 }
 } // namespace
+
+int ResolveThreadCount(int requested)
+{
+#ifdef _OPENMP
+  return requested > 0 ? requested : omp_get_max_threads();
+#else
+  (void)requested;
+  return 1;
+#endif
+}
 
 double AutomaticRadius(std::size_t numberOfPoints, double largestExtent)
 {
@@ -190,7 +191,7 @@ std::string CheckParameters(const BilateralParameters& parameters)
   }
   if (parameters.NumberOfIterations < 0)
   {
-    return "the number of iterations must be >= 0, got " +
+    return "the number of iterations must be >= 0 (0 means automatic), got " +
            std::to_string(parameters.NumberOfIterations);
   }
   if (parameters.NumberOfIterations > limits::MaximumIterations)
@@ -198,6 +199,12 @@ std::string CheckParameters(const BilateralParameters& parameters)
     return "the number of iterations must be at most " + std::to_string(limits::MaximumIterations) +
            ", got " + std::to_string(parameters.NumberOfIterations) +
            " (each iteration moves the points by up to the radius: a few are enough)";
+  }
+  if (parameters.Automatic != AutomaticParameters::Measured &&
+      parameters.Automatic != AutomaticParameters::Paper)
+  {
+    return "the automatic parameters must be measured (0) or the paper's (1), got " +
+           std::to_string(static_cast<int>(parameters.Automatic));
   }
   if (parameters.NumberOfThreads < 0)
   {
@@ -427,7 +434,21 @@ double BilateralRun::GetNormalRadius() const
   return this->Impl->Radii.NormalRadius;
 }
 
-bool BilateralRun::Start(const CloudExtent& wholeCloud)
+int BilateralRun::GetNumberOfIterations() const
+{
+  return this->Impl->Parameters.NumberOfIterations;
+}
+
+bool BilateralRun::NeedsScales() const
+{
+  const BilateralParameters& parameters = this->Impl->Parameters;
+  return this->Impl->Result.Status == BilateralStatus::Completed &&
+         parameters.Automatic == AutomaticParameters::Measured &&
+         (parameters.Radius == 0.0 || parameters.NormalRadius == 0.0 ||
+           parameters.NumberOfIterations == 0);
+}
+
+bool BilateralRun::Start(const CloudExtent& wholeCloud, const CloudScales* wholeCloudScales)
 {
   Internals& run = *this->Impl;
   BilateralResult& result = run.Result;
@@ -448,10 +469,36 @@ bool BilateralRun::Start(const CloudExtent& wholeCloud)
              " point(s) have NaN or infinite coordinates: they are passed through unchanged and "
              "are never used as neighbours");
   }
+  if (this->NeedsScales() && wholeCloud.NumberOfFinitePoints > 0)
+  {
+    const CloudScales scales =
+      wholeCloudScales != nullptr ? *wholeCloudScales : MeasureWholeCloud(run.Cloud, run.Threads);
+    if (scales.Valid)
+    {
+      result.Measured = true;
+      result.PointSpacing = scales.PointSpacing;
+      result.NoiseSigma = scales.NoiseSigma;
+    }
+    else if (scales.Measurable)
+    {
+      // (A cloud too small or of no extent has nothing to measure: that needs no warning, and
+      // the one of no extent comes below.)
+      run.Warn("the cloud's point spacing and noise could not be measured (" + scales.Problem +
+               "): the parameters not given follow the paper's heuristic (r = sqrt(20 / points) "
+               "x largest extent, rn = r, N = 1)");
+    }
+    run.Parameters = ChooseParameters(scales, run.Parameters);
+  }
+  if (run.Parameters.NumberOfIterations == 0)
+  {
+    // The paper's mode, or a cloud that could not be measured: the authors' single iteration.
+    run.Parameters.NumberOfIterations = 1;
+  }
   run.Radii = ResolveRadii(run.Parameters, wholeCloud);
   result.RadiusUsed = run.Radii.Radius;
   result.NormalRadiusUsed = run.Radii.NormalRadius;
-  if (wholeCloud.NumberOfFinitePoints == 0 || run.Parameters.NumberOfIterations == 0)
+  result.NumberOfIterationsUsed = run.Parameters.NumberOfIterations;
+  if (wholeCloud.NumberOfFinitePoints == 0)
   {
     return false;
   }

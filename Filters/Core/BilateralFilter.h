@@ -14,6 +14,7 @@
 
 namespace pcbilateral
 {
+struct CloudScales;
 
 /// The finite points of a cloud and their bounding box (NaN and infinite points are left out).
 struct CloudExtent
@@ -35,18 +36,32 @@ namespace limits
 constexpr int MaximumIterations = 1000;
 } // namespace limits
 
+/// How the parameters left at 0 (automatic) are chosen.
+enum class AutomaticParameters
+{
+  /// From the cloud's measured point spacing and noise (CloudMeasurement.h, README.md
+  /// "Automatic parameters"): r = 5 spacings + 4 sigma, rn = 5 sigma, N = 2 (flat clouds:
+  /// 1.5 r, N = 3).
+  Measured = 0,
+  /// The paper's heuristic: r = sqrt(20 / number of points) x the bounding box's largest
+  /// extent, rn = r, N = 1 (the authors' program).
+  Paper = 1
+};
+
 /// Parameters in the paper's terms (section 5). The member initialisers are the defaults of
-/// every front end.
+/// every front end: all automatic.
 struct BilateralParameters
 {
-  /// Neighbourhood radius r; sd = r / 3. Zero means automatic: sqrt(20 / number of points)
-  /// times the largest extent of the bounding box.
+  /// Neighbourhood radius r; sd = r / 3. Zero means automatic (see Automatic).
   double Radius = 0.0;
   /// Normal radius rn, the thickness of the slab around the tangent plane; sn = rn / 3. Zero
-  /// means "same as Radius".
+  /// means automatic (see Automatic).
   double NormalRadius = 0.0;
-  /// Number of iterations N; each reads the positions written by the previous one.
-  int NumberOfIterations = 1;
+  /// Number of iterations N; each reads the positions written by the previous one. Zero means
+  /// automatic (see Automatic).
+  int NumberOfIterations = 0;
+  /// How the parameters left at 0 are chosen; each given parameter overrides only itself.
+  AutomaticParameters Automatic = AutomaticParameters::Measured;
   /// Points with fewer than 5 neighbours (or a zero weight sum) stay where they are; with this
   /// on they are removed for the rest of the run instead, as the authors' program does.
   bool RemoveIsolatedPoints = false;
@@ -105,6 +120,12 @@ struct BilateralResult
 
   double RadiusUsed = 0.0;
   double NormalRadiusUsed = 0.0;
+  int NumberOfIterationsUsed = 0;
+  /// The cloud's measured point spacing and noise sigma when the automatic mode measured it
+  /// (Measured true), else 0.
+  bool Measured = false;
+  double PointSpacing = 0.0;
+  double NoiseSigma = 0.0;
   int ProcessingDepth = 0;
   std::size_t NumberOfRemovedPoints = 0;
   /// Points with a NaN or infinite coordinate: passed through, never neighbours.
@@ -134,7 +155,8 @@ inline bool InsideBox(const double box[6], const double p[3])
  * same object on each part:
  *
  *   BilateralRun run(part, parameters, observer);    // checks the parameters and the part
- *   run.Start(extent of the whole cloud);            // every part uses the same radii and octree
+ *   run.Start(extent of the whole cloud,             // every part uses the same parameters
+ *     scales of the whole cloud if run.NeedsScales()); // and octree
  *   while (run.HasNextIteration())
  *     run.Step(ghosts);   // ghosts: the other parts' points within GetGhostReach() of this one
  *   BilateralResult result = run.Finish();
@@ -164,18 +186,25 @@ public:
   /// The extent of this run's own finite points.
   const CloudExtent& GetLocalExtent() const;
 
+  /// Whether Start needs the whole cloud's scales: some parameter is automatic and chosen from
+  /// the measured spacing and noise.
+  bool NeedsScales() const;
+
   /**
-   * Resolves the radii from the extent of the whole cloud (for a run on a whole cloud, its own
-   * GetLocalExtent()), warns about non-finite points, and checks the limits of double
-   * precision for the whole run. Returns whether there are iterations to run.
+   * Resolves the parameters from the extent of the whole cloud (for a run on a whole cloud, its
+   * own GetLocalExtent()) and, when NeedsScales(), from the whole cloud's scales
+   * (MeasureWholeCloud, or MeasureSelection of the parts' gathered selections; when not given,
+   * this run measures its own points), warns about non-finite points, and checks the limits of
+   * double precision for the whole run. Returns whether there are iterations to run.
    */
-  bool Start(const CloudExtent& wholeCloud);
+  bool Start(const CloudExtent& wholeCloud, const CloudScales* wholeCloudScales = nullptr);
 
   /// Whether Step has an iteration left to run (false once the run failed or was aborted).
   bool HasNextIteration() const;
-  /// The radius and normal radius used (valid after Start).
+  /// The radius, normal radius and number of iterations used (valid after Start).
   double GetRadius() const;
   double GetNormalRadius() const;
+  int GetNumberOfIterations() const;
 
   /**
    * The current positions, interleaved, of this run's points that other parts may need as

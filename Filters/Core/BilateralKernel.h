@@ -18,6 +18,10 @@ inline bool IsFinitePoint(const double p[3])
   return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
 }
 
+/// The number of threads a parallel loop uses for a requested number (0: all cores; 1 without
+/// OpenMP).
+int ResolveThreadCount(int requested);
+
 /// The paper's rule: a point with fewer neighbours than this (itself included) is not filtered.
 constexpr std::uint32_t MinimumNeighbourCount = 5;
 

@@ -40,23 +40,83 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace pcbilateral
 {
 namespace
 {
-/// SplitMix64's finaliser: a fixed pseudo-random key per index.
-std::uint64_t HashIndex(std::uint64_t x)
+/// SplitMix64's finaliser.
+std::uint64_t Mix(std::uint64_t x)
 {
   x += 0x9E3779B97F4A7C15ull;
   x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
   x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
   return x ^ (x >> 31);
+}
+
+std::uint64_t Bits(double value)
+{
+  // -0 and +0 are one point.
+  value = value == 0.0 ? 0.0 : value;
+  std::uint64_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  return bits;
+}
+
+/// A fixed pseudo-random key per point, from its coordinates alone: the same point gets the same
+/// key whatever its index, in whichever part of a distributed cloud it is.
+std::uint64_t MeasurementKey(const double* p)
+{
+  return Mix(Mix(Mix(Bits(p[0])) ^ Bits(p[1])) ^ Bits(p[2]));
+}
+
+/// The key that decides whether a point is in the measured selection (SelectMeasurementPoints):
+/// another hash than MeasurementKey, so that the selection and the levels inside it are
+/// independent.
+std::uint64_t SelectionKey(const double* p)
+{
+  return Mix(MeasurementKey(p) ^ 0x5bd1e995ull);
+}
+
+/// The indices of the count finite points with the smallest (key, coordinates), in that order.
+std::vector<std::size_t> SmallestKeys(const PointCloudView& cloud, std::size_t count)
+{
+  struct Keyed
+  {
+    std::uint64_t Key;
+    std::size_t Index;
+  };
+  std::vector<Keyed> keyed;
+  keyed.reserve(cloud.NumberOfPoints);
+  for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
+  {
+    if (IsFinitePoint(cloud.Positions + 3 * i))
+    {
+      keyed.push_back({ MeasurementKey(cloud.Positions + 3 * i), i });
+    }
+  }
+  auto before = [&](const Keyed& a, const Keyed& b)
+  {
+    if (a.Key != b.Key)
+    {
+      return a.Key < b.Key;
+    }
+    const double* p = cloud.Positions + 3 * a.Index;
+    const double* q = cloud.Positions + 3 * b.Index;
+    return std::lexicographical_compare(p, p + 3, q, q + 3);
+  };
+  count = std::min(count, keyed.size());
+  std::nth_element(keyed.begin(), keyed.begin() + count, keyed.end(), before);
+  keyed.resize(count);
+  std::sort(keyed.begin(), keyed.end(), before);
+  std::vector<std::size_t> indices(count);
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    indices[k] = keyed[k].Index;
+  }
+  return indices;
 }
 
 /// Points per ball that the fits aim at, and the fewest the radius may hold at full density.
@@ -202,7 +262,7 @@ private:
     const std::uint64_t key = static_cast<std::uint64_t>(cell[0]) * 73856093ull ^
                               static_cast<std::uint64_t>(cell[1]) * 19349663ull ^
                               static_cast<std::uint64_t>(cell[2]) * 83492791ull;
-    return static_cast<std::size_t>(HashIndex(key) & this->Mask);
+    return static_cast<std::size_t>(Mix(key) & this->Mask);
   }
 
   const double* Positions;
@@ -212,6 +272,27 @@ private:
   std::vector<std::size_t> Start;
   std::vector<std::size_t> Entries;
 };
+
+/// The points of the grid within rho of centre, relative to centre in units of rho, in a fixed
+/// order (lexicographic by coordinates), so that the fits' sums do not depend on the order the
+/// cloud lists its points in (equal points are interchangeable).
+void GatherBall(const HashedGrid& grid,
+  const double* positions,
+  const double centre[3],
+  double rho,
+  std::vector<std::array<double, 3>>& points)
+{
+  points.clear();
+  grid.ForEachInBall(centre,
+    rho,
+    [&](std::size_t index)
+    {
+      const double* p = positions + 3 * index;
+      points.push_back(
+        { (p[0] - centre[0]) / rho, (p[1] - centre[1]) / rho, (p[2] - centre[2]) / rho });
+    });
+  std::sort(points.begin(), points.end());
+}
 
 /// Eigen-decomposition of a symmetric 3x3 matrix by Jacobi rotations; the eigenvectors are the
 /// columns of vectors, the eigenvalues in ascending order.
@@ -572,15 +653,6 @@ double Median(std::vector<double> values)
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-int ResolveThreads(int requested)
-{
-#ifdef _OPENMP
-  return requested > 0 ? requested : omp_get_max_threads();
-#else
-  (void)requested;
-  return 1;
-#endif
-}
 } // namespace
 
 CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOptions& options)
@@ -588,13 +660,16 @@ CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOpt
   CloudScales scales;
   const CloudExtent extent = MeasureCloud(cloud);
   const std::size_t n = extent.NumberOfFinitePoints;
-  if (n < 2 * FewestPointsToFit || !(extent.LargestExtent() > 0.0) ||
-      !(options.PointFraction > 0.0 && options.PointFraction <= 1.0))
+  if (!(options.PointFraction > 0.0 && options.PointFraction <= 1.0))
   {
-    scales.Problem = n < 2 * FewestPointsToFit
-                       ? "too few finite points to measure the cloud"
-                       : (extent.LargestExtent() > 0.0 ? "the point fraction must be in (0, 1]"
-                                                       : "the cloud has no extent");
+    scales.Problem = "the point fraction must be in (0, 1]";
+    return scales;
+  }
+  if (n < 2 * FewestPointsToFit || !(extent.LargestExtent() > 0.0))
+  {
+    scales.Measurable = false;
+    scales.Problem = n < 2 * FewestPointsToFit ? "too few finite points to measure the cloud"
+                                               : "the cloud has no extent";
     return scales;
   }
 
@@ -606,7 +681,7 @@ CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOpt
     {
       continue;
     }
-    const std::uint64_t key = HashIndex(i ^ 0x5bd1e995ull);
+    const std::uint64_t key = MeasurementKey(cloud.Positions + 3 * i);
     // Each level keeps the keys whose top 2l bits are zero.
     std::size_t level = 0;
     while (level < 28 && (key >> (62 - 2 * level)) == 0)
@@ -647,17 +722,12 @@ CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOpt
     grids.emplace_back(cloud.Positions, levels[l], extent.Min, 2.0 / std::sqrt(levelDensity));
   }
 
-  // The samples: one per stratum of indices, at a hashed offset, finite points only.
+  // The samples: the finite points with the smallest keys (a uniform pseudo-random choice that
+  // depends on the points, not on their order), in the order of their keys.
   std::vector<std::size_t> samples = options.SampleIndices;
   if (samples.empty())
   {
-    const std::size_t count = std::min(options.NumberOfSamples, cloud.NumberOfPoints);
-    for (std::size_t s = 0; s < count; ++s)
-    {
-      const std::size_t begin = s * cloud.NumberOfPoints / count;
-      const std::size_t end = (s + 1) * cloud.NumberOfPoints / count;
-      samples.push_back(begin + HashIndex(s) % std::max<std::size_t>(end - begin, 1));
-    }
+    samples = SmallestKeys(cloud, std::min(options.NumberOfSamples, n));
   }
   samples.erase(std::remove_if(samples.begin(),
                   samples.end(),
@@ -671,7 +741,7 @@ CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOpt
     return scales;
   }
 
-  const int threads = ResolveThreads(options.NumberOfThreads);
+  const int threads = ResolveThreadCount(options.NumberOfThreads);
   std::vector<LocalFit> fits(samples.size());
   std::vector<double> fractions(levels.size());
   for (std::size_t l = 0; l < levels.size(); ++l)
@@ -707,15 +777,7 @@ CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOpt
         LocalFit fit;
         for (int pass = refit ? 1 : 0; pass < 2; ++pass)
         {
-          points.clear();
-          grid.ForEachInBall(centre,
-            rho,
-            [&](std::size_t index)
-            {
-              const double* p = cloud.Positions + 3 * index;
-              points.push_back(
-                { (p[0] - centre[0]) / rho, (p[1] - centre[1]) / rho, (p[2] - centre[2]) / rho });
-            });
+          GatherBall(grid, cloud.Positions, centre, rho, points);
           fit = FitQuadric(points, centre, rho);
           if (!fit.Fitted)
           {
@@ -889,15 +951,7 @@ CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOpt
           continue;
         }
         const double* centre = fits[s].SurfacePoint;
-        points.clear();
-        grids[level].ForEachInBall(centre,
-          rho,
-          [&](std::size_t index)
-          {
-            const double* p = cloud.Positions + 3 * index;
-            points.push_back(
-              { (p[0] - centre[0]) / rho, (p[1] - centre[1]) / rho, (p[2] - centre[2]) / rho });
-          });
+        GatherBall(grids[level], cloud.Positions, centre, rho, points);
         const LocalFit quadric = FitQuadric(points, centre, rho);
         const LocalFit plane = FitQuadric(points, centre, rho, 3);
         if (quadric.Fitted && plane.Fitted)
@@ -925,6 +979,54 @@ CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOpt
   return scales;
 }
 
+double MeasuredFraction(std::size_t numberOfFinitePoints)
+{
+  return numberOfFinitePoints <= MaximumMeasuredPoints
+           ? 1.0
+           : static_cast<double>(MaximumMeasuredPoints) / static_cast<double>(numberOfFinitePoints);
+}
+
+std::vector<double> SelectMeasurementPoints(const PointCloudView& cloud, double fraction)
+{
+  // Selected: SelectionKey / 2^64 < fraction.
+  const double threshold = std::ldexp(fraction, 64);
+  std::vector<double> selection;
+  for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
+  {
+    const double* p = cloud.Positions + 3 * i;
+    if (IsFinitePoint(p) && (fraction >= 1.0 || static_cast<double>(SelectionKey(p)) < threshold))
+    {
+      selection.insert(selection.end(), p, p + 3);
+    }
+  }
+  return selection;
+}
+
+CloudScales MeasureSelection(const std::vector<double>& selection, double fraction, int threads)
+{
+  PointCloudView view;
+  view.NumberOfPoints = selection.size() / 3;
+  view.Positions = selection.data();
+  ScaleMeasurementOptions options;
+  options.PointFraction = fraction;
+  options.NumberOfThreads = threads;
+  return MeasureScales(view, options);
+}
+
+CloudScales MeasureWholeCloud(const PointCloudView& cloud, int threads)
+{
+  const double fraction = MeasuredFraction(MeasureCloud(cloud).NumberOfFinitePoints);
+  if (fraction >= 1.0)
+  {
+    // The selection would be a copy of the finite points; MeasureScales skips the others and
+    // does not depend on the order, so the cloud itself gives the same bits.
+    ScaleMeasurementOptions options;
+    options.NumberOfThreads = threads;
+    return MeasureScales(cloud, options);
+  }
+  return MeasureSelection(SelectMeasurementPoints(cloud, fraction), fraction, threads);
+}
+
 bool IsFlat(const CloudScales& scales, const AutomaticRule& rule)
 {
   return scales.Valid && scales.CurvatureExcess < rule.FlatExcess &&
@@ -936,14 +1038,14 @@ BilateralParameters ChooseParameters(const CloudScales& scales,
   const AutomaticRule& rule)
 {
   BilateralParameters parameters = userParameters;
+  if (!scales.Valid)
+  {
+    return parameters;
+  }
   const bool flat = IsFlat(scales, rule);
   if (parameters.NumberOfIterations <= 0)
   {
     parameters.NumberOfIterations = flat ? rule.FlatIterations : rule.NumberOfIterations;
-  }
-  if (!scales.Valid)
-  {
-    return parameters;
   }
   if (!(parameters.Radius > 0.0))
   {

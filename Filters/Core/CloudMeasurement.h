@@ -32,9 +32,13 @@ struct ScaleMeasurementOptions
 /// What MeasureScales found. Lengths are in the cloud's units.
 struct CloudScales
 {
-  /// False when the cloud is too small or degenerate to measure (Problem says why).
+  /// False when the cloud could not be measured (Problem says why).
   bool Valid = false;
   std::string Problem;
+  /// False when there was nothing to measure: too few finite points, or all of them at one
+  /// place. (Valid false with Measurable true: a cloud of a shape that has no surface to fit,
+  /// such as points on a line.)
+  bool Measurable = true;
   /// The mean distance from a point to its nearest neighbour on the noise-free surface,
   /// 1 / (2 sqrt(density)) (exact for points spread at random), averaged over the samples.
   double PointSpacing = 0.0;
@@ -60,10 +64,35 @@ struct CloudScales
 };
 
 /// Measures the point spacing and the noise level of the finite points of a cloud (ghost
-/// points count as points of the surface). Deterministic and independent of the number of
-/// threads.
+/// points count as points of the surface). Deterministic, independent of the number of threads
+/// and of the order of the points (the samples and the fits are chosen and ordered by the
+/// points' coordinates, not their indices), unless SampleIndices are given.
 CloudScales MeasureScales(const PointCloudView& cloud,
   const ScaleMeasurementOptions& options = ScaleMeasurementOptions());
+
+/// Clouds of more finite points than this are measured on a pseudo-random selection of about
+/// this many of them (SelectMeasurementPoints): enough for the fits, and a bounded cost in time,
+/// memory and, in a distributed run, communication.
+constexpr std::size_t MaximumMeasuredPoints = std::size_t(1) << 21;
+
+/// The fraction of a cloud of numberOfFinitePoints finite points that the automatic mode
+/// measures: 1 up to MaximumMeasuredPoints.
+double MeasuredFraction(std::size_t numberOfFinitePoints);
+
+/// The finite points of cloud (interleaved x y z) in the measured selection of a cloud whose
+/// MeasuredFraction is fraction. A point is selected by a hash of its coordinates, so that the
+/// parts of a distributed cloud together select exactly the points the whole cloud would.
+std::vector<double> SelectMeasurementPoints(const PointCloudView& cloud, double fraction);
+
+/// Measures the selection of a cloud (SelectMeasurementPoints, gathered from the parts of a
+/// distributed cloud in any order) as MeasureWholeCloud measures the whole cloud.
+CloudScales MeasureSelection(const std::vector<double>& selection, double fraction, int threads);
+
+/// The automatic mode's measurement of a whole cloud: MeasureScales on its selection, with the
+/// selection's PointFraction. MeasureScales does not depend on the order of the points, so the
+/// result is the same bits for the cloud in any order, split into parts in any way, on any
+/// number of threads.
+CloudScales MeasureWholeCloud(const PointCloudView& cloud, int threads);
 
 /// The automatic rule's constants (where they come from: README.md, "Automatic parameters"):
 ///   r = RadiusInSpacings x spacing + RadiusInSigmas x sigma,
@@ -92,8 +121,8 @@ bool IsFlat(const CloudScales& scales, const AutomaticRule& rule = AutomaticRule
 /// that the user gave (Radius > 0, NormalRadius > 0, NumberOfIterations > 0; pass 0 for
 /// "automatic", also for the iterations) is kept; the others come from the rule applied to the
 /// measured scales. Every other field is copied from
-/// userParameters. When the scales are not valid, the unset radii are left at 0, so that the
-/// filter falls back to the paper's automatic radius.
+/// userParameters. When the scales are not valid, the unset parameters are left at 0, so that
+/// the filter falls back to the paper's heuristic for them.
 BilateralParameters ChooseParameters(const CloudScales& scales,
   const BilateralParameters& userParameters,
   const AutomaticRule& rule = AutomaticRule());

@@ -19,6 +19,7 @@
 #include "vtkPPointCloudBilateralFilter.h"
 
 #include "BilateralFilter.h"
+#include "CloudMeasurement.h"
 
 #include "vtkCommunicator.h"
 #include "vtkDistributedPointCloudFilter.h"
@@ -169,6 +170,32 @@ std::vector<double> FetchGhosts(vtkMPIController* controller,
   }
   return ghosts;
 }
+/**
+ * The whole cloud's scales for the automatic mode, the same bits on every process and as a run
+ * on the whole cloud in one process: each process selects its points of the whole cloud's
+ * measured selection (chosen by coordinates, so the parts together select what the whole cloud
+ * would), every process gathers all of them and measures them (MeasureScales does not depend on
+ * their order).
+ */
+pcbilateral::CloudScales ShareScales(vtkMultiProcessController* controller,
+  const pcbilateral::PointCloudView& cloud,
+  const CloudExtent& whole,
+  int threads)
+{
+  const double fraction = pcbilateral::MeasuredFraction(whole.NumberOfFinitePoints);
+  const std::vector<double> own = pcbilateral::SelectMeasurementPoints(cloud, fraction);
+  const int processes = controller->GetNumberOfProcesses();
+  const vtkIdType ownLength = static_cast<vtkIdType>(own.size());
+  std::vector<vtkIdType> lengths(processes), offsets(processes, 0);
+  controller->AllGather(&ownLength, lengths.data(), 1);
+  for (int p = 1; p < processes; ++p)
+  {
+    offsets[p] = offsets[p - 1] + lengths[p - 1];
+  }
+  std::vector<double> selection(static_cast<std::size_t>(offsets.back() + lengths.back()));
+  controller->AllGatherV(own.data(), selection.data(), ownLength, lengths.data(), offsets.data());
+  return pcbilateral::MeasureSelection(selection, fraction, threads);
+}
 } // namespace
 
 vtkPPointCloudBilateralFilter::vtkPPointCloudBilateralFilter()
@@ -216,8 +243,14 @@ BilateralResult vtkPPointCloudBilateralFilter::RunCore(const pcbilateral::PointC
                    : "");
     return run.Finish();
   }
-  // Start decides from the whole cloud's extent and the parameters only: the same everywhere.
-  if (run.Start(whole))
+  // Start decides from the whole cloud's extent, its scales and the parameters only: the same
+  // everywhere.
+  pcbilateral::CloudScales scales;
+  if (run.NeedsScales() && whole.NumberOfFinitePoints > 0)
+  {
+    scales = ShareScales(controller, cloud, whole, parameters.NumberOfThreads);
+  }
+  if (run.Start(whole, &scales))
   {
     while (run.HasNextIteration())
     {

@@ -110,6 +110,8 @@ Measurement RunInChild(const Workload& workload, int threads, int runs, double& 
     parameters.Radius = workload.Radius;
     parameters.NormalRadius = workload.NormalRadius;
     parameters.NumberOfIterations = workload.Iterations;
+    // A radius of 0 is the paper's automatic radius, as in the speed table.
+    parameters.Automatic = pcbilateral::AutomaticParameters::Paper;
     parameters.NumberOfThreads = threads;
     std::vector<double> times;
     Measurement measurement;

@@ -376,14 +376,13 @@ int main(int argc, char* argv[])
     }
 
     const pcbilateral::CloudExtent extent = pcbilateral::MeasureCloud(View(cloud.Positions));
-    pcbilateral::BilateralParameters paper;
-    paper.Radius =
-      pcbilateral::AutomaticRadius(extent.NumberOfFinitePoints, extent.LargestExtent());
-    paper.NormalRadius = paper.Radius;
+    pcbilateral::BilateralParameters paper; // r = sqrt(20 / n) x extent, rn = r, N = 1
+    paper.Automatic = pcbilateral::AutomaticParameters::Paper;
     const Quality paperQuality = RunOnce(truth, paper);
     pcbilateral::BilateralParameters old;
     old.Radius = 0.025 * extent.LargestExtent();
     old.NormalRadius = old.Radius;
+    old.NumberOfIterations = 1;
     const Quality oldQuality = RunOnce(truth, old);
     const Quality autoQuality = RunOnce(truth, automatic);
 

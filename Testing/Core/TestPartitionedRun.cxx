@@ -4,6 +4,7 @@
 // the shipped run loop (pcbilateral::BilateralRun, as the distributed VTK filter drives it on
 // each process) with an in-process ghost exchange.
 #include "BilateralFilter.h"
+#include "CloudMeasurement.h"
 #include "CoreTesting.h"
 #include "SampleShapes.h"
 
@@ -97,10 +98,27 @@ std::vector<double> RunPartitioned(const std::vector<double>& xyz,
   {
     whole = pcbilateral::MergeExtents(whole, run->GetLocalExtent());
   }
+  // The automatic mode's scales, as the distributed filter shares them: each part's share of
+  // the whole cloud's selection, gathered (here in reverse order of parts) and measured.
+  pcbilateral::CloudScales scales;
+  if (runs[0]->NeedsScales())
+  {
+    const double fraction = pcbilateral::MeasuredFraction(whole.NumberOfFinitePoints);
+    std::vector<double> selection;
+    for (int k = parts; k-- > 0;)
+    {
+      PointCloudView part;
+      part.NumberOfPoints = partXyz[k].size() / 3;
+      part.Positions = partXyz[k].data();
+      const std::vector<double> own = pcbilateral::SelectMeasurementPoints(part, fraction);
+      selection.insert(selection.end(), own.begin(), own.end());
+    }
+    scales = pcbilateral::MeasureSelection(selection, fraction, 0);
+  }
   bool iterate = true;
   for (const auto& run : runs)
   {
-    iterate = run->Start(whole) && iterate;
+    iterate = run->Start(whole, &scales) && iterate;
   }
   while (iterate)
   {
@@ -191,7 +209,8 @@ int main()
   {
     CheckSameBitsAsOneRun(parameters, parts, 7u + static_cast<unsigned>(parts));
   }
-  // The automatic radius, resolved from the whole cloud, and removal of isolated points.
+  // The automatic parameters, chosen from the whole cloud's measured scales, and removal of
+  // isolated points.
   parameters.Radius = 0.0;
   parameters.NormalRadius = 0.0;
   parameters.NumberOfIterations = 2;

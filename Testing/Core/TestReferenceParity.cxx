@@ -45,7 +45,8 @@ std::string Arguments(const ReferenceCase& c)
   {
     arguments += " -n " + std::to_string(c.NormalRadius);
   }
-  return arguments + " -N " + std::to_string(c.Iterations) + " --remove-isolated";
+  // The authors' program chooses what is not given by the paper's heuristic.
+  return arguments + " -N " + std::to_string(c.Iterations) + " --paper --remove-isolated";
 }
 
 /// Runs the core on the input table.
@@ -57,6 +58,7 @@ PositionsById RunCore(const ReferenceCase& c, const pcbilateral::PointCloudTable
   parameters.NormalRadius = c.NormalRadius;
   parameters.NumberOfIterations = c.Iterations;
   parameters.RemoveIsolatedPoints = true;
+  parameters.Automatic = AutomaticParameters::Paper;
   PointCloudView cloud;
   cloud.NumberOfPoints = input.NumberOfPoints;
   cloud.Positions = input.Positions.data();

@@ -107,6 +107,7 @@ int main()
     pcbilateral::BilateralParameters parameters;
     parameters.Radius = radius;
     parameters.NormalRadius = radius * (0.1 + 2 * unit(random));
+    parameters.NumberOfIterations = 1;
     parameters.NumberOfThreads = 2;
     pcbilateral::PointCloudView cloud;
     cloud.NumberOfPoints = count;

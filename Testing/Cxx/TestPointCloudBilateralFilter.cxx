@@ -27,6 +27,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -390,26 +391,99 @@ void TestParametersAndNormals()
   filter->SetInputData(cloud);
   filter->GenerateEstimatedNormalsOn();
   filter->GenerateDisplacementLengthOn();
+  PCB_CHECK(std::string(filter->GetLastRunSummary()) == "not run yet",
+    "before a run: %s",
+    filter->GetLastRunSummary());
+  filter->Update();
+  PCB_CHECK(std::string(filter->GetLastRunSummary()).find("N 2 (measured)") != std::string::npos,
+    "last run: %s",
+    filter->GetLastRunSummary());
+  // The automatic mode (the default): 5000 points per unit face are 0.5 / sqrt(5000) apart on
+  // average; r = 5 spacings + 4 sigma, rn = 5 sigma, N = 2 (a cube is not flat).
+  const double spacing = 0.5 / std::sqrt(5000.0);
+  std::printf("measured spacing %.6g (true %.6g), sigma %.6g (true 0.003): r %.6g, rn %.6g, "
+              "N %d\n",
+    filter->GetPointSpacing(),
+    spacing,
+    filter->GetNoiseSigma(),
+    filter->GetRadiusUsed(),
+    filter->GetNormalRadiusUsed(),
+    filter->GetNumberOfIterationsUsed());
+  PCB_CHECK(std::abs(filter->GetPointSpacing() / spacing - 1.0) < 0.1 &&
+              std::abs(filter->GetNoiseSigma() / 0.003 - 1.0) < 0.25,
+    "measured spacing %g, sigma %g",
+    filter->GetPointSpacing(),
+    filter->GetNoiseSigma());
+  const double measuredRadius = 5.0 * filter->GetPointSpacing() + 4.0 * filter->GetNoiseSigma();
+  PCB_CHECK(
+    std::abs(filter->GetRadiusUsed() / measuredRadius - 1.0) < 1e-12 &&
+      std::abs(filter->GetNormalRadiusUsed() / (5.0 * filter->GetNoiseSigma()) - 1.0) < 1e-12 &&
+      filter->GetNumberOfIterationsUsed() == 2,
+    "automatic r %g, rn %g, N %d",
+    filter->GetRadiusUsed(),
+    filter->GetNormalRadiusUsed(),
+    filter->GetNumberOfIterationsUsed());
+  vtkFieldData* fd = filter->GetOutput()->GetFieldData();
+  const std::pair<const char*, double> records[] = { { "BilateralRadius", filter->GetRadiusUsed() },
+    { "BilateralNormalRadius", filter->GetNormalRadiusUsed() },
+    { "BilateralNumberOfIterations", 2.0 },
+    { "BilateralPointSpacing", filter->GetPointSpacing() },
+    { "BilateralNoiseSigma", filter->GetNoiseSigma() } };
+  for (const auto& [name, value] : records)
+  {
+    vtkDataArray* record = fd->GetArray(name);
+    PCB_CHECK(record && record->GetComponent(0, 0) == value,
+      "the output's field data does not record %s = %g",
+      name,
+      value);
+  }
+
+  // A given parameter overrides only itself.
+  const double automaticNormalRadius = filter->GetNormalRadiusUsed();
+  filter->SetRadius(0.05);
+  filter->Update();
+  PCB_CHECK(filter->GetRadiusUsed() == 0.05 &&
+              filter->GetNormalRadiusUsed() == automaticNormalRadius &&
+              filter->GetNumberOfIterationsUsed() == 2,
+    "given radius: r %g, rn %g, N %d",
+    filter->GetRadiusUsed(),
+    filter->GetNormalRadiusUsed(),
+    filter->GetNumberOfIterationsUsed());
+
+  // The paper's heuristic, by name: r = sqrt(20 / n) x largest extent, rn = r, N = 1, nothing
+  // measured.
+  filter->SetRadius(0.0);
+  filter->SetAutomaticParametersToPaper();
   filter->Update();
   const double expected =
     std::sqrt(20.0 / 30000.0) * filter->GetOutput()->GetLength() / std::sqrt(3.0);
-  std::printf("automatic radius %.6g (largest extent x sqrt(20/n) = %.6g), normal radius %.6g\n",
+  std::printf("paper's radius %.6g (largest extent x sqrt(20/n) = %.6g), normal radius %.6g\n",
     filter->GetRadiusUsed(),
     expected,
     filter->GetNormalRadiusUsed());
   PCB_CHECK(std::abs(filter->GetRadiusUsed() - expected) < 0.02 * expected,
-    "automatic radius %g",
+    "paper's radius %g",
     filter->GetRadiusUsed());
-  PCB_CHECK(filter->GetNormalRadiusUsed() == filter->GetRadiusUsed(),
-    "normal radius %g",
-    filter->GetNormalRadiusUsed());
-  vtkFieldData* fd = filter->GetOutput()->GetFieldData();
-  vtkDataArray* radiusRecord = fd->GetArray("BilateralRadius");
-  vtkDataArray* normalRadiusRecord = fd->GetArray("BilateralNormalRadius");
-  PCB_CHECK(radiusRecord && radiusRecord->GetComponent(0, 0) == filter->GetRadiusUsed() &&
-              normalRadiusRecord &&
-              normalRadiusRecord->GetComponent(0, 0) == filter->GetNormalRadiusUsed(),
-    "the output's field data does not record the radii used");
+  PCB_CHECK(filter->GetNormalRadiusUsed() == filter->GetRadiusUsed() &&
+              filter->GetNumberOfIterationsUsed() == 1 && filter->GetPointSpacing() == 0.0,
+    "paper's normal radius %g, N %d, spacing %g",
+    filter->GetNormalRadiusUsed(),
+    filter->GetNumberOfIterationsUsed(),
+    filter->GetPointSpacing());
+  PCB_CHECK(
+    std::string(filter->GetLastRunSummary()).find("N 1 (paper's rule)") != std::string::npos,
+    "last run: %s",
+    filter->GetLastRunSummary());
+  fd = filter->GetOutput()->GetFieldData();
+  PCB_CHECK(fd->GetArray("BilateralRadius") && !fd->GetArray("BilateralPointSpacing"),
+    "the paper's run records a measured spacing");
+  const FilterRun unknown =
+    RunFilter(cloud, [](vtkPointCloudBilateralFilter* f) { f->SetAutomaticParameters(7); });
+  PCB_CHECK(unknown.Output->GetNumberOfPoints() == 0 && unknown.Errors == 1 &&
+              unknown.Messages.find("the automatic parameters must be") != std::string::npos,
+    "an unknown automatic mode: %d errors, %s",
+    unknown.Errors,
+    unknown.Messages.c_str());
   vtkPointData* pd = filter->GetOutput()->GetPointData();
   vtkDataArray* normals = pd->GetArray("EstimatedNormals");
   vtkDataArray* lengths = pd->GetArray("DisplacementLength");

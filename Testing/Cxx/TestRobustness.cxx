@@ -336,18 +336,22 @@ void TestBadParameters()
       bad.Says,
       run.Messages.c_str());
   }
-  const Run none = Filter(input, 0.05, 0);
-  PCB_CHECK(none.Errors == 0 && none.Output->GetNumberOfPoints() == input->GetNumberOfPoints(),
+  // 0 iterations means automatic, as 0 radii do: the filter runs.
+  const Run automatic = Filter(input, 0.05, 0);
+  PCB_CHECK(
+    automatic.Errors == 0 && automatic.Output->GetNumberOfPoints() == input->GetNumberOfPoints(),
     "0 iterations: %d errors, %lld points",
-    none.Errors,
-    (long long)none.Output->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < none.Output->GetNumberOfPoints(); ++i)
+    automatic.Errors,
+    (long long)automatic.Output->GetNumberOfPoints());
+  vtkIdType moved = 0;
+  for (vtkIdType i = 0; i < automatic.Output->GetNumberOfPoints(); ++i)
   {
     double a[3], b[3];
     input->GetPoint(i, a);
-    none.Output->GetPoint(i, b);
-    PCB_CHECK(std::memcmp(a, b, sizeof(a)) == 0, "0 iterations moved point %lld", (long long)i);
+    automatic.Output->GetPoint(i, b);
+    moved += std::memcmp(a, b, sizeof(a)) != 0;
   }
+  PCB_CHECK(moved > 0, "0 (automatic) iterations moved no point");
 }
 
 void TestGeoreferencedOffset()

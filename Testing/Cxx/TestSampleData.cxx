@@ -42,6 +42,15 @@ double FilteredError(vtkPolyData* noisy, const Shape& shape, double r, double rn
   filter->SetNormalRadius(rn);
   filter->SetNumberOfIterations(iterations);
   filter->Update();
+  if (r == 0.0 || rn == 0.0 || iterations == 0)
+  {
+    std::printf("automatic: measured spacing %.4g, noise sigma %.4g; r = %.4g, rn = %.4g, N = %d\n",
+      filter->GetPointSpacing(),
+      filter->GetNoiseSigma(),
+      filter->GetRadiusUsed(),
+      filter->GetNormalRadiusUsed(),
+      filter->GetNumberOfIterationsUsed());
+  }
   return RootMeanSquareDistance(filter->GetOutput(), shape);
 }
 } // namespace
@@ -50,7 +59,10 @@ int main(int argc, char* argv[])
 {
   if (argc < 4)
   {
-    std::fprintf(stderr, "usage: %s DATA_DIR NAME (R RN N MINIMUM_FACTOR | --sweep)\n", argv[0]);
+    std::fprintf(stderr,
+      "usage: %s DATA_DIR NAME (R RN N MINIMUM_FACTOR | --sweep)\n"
+      "(R, RN or N 0: automatic)\n",
+      argv[0]);
     return EXIT_FAILURE;
   }
   const std::string name = argv[2];

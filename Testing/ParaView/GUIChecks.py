@@ -1,7 +1,7 @@
 """Run inside the ParaView GUI (paraview --script=... --exit) by TestGUIScript.sh; checks what the
 plugin's GUI part sets up, and writes "ok: ..." or "FAILED: ..." lines to PCB_LOG:
 - after the filter has run, the arrays its display offers for colouring: the field arrays
-  BilateralRadius and BilateralNormalRadius (the radii used, for the Information panel and
+  Bilateral* (the parameters used and the measured scales, for the Information panel and
   scripts) must not be among them; DisplacementLength must;
 - the default reader of .xyz files (what File > Open uses without asking) is the Point Cloud
   Text Reader, not PLOT3D's."""
@@ -11,8 +11,7 @@ from paraview import servermanager, simple
 
 data = os.path.join(os.environ["PCB_SOURCE_DIR"], "Data", "sharp_edge_noise0.5.ply")
 reader = simple.PLYReader(FileNames=[data])
-bilateral = simple.PointCloudBilateralFilter(Input=reader, Radius=0.06, NormalRadius=0.02,
-                                             OutputDisplacementLength=1)
+bilateral = simple.PointCloudBilateralFilter(Input=reader, OutputDisplacementLength=1)
 display = simple.Show(bilateral)
 simple.Render()
 domain = display.GetProperty("ColorArrayName").SMProperty.FindDomain("vtkSMArrayListDomain")
@@ -21,11 +20,13 @@ field = [array.GetName() for array in bilateral.FieldData]
 with open(os.environ["PCB_LOG"], "w") as log:
     def check(condition, message):
         log.write(("ok:     " if condition else "FAILED: ") + message + "\n")
-    check("BilateralRadius" in field and "BilateralNormalRadius" in field,
-          f"the output's field data has the radii used: {field}")
+    recorded = ["BilateralRadius", "BilateralNormalRadius", "BilateralNumberOfIterations",
+                "BilateralPointSpacing", "BilateralNoiseSigma"]
+    check(all(name in field for name in recorded),
+          f"the output's field data has the parameters used and the scales measured: {field}")
     check("DisplacementLength" in offered, f"colour-by offers {offered}")
-    check("BilateralRadius" not in offered and "BilateralNormalRadius" not in offered,
-          "colour-by does not offer the radii")
+    check(not any(name in offered for name in recorded),
+          "colour-by does not offer the recorded parameters")
 
     # ParaView's open dialog (pqLoadDataReaction) reads this setting: pattern, description,
     # reader name, three strings per entry, the last matching entry first.

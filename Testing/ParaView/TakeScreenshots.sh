@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Takes the README's screenshots of the ParaView GUI with the plugin: the Properties panel
-# (advanced properties shown, after applying the filter with the automatic radius, through the
-# menu as a user would) and the Filters menu entry.
+# Takes screenshots of the ParaView GUI with the plugin, driven as a user would: the sample opened
+# (its points shown), the Filters menu entry (filters_menu.png, in the README), a bad radius
+# (error.png: one message, nothing shown), good values (recovered.png), the Properties panel with
+# advanced properties (properties_panel.png, in the README), colouring by the displacement
+# (colour.png), a long run with its progress (running.png) and after Abort (aborted.png).
 #   Testing/ParaView/TakeScreenshots.sh BUILD_DIR OUTPUT_DIR
 # Needs xvfb, xdotool, imagemagick and libqt5svg5 (for the icons). Starts its own X server and
 # ParaView, and ends only those. The clicks assume ParaView 5.11's default layout.
@@ -38,8 +40,7 @@ xdotool windowsize "$main" 1500 1000
 xdotool windowmove "$main" 0 0
 sleep 2
 
-# As a user would: Filters > Point Cloud (the 13th entry) > Point Cloud Bilateral Filter, then
-# Radius 0 (automatic), Normal Radius 0.02, 4 iterations, Apply.
+# As a user would: Filters > Point Cloud (the 13th entry) > Point Cloud Bilateral Filter.
 open_point_cloud_menu() {
   xdotool mousemove 193 10 click 1
   sleep 1
@@ -48,19 +49,36 @@ open_point_cloud_menu() {
   sleep 1
 }
 open_point_cloud_menu
+import -window root -crop 520x400+190+0 "$out/filters_menu.png"
 xdotool key Return
 sleep 2
 set_field() {
   xdotool mousemove "$1" "$2" click --repeat 3 1
-  xdotool type "$3"
+  xdotool type -- "$3"
   xdotool key Tab
   sleep 0.3
 }
-set_field 187 603 0
-set_field 206 661 0.02
-set_field 223 722 4
-xdotool mousemove 48 508 click 1
-sleep 4
+apply() {
+  xdotool mousemove 48 508 click 1
+  sleep "$1"
+}
+# The Output Messages window opens on the first message: out of the way of the panel.
+move_messages() {
+  local messages
+  messages=$(xdotool search --name "^Output Messages$" | head -1 || true)
+  [ -n "$messages" ] && xdotool windowmove "$messages" 700 620
+  sleep 0.5
+}
+
+# Change values: first a bad radius (one error, an empty output)...
+set_field 206 667 -0.05
+apply 3
+move_messages
+import -window root "$out/error.png"
+# ... then Radius 0 again: every parameter automatic (the defaults); the view shows the result.
+set_field 206 667 0
+apply 5
+import -window root "$out/recovered.png"
 
 # Float the Properties dock, make it wide enough for its labels, show advanced properties.
 xdotool mousemove 37 477 click --repeat 2 --delay 80 1
@@ -73,6 +91,28 @@ xdotool mousemove 1397 132 click 1
 sleep 1.5
 import -window "$panel" -crop 520x430+0+0 "$out/properties_panel.png"
 
-open_point_cloud_menu
-import -window root -crop 520x400+190+0 "$out/filters_menu.png"
-echo "wrote $out/properties_panel.png and $out/filters_menu.png"
+# Colour by the displacement: tick Output Displacement Length, Apply, choose it in the toolbar's
+# colour list (typing its first letter selects it).
+xdotool mousemove 917 587 click 1
+sleep 0.5
+xdotool mousemove 970 101 click 1
+sleep 5
+xdotool mousemove 318 81 click 1
+sleep 1
+xdotool type D
+xdotool key Return
+sleep 2
+import -window root "$out/colour.png"
+
+# A long run (every point a neighbour of every other), then Abort, the red cross left of the
+# progress bar.
+xdotool mousemove 1220 319 click --repeat 3 1
+xdotool type 1.5
+xdotool key Tab
+xdotool mousemove 970 101 click 1
+sleep 3
+import -window root "$out/running.png"
+xdotool mousemove 500 984 click 1
+sleep 2
+import -window root "$out/aborted.png"
+echo "wrote $out: filters_menu, error, recovered, properties_panel, colour, running, aborted"

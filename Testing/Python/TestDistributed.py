@@ -180,9 +180,17 @@ serial.Update()
 reference = dsa.WrapDataObject(serial.GetOutput())
 
 check(bilateral.RadiusUsed == serial.GetRadiusUsed() and
-      bilateral.NormalRadiusUsed == serial.GetNormalRadiusUsed(),
+      bilateral.NormalRadiusUsed == serial.GetNormalRadiusUsed() and
+      bilateral.NumberOfIterationsUsed == serial.GetNumberOfIterationsUsed(),
       f"radius used {bilateral.RadiusUsed!r} (serial {serial.GetRadiusUsed()!r}), normal radius "
-      f"used {bilateral.NormalRadiusUsed!r} (serial {serial.GetNormalRadiusUsed()!r})")
+      f"used {bilateral.NormalRadiusUsed!r} (serial {serial.GetNormalRadiusUsed()!r}), "
+      f"iterations {bilateral.NumberOfIterationsUsed} (serial {serial.GetNumberOfIterationsUsed()})")
+# The automatic mode measures the whole cloud, not each process's part: the same bits.
+if args.radius == 0 or args.normal_radius == 0 or args.iterations == 0:
+    check(serial.GetPointSpacing() > 0 and bilateral.PointSpacing == serial.GetPointSpacing()
+          and bilateral.NoiseSigma == serial.GetNoiseSigma(),
+          f"measured spacing {bilateral.PointSpacing!r} (serial {serial.GetPointSpacing()!r}), "
+          f"noise {bilateral.NoiseSigma!r} (serial {serial.GetNoiseSigma()!r})")
 removed = total - reference.GetNumberOfPoints()
 print(f"{removed} point(s) removed as isolated")
 if args.remove_isolated:

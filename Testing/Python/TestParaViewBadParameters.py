@@ -31,6 +31,9 @@ def run(source, **properties):
     try:
         bilateral = simple.PointCloudBilateralFilter(Input=source, **properties)
         bilateral.UpdatePipeline()
+        bilateral.UpdatePropertyInformation()
+        global last_run  # what the Properties panel's Last Run shows
+        last_run = bilateral.LastRun
         output = dsa.WrapDataObject(servermanager.Fetch(bilateral))
         simple.Delete(bilateral)
     finally:
@@ -45,14 +48,16 @@ output, text = run(reader, Radius=-0.1)
 check(output.GetNumberOfPoints() == 0, f"negative radius: {output.GetNumberOfPoints()} points out")
 check("the radius must be a finite number >= 0 (0 means automatic), got -0.1" in text,
       "negative radius: the message says what is wrong")
+check(last_run == "failed: the radius must be a finite number >= 0 (0 means automatic), got -0.1",
+      f"negative radius: the last run says '{last_run}'")
 
 output, text = run(reader, Radius=0.05, NormalRadius=-1)
 check(output.GetNumberOfPoints() == 0 and "the normal radius must be" in text,
       "negative normal radius: empty output and a message")
 
 output, text = run(reader, Radius=0.05, NumberOfIterations=0)
-check(np.array_equal(np.asarray(output.Points), points),
-      "0 iterations: the points come out unchanged")
+check(output.GetNumberOfPoints() == len(points) and not np.array_equal(np.asarray(output.Points), points),
+      "0 iterations (automatic): the points are filtered")
 
 # A polydata with no points at all.
 empty_path = os.path.join(scratch, "empty.vtp")

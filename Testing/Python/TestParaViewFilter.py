@@ -22,23 +22,35 @@ reader = simple.XMLPolyDataReader(FileName=[os.path.join(scratch, "plane.vtp")])
 reader.UpdatePipeline()
 bilateral = simple.PointCloudBilateralFilter(Input=reader)
 largest_extent = np.max(np.ptp(points, axis=0))
-# The proxy's defaults are the core's (configured into the XML from Filters/Core/BilateralFilter.h).
-check(bilateral.Radius == 0 and bilateral.NormalRadius == 0 and bilateral.NumberOfIterations == 1,
+# The proxy's defaults are the core's (configured into the XML from Filters/Core/BilateralFilter.h):
+# every parameter automatic, from the measured scales.
+check(bilateral.Radius == 0 and bilateral.NormalRadius == 0 and bilateral.NumberOfIterations == 0
+      and bilateral.AutomaticParameters == "Measured",
       f"the defaults are the core's: radius {bilateral.Radius}, normal radius "
-      f"{bilateral.NormalRadius}, iterations {bilateral.NumberOfIterations}")
+      f"{bilateral.NormalRadius}, iterations {bilateral.NumberOfIterations}, "
+      f"automatic {bilateral.AutomaticParameters}")
 # RequestInformation reports metadata only: nothing is "used" before the filter has run.
 bilateral.UpdatePipelineInformation()
 bilateral.UpdatePropertyInformation()
-check(bilateral.RadiusUsed == 0 and bilateral.NormalRadiusUsed == 0,
-      f"nothing used before a run: radius used {bilateral.RadiusUsed}")
+check(bilateral.RadiusUsed == 0 and bilateral.NormalRadiusUsed == 0
+      and bilateral.NumberOfIterationsUsed == 0 and bilateral.PointSpacing == 0
+      and bilateral.LastRun == "not run yet",
+      f"nothing used before a run: radius used {bilateral.RadiusUsed}, last run "
+      f"'{bilateral.LastRun}'")
 bilateral.Radius = 0.05
 bilateral.NumberOfIterations = 2
 bilateral.OutputDisplacementLength = 1
 bilateral.UpdatePipeline()
 bilateral.UpdatePropertyInformation()
-check(bilateral.RadiusUsed == 0.05 and bilateral.NormalRadiusUsed == 0.05,
-      f"information properties: radius used {bilateral.RadiusUsed}, "
-      f"normal radius used {bilateral.NormalRadiusUsed}")
+# A given radius and N override only themselves: rn = 5 sigma from the measured noise.
+check(bilateral.RadiusUsed == 0.05 and bilateral.NumberOfIterationsUsed == 2
+      and abs(bilateral.NoiseSigma / PLANE_NOISE - 1) < 0.25
+      and abs(bilateral.NormalRadiusUsed - 5 * bilateral.NoiseSigma) < 1e-12,
+      f"information properties: radius used {bilateral.RadiusUsed}, normal radius used "
+      f"{bilateral.NormalRadiusUsed}, iterations used {bilateral.NumberOfIterationsUsed}, "
+      f"noise sigma {bilateral.NoiseSigma} (true {PLANE_NOISE}), spacing {bilateral.PointSpacing}")
+check(bilateral.LastRun.startswith("r 0.05, rn ") and bilateral.LastRun.endswith("N 2 (measured)"),
+      f"last run: '{bilateral.LastRun}'")
 
 result = dsa.WrapDataObject(servermanager.Fetch(bilateral))
 filtered = np.asarray(result.Points)
@@ -57,13 +69,26 @@ check(0.8 < np.mean(moved) / expected < 1.05,
       f"mean displacement {np.mean(moved):.5f}, mean |noise| {expected:.5f}")
 check(np.max(moved) < 2 * 0.05, f"no point moved by more than N r: {np.max(moved):.4f}")
 
-# 0 chooses the paper's rule: sqrt(20 / points) times the largest extent.
+# All automatic on a flat cloud: 1.5 x (5 spacings + 4 sigma), rn = 5 sigma, N = 3.
 bilateral.Radius = 0
+bilateral.NumberOfIterations = 0
+bilateral.UpdatePipeline()
+bilateral.UpdatePropertyInformation()
+rule = 1.5 * (5 * bilateral.PointSpacing + 4 * bilateral.NoiseSigma)
+check(abs(bilateral.RadiusUsed / rule - 1) < 1e-12 and bilateral.NumberOfIterationsUsed == 3,
+      f"automatic radius {bilateral.RadiusUsed:.6g} (rule {rule:.6g}), "
+      f"N {bilateral.NumberOfIterationsUsed}")
+# The paper's heuristic by name: sqrt(20 / points) times the largest extent, rn = r, N = 1.
+bilateral.AutomaticParameters = "Paper"
 bilateral.UpdatePipeline()
 bilateral.UpdatePropertyInformation()
 automatic = np.sqrt(20.0 / PLANE_POINTS) * largest_extent
-check(abs(bilateral.RadiusUsed - automatic) < 1e-12,
-      f"automatic radius {bilateral.RadiusUsed:.6g}, expected {automatic:.6g}")
+check(abs(bilateral.RadiusUsed - automatic) < 1e-12
+      and bilateral.NormalRadiusUsed == bilateral.RadiusUsed
+      and bilateral.NumberOfIterationsUsed == 1 and bilateral.PointSpacing == 0,
+      f"paper's radius {bilateral.RadiusUsed:.6g}, expected {automatic:.6g}")
+check(bilateral.LastRun.endswith("N 1 (paper's rule)"), f"last run: '{bilateral.LastRun}'")
+bilateral.AutomaticParameters = "Measured"
 
 # The authors' text format opens through the plugin's reader, by extension; columns become arrays.
 text_path = os.path.join(scratch, "small.xyz")

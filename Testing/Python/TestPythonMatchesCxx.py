@@ -44,4 +44,26 @@ check(ours.dtype == theirs.dtype == np.float32, f"point types {ours.dtype} and {
 check(ours.shape == theirs.shape, f"{len(ours)} and {len(theirs)} points")
 check(np.array_equal(ours, theirs), "the same points, bit for bit")
 check(np.max(np.abs(ours - original)) > 1e-3, "the points moved")
+
+# The automatic mode (the default) from Python: the same measurement and choice as the program.
+automatic_path = os.path.join(scratch, "cxx-automatic.vtp")
+printed = subprocess.run([program, input_path, automatic_path], check=True, capture_output=True,
+                         text=True).stdout
+automatic = vtkPointCloudBilateralFilter()
+automatic.SetInputConnection(reader.GetOutputPort())
+check(automatic.GetRadius() == 0 and automatic.GetNumberOfIterations() == 0
+      and automatic.GetAutomaticParameters() == vtkPointCloudBilateralFilter.MEASURED,
+      "the defaults are automatic")
+automatic.Update()
+said = f"radius:        {automatic.GetRadiusUsed():.9g} (automatic"
+check(said in printed and automatic.GetNoiseSigma() > 0
+      and f"noise sigma {automatic.GetNoiseSigma():.6g}" in printed,
+      f"Python used radius {automatic.GetRadiusUsed():.9g} and measured noise "
+      f"{automatic.GetNoiseSigma():.6g}; the program printed:\n{printed}")
+automatic.SetAutomaticParametersToPaper()
+automatic.Update()
+check(automatic.GetNumberOfIterationsUsed() == 1
+      and automatic.GetNormalRadiusUsed() == automatic.GetRadiusUsed()
+      and automatic.GetLastRunSummary().endswith("(paper's rule)"),
+      f"the paper's rule by name: {automatic.GetLastRunSummary()}")
 finish()
