@@ -191,10 +191,17 @@ public:
     std::int64_t low[3], high[3];
     for (int axis = 0; axis < 3; ++axis)
     {
-      low[axis] = static_cast<std::int64_t>(
-        std::floor((centre[axis] - radius - this->Origin[axis]) / this->CellSize));
-      high[axis] = static_cast<std::int64_t>(
-        std::floor((centre[axis] + radius - this->Origin[axis]) / this->CellSize));
+      const double lowCell =
+        std::floor((centre[axis] - radius - this->Origin[axis]) / this->CellSize);
+      const double highCell =
+        std::floor((centre[axis] + radius - this->Origin[axis]) / this->CellSize);
+      // (A ball beyond what the lattice can index holds nothing to fit.)
+      if (!(std::abs(lowCell) < 1e15 && std::abs(highCell) < 1e15))
+      {
+        return;
+      }
+      low[axis] = static_cast<std::int64_t>(lowCell);
+      high[axis] = static_cast<std::int64_t>(highCell);
     }
     const double radius2 = radius * radius;
     // A ball spanning more cells than there are points (a radius far above the cells' size,
@@ -597,6 +604,11 @@ LocalFit FitQuadric(const std::vector<std::array<double, 3>>& points,
   {
     fit.SurfacePoint[axis] = centre[axis] + radius * (height - z) * frame[axis][0];
   }
+  // A degenerate neighbourhood (points on a line, say) can solve to non-finite coefficients: no
+  // fit, rather than a surface point nowhere.
+  fit.Fitted = std::isfinite(fit.Variance) && std::isfinite(height) &&
+               std::isfinite(fit.SurfacePoint[0]) && std::isfinite(fit.SurfacePoint[1]) &&
+               std::isfinite(fit.SurfacePoint[2]);
   return fit;
 }
 
@@ -712,6 +724,12 @@ CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOpt
   // (A flat box, e.g. points on a line, would give cells of no size.)
   const double largest = extent.LargestExtent();
   double density = static_cast<double>(n) / std::max(boxArea, 1e-4 * largest * largest);
+  if (!(std::isfinite(density) && density > 0.0))
+  {
+    // Coordinates so far apart that areas overflow: the filter refuses such clouds anyway.
+    scales.Problem = "the cloud's extent is beyond what can be measured";
+    return scales;
+  }
 
   // Grids: level l's cells are about two of its point spacings wide.
   std::vector<HashedGrid> grids;

@@ -110,7 +110,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       std::abort(); // the instruction-set builds disagree
     }
   }
-  const double reach = parameters.NumberOfIterations * result.RadiusUsed;
+  const double reach = result.NumberOfIterationsUsed * result.RadiusUsed; // N may be automatic
   for (std::size_t i = 0; i < count; ++i)
   {
     const double* before = &xyz[3 * i];
