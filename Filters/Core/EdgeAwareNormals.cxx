@@ -3,6 +3,7 @@
 #include "BilateralKernel.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -198,39 +199,63 @@ struct Neighbourhood
     const double px = grid.X[i], py = grid.Y[i], pz = grid.Z[i];
     const std::uint32_t* runs =
       &grid.CellRuns[2 * 9 * static_cast<std::size_t>(grid.CellOfPoint[i])];
-    this->Count = 0;
+    std::size_t count = 0;
     for (int run = 0; run < 9; ++run)
     {
       const std::uint32_t begin = runs[2 * run];
       const std::uint32_t end = runs[2 * run + 1];
-      // Room for every candidate of the run: the loop below writes each one, and keeps it by
-      // advancing only for a neighbour (no branch: most candidates are not neighbours).
-      if (this->Index.size() < this->Count + (end - begin))
+      // Room for every candidate of the run: the loop below writes each one's index, and keeps
+      // it by advancing only for a neighbour (no branch: most candidates are not neighbours).
+      if (this->Index.size() < count + (end - begin))
       {
-        this->Grow(2 * (this->Count + (end - begin)));
+        this->Grow(2 * (count + (end - begin)));
       }
       std::uint32_t* index = this->Index.data();
-      double* dx = this->Dx.data();
-      double* dy = this->Dy.data();
-      double* dz = this->Dz.data();
-      double* d2s = this->DistanceSquared.data();
-      std::size_t count = this->Count;
+      const double* x = grid.X.data();
+      const double* y = grid.Y.data();
+      const double* z = grid.Z.data();
       for (std::uint32_t j = begin; j < end; ++j)
       {
         // The same offsets and squared distance as the kernel's (SelectNeighbours).
-        const double ox = grid.X[j] - px;
-        const double oy = grid.Y[j] - py;
-        const double oz = grid.Z[j] - pz;
+        const double ox = x[j] - px;
+        const double oy = y[j] - py;
+        const double oz = z[j] - pz;
         const double d2 = (ox * ox + oy * oy) + oz * oz;
         index[count] = j;
-        dx[count] = ox;
-        dy[count] = oy;
-        dz[count] = oz;
-        d2s[count] = d2;
         count += d2 < grid.RadiusSquared ? 1 : 0;
       }
-      this->Count = count;
     }
+    this->Offsets(grid, i, count);
+  }
+
+  /// The neighbours Gather found, from their sorted indices (kept by a NeighbourCache): the
+  /// same offsets, computed the same way, so the same bits.
+  void Load(const SortedGrid& grid, std::size_t i, const std::vector<std::uint32_t>& list)
+  {
+    if (this->Index.size() < list.size())
+    {
+      this->Grow(2 * list.size());
+    }
+    std::copy(list.begin(), list.end(), this->Index.begin());
+    this->Offsets(grid, i, list.size());
+  }
+
+  /// The offsets q - p and squared distances of the first `count` indices.
+  void Offsets(const SortedGrid& grid, std::size_t i, std::size_t count)
+  {
+    const double px = grid.X[i], py = grid.Y[i], pz = grid.Z[i];
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      const std::uint32_t j = this->Index[k];
+      const double ox = grid.X[j] - px;
+      const double oy = grid.Y[j] - py;
+      const double oz = grid.Z[j] - pz;
+      this->Dx[k] = ox;
+      this->Dy[k] = oy;
+      this->Dz[k] = oz;
+      this->DistanceSquared[k] = (ox * ox + oy * oy) + oz * oz;
+    }
+    this->Count = count;
   }
 
   void Exponentials() { KernelExp(this->Argument.data(), this->Weight.data(), this->Count); }
@@ -245,6 +270,51 @@ private:
     }
     this->Index.resize(size);
   }
+};
+
+/**
+ * The neighbour lists the first step found, for the next steps: scanning the cells around a
+ * point costs about three times its neighbours, reading a list once. Lists are kept up to a
+ * memory budget; the points beyond it scan again, with the same result.
+ */
+class NeighbourCache
+{
+public:
+  explicit NeighbourCache(std::size_t points)
+    : Lists(points)
+  {
+  }
+
+  /// Called for each point by the first step.
+  void Keep(std::size_t i, const Neighbourhood& hood)
+  {
+    if (this->Used.fetch_add(hood.Count, std::memory_order_relaxed) + hood.Count <= Budget)
+    {
+      this->Lists[i].assign(hood.Index.begin(), hood.Index.begin() + hood.Count);
+      this->Kept[i] = true;
+    }
+  }
+
+  void Fetch(const SortedGrid& grid, std::size_t i, Neighbourhood& hood) const
+  {
+    if (this->Kept[i])
+    {
+      hood.Load(grid, i, this->Lists[i]);
+    }
+    else
+    {
+      hood.Gather(grid, i);
+    }
+  }
+
+  void Prepare() { this->Kept.assign(this->Lists.size(), 0); }
+
+private:
+  /// Neighbour entries kept at most: 256 MB of indices.
+  static constexpr std::uint64_t Budget = std::uint64_t(1) << 26;
+  std::vector<std::vector<std::uint32_t>> Lists;
+  std::vector<std::uint8_t> Kept;
+  std::atomic<std::uint64_t> Used{ 0 };
 };
 
 /// The agreement weight's exponent: -((1 - |c|) / (1 - cos theta))^2.
@@ -302,12 +372,15 @@ bool RunEdgeAwareIteration(PointState& state,
     ++step;
   };
 
+  NeighbourCache cache(n);
+  cache.Prepare();
   // 1. The paper's regression-plane normals; zero for points with too few neighbours.
   std::vector<double> normals(3 * n, 0.0);
   forEachPoint(n,
     [&](std::size_t i, Neighbourhood& hood, std::uint64_t& visited)
     {
       hood.Gather(grid, i);
+      cache.Keep(i, hood);
       visited += hood.Count;
       if (hood.Count < MinimumNeighbourCount)
       {
@@ -363,7 +436,7 @@ bool RunEdgeAwareIteration(PointState& state,
         {
           return;
         }
-        hood.Gather(grid, i);
+        cache.Fetch(grid, i, hood);
         visited += hood.Count;
         for (std::size_t k = 0; k < hood.Count; ++k)
         {
@@ -433,7 +506,7 @@ bool RunEdgeAwareIteration(PointState& state,
         isolated[i] = 1; // fewer than MinimumNeighbourCount neighbours
         return;
       }
-      hood.Gather(grid, i);
+      cache.Fetch(grid, i, hood);
       visited += hood.Count;
       for (std::size_t k = 0; k < hood.Count; ++k)
       {
