@@ -114,6 +114,7 @@ vtkPointCloudBilateralFilter::vtkPointCloudBilateralFilter()
   this->NumberOfIterations = defaults.NumberOfIterations;
   this->RemoveIsolatedPoints = defaults.RemoveIsolatedPoints;
   this->NumberOfThreads = defaults.NumberOfThreads;
+  this->EdgeAware = defaults.EdgeAware;
 }
 
 vtkPointCloudBilateralFilter::~vtkPointCloudBilateralFilter()
@@ -137,6 +138,7 @@ pcbilateral::BilateralParameters vtkPointCloudBilateralFilter::MakeParameters() 
   parameters.RemoveIsolatedPoints = this->RemoveIsolatedPoints;
   parameters.NumberOfThreads = this->NumberOfThreads;
   parameters.ComputeNormals = this->GenerateEstimatedNormals;
+  parameters.EdgeAware = this->EdgeAware;
   return parameters;
 }
 
@@ -376,6 +378,7 @@ void vtkPointCloudBilateralFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "GenerateEstimatedNormals: " << this->GenerateEstimatedNormals << "\n";
   os << indent << "GenerateDisplacementLength: " << this->GenerateDisplacementLength << "\n";
+  os << indent << "EdgeAware: " << this->EdgeAware << "\n";
   os << indent << "RadiusUsed: " << this->RadiusUsed << "\n";
   os << indent << "NormalRadiusUsed: " << this->NormalRadiusUsed << "\n";
   os << indent << "ProcessingDepth: " << this->ProcessingDepth << "\n";
