@@ -7,7 +7,10 @@
 //   - the edge-aware mode (EdgeAware on; r, rn, N),
 //   - CGAL's jet_smooth_point_set (k) and bilateral_smooth_point_set (Huang et al. 2013: k,
 //     sharpness angle, iterations, after pca_estimate_normals with the same k), when CGAL was
-//     found at configure time (Debian's libcgal-dev; for this benchmark only).
+//     found at configure time (Debian's libcgal-dev; for this benchmark only);
+// then the cheapest edge-aware setting that reaches CGAL bilateral's best edge RMS and the
+// paper's best RMS, with its time, and the automatic mode's rule (ChooseParameters) in both
+// modes.
 // Built with the project, run by hand (see README.md, "Edge-aware mode"):
 //
 //   pcb_edges [--only SUBSTRING] [--no-cgal]
@@ -265,14 +268,14 @@ Best SearchCgalBilateral(const Truth& truth)
 {
   Best best;
   const std::vector<double>& input = truth.Cloud->Positions;
-  for (unsigned k : { 24u, 48u, 96u })
+  for (unsigned k : { 48u, 96u, 192u })
   {
-    for (double angle : { 15.0, 25.0, 40.0 })
+    for (double angle : { 10.0, 15.0, 25.0 })
     {
       RunCgalBilateral(input,
         k,
         angle,
-        3,
+        5,
         [&](int n, const std::vector<double>& positions)
         {
           char at[64];
@@ -340,8 +343,8 @@ int main(int argc, char* argv[])
     "| case | noisy | paper: edge / RMS (setting) | paper best RMS | edge-aware: edge / "
     "RMS (setting) | edge-aware best RMS | CGAL jet: edge / RMS (k) | CGAL bilateral: "
     "edge / RMS (setting) | time paper / edge-aware / jet / CGAL bilateral | cheapest edge-aware "
-    "setting reaching the targets: edge / RMS, time |\n");
-  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+    "setting reaching the targets: edge / RMS, time | automatic rule: paper, edge-aware |\n");
+  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   std::uint64_t seed = 500;
   for (const Case& c : cases)
   {
@@ -372,6 +375,32 @@ int main(int argc, char* argv[])
     const pcbilateral::CloudScales scales =
       pcbilateral::MeasureScales(View(cloud.Positions), options);
 
+    // The automatic mode's rule (ChooseParameters) as it is, in both modes.
+    pcbilateral::BilateralParameters automatic;
+    automatic.NumberOfIterations = 0;
+    automatic = pcbilateral::ChooseParameters(scales, automatic);
+    automatic.NumberOfThreads = 1;
+    const Quality autoPaper = truth.Measure(RunFilter(cloud.Positions,
+      automatic.Radius,
+      automatic.NormalRadius,
+      automatic.NumberOfIterations,
+      false));
+    const Quality autoAware = truth.Measure(RunFilter(cloud.Positions,
+      automatic.Radius,
+      automatic.NormalRadius,
+      automatic.NumberOfIterations,
+      true));
+    char autoText[160];
+    std::snprintf(autoText,
+      sizeof autoText,
+      "%.2f / %.2f, %.2f / %.2f (r %.1fs, rn %.1fσ, N %d)",
+      autoPaper.EdgeRms,
+      autoPaper.Rms,
+      autoAware.EdgeRms,
+      autoAware.Rms,
+      automatic.Radius / scales.PointSpacing,
+      automatic.NormalRadius / scales.NoiseSigma,
+      automatic.NumberOfIterations);
     Best paper = SearchFilter(truth, scales.PointSpacing, scales.NoiseSigma, false);
     Best edgeAware = SearchFilter(truth, scales.PointSpacing, scales.NoiseSigma, true);
     paper.TimeBest();
@@ -451,7 +480,7 @@ int main(int argc, char* argv[])
     std::snprintf(rmsText[0], sizeof rmsText[0], "%.2f (%s)", paper.ByRms.Rms, paper.RmsAt.c_str());
     std::snprintf(
       rmsText[1], sizeof rmsText[1], "%.2f (%s)", edgeAware.ByRms.Rms, edgeAware.RmsAt.c_str());
-    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
+    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
       name,
       hasEdges ? (std::to_string(noisy.EdgeRms).substr(0, 4) + " / " +
                    std::to_string(noisy.Rms).substr(0, 4))
@@ -464,7 +493,8 @@ int main(int argc, char* argv[])
       jetText.c_str(),
       cgalText.c_str(),
       times.c_str(),
-      cheapText.c_str());
+      cheapText.c_str(),
+      autoText);
     std::fflush(stdout);
   }
   return EXIT_SUCCESS;
