@@ -393,10 +393,10 @@ int main(int argc, char* argv[])
     char autoText[160];
     std::snprintf(autoText,
       sizeof autoText,
-      "%.2f / %.2f, %.2f / %.2f (r %.1fs, rn %.1fσ, N %d)",
-      autoPaper.EdgeRms,
+      "%s%.2f, %s%.2f (r %.1fs, rn %.1fσ, N %d)",
+      hasEdges ? (std::to_string(autoPaper.EdgeRms).substr(0, 4) + " / ").c_str() : "– / ",
       autoPaper.Rms,
-      autoAware.EdgeRms,
+      hasEdges ? (std::to_string(autoAware.EdgeRms).substr(0, 4) + " / ").c_str() : "– / ",
       autoAware.Rms,
       automatic.Radius / scales.PointSpacing,
       automatic.NormalRadius / scales.NoiseSigma,
