@@ -117,6 +117,7 @@ vtkPointCloudBilateralFilter::vtkPointCloudBilateralFilter()
   this->AutomaticParameters = static_cast<int>(defaults.Automatic);
   this->RemoveIsolatedPoints = defaults.RemoveIsolatedPoints;
   this->NumberOfThreads = defaults.NumberOfThreads;
+  this->EdgeAware = defaults.EdgeAware;
 }
 
 vtkPointCloudBilateralFilter::~vtkPointCloudBilateralFilter()
@@ -142,6 +143,7 @@ pcbilateral::BilateralParameters vtkPointCloudBilateralFilter::MakeParameters() 
   parameters.RemoveIsolatedPoints = this->RemoveIsolatedPoints;
   parameters.NumberOfThreads = this->NumberOfThreads;
   parameters.ComputeNormals = this->GenerateEstimatedNormals;
+  parameters.EdgeAware = this->EdgeAware;
   return parameters;
 }
 
@@ -416,6 +418,7 @@ void vtkPointCloudBilateralFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "GenerateEstimatedNormals: " << this->GenerateEstimatedNormals << "\n";
   os << indent << "GenerateDisplacementLength: " << this->GenerateDisplacementLength << "\n";
+  os << indent << "EdgeAware: " << this->EdgeAware << "\n";
   os << indent << "RadiusUsed: " << this->RadiusUsed << "\n";
   os << indent << "NormalRadiusUsed: " << this->NormalRadiusUsed << "\n";
   os << indent << "NumberOfIterationsUsed: " << this->NumberOfIterationsUsed << "\n";

@@ -2,7 +2,7 @@
 // (IPOL 2017), with the option letters of the authors' program.
 //
 //   pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [--paper] [-R] [-t THREADS]
-//               [--remove-isolated]
+//               [--remove-isolated] [--edge-aware]
 //
 // Formats by extension: .txt and .xyz (the authors' ASCII format), .las, .ply, .vtp. Errors
 // print one line and exit with status 1; a damaged input file is an error, never a cloud. Run with
@@ -38,7 +38,7 @@ namespace
 {
 const char* const Usage =
   "usage: pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [--paper] [-R] [-t THREADS]\n"
-  "                   [--remove-isolated]\n"
+  "                   [--remove-isolated] [--edge-aware]\n"
   "\n"
   "Denoises a point cloud with the bilateral filter (Digne & de Franchis, IPOL 2017).\n"
   "INPUT and OUTPUT: .txt or .xyz (x y z [nx ny nz] [more columns]), .las (LiDAR,\n"
@@ -57,6 +57,9 @@ const char* const Usage =
   "  -t THREADS         threads (default 0: all cores); the result does not depend on it\n"
   "  --remove-isolated  remove points with fewer than 5 neighbours, as the authors' program\n"
   "                     does (default: they stay where they are)\n"
+  "  --edge-aware       edge-aware mode, beyond the paper: normals filtered bilaterally\n"
+  "                     before the displacement, for sharp edges under strong noise\n"
+  "                     (default: the paper's filter)\n"
   "  -p                 accepted for compatibility and ignored: the filter always runs in "
   "parallel\n"
   "  -h, --help         this text\n";
@@ -172,6 +175,7 @@ struct Options
   bool OrientedNormals = false;
   int Threads = pcbilateral::BilateralParameters().NumberOfThreads;
   bool RemoveIsolated = pcbilateral::BilateralParameters().RemoveIsolatedPoints;
+  bool EdgeAware = pcbilateral::BilateralParameters().EdgeAware;
 };
 
 Options ParseArguments(int argc, char* argv[])
@@ -225,6 +229,10 @@ Options ParseArguments(int argc, char* argv[])
     else if (argument == "--remove-isolated")
     {
       options.RemoveIsolated = true;
+    }
+    else if (argument == "--edge-aware")
+    {
+      options.EdgeAware = true;
     }
     else if (argument.size() > 1 && argument[0] == '-')
     {
@@ -312,6 +320,7 @@ int main(int argc, char* argv[])
   filter->SetAutomaticParameters(static_cast<int>(options.Automatic));
   filter->SetNumberOfThreads(options.Threads);
   filter->SetRemoveIsolatedPoints(options.RemoveIsolated);
+  filter->SetEdgeAware(options.EdgeAware);
   const auto start = std::chrono::steady_clock::now();
   filter->Update();
   const double seconds =
@@ -344,6 +353,10 @@ int main(int argc, char* argv[])
   std::printf("iterations:    %d%s\n",
     filter->GetNumberOfIterationsUsed(),
     options.Iterations > 0 ? "" : automatic);
+  if (options.EdgeAware)
+  {
+    std::printf("mode:          edge-aware (normals filtered bilaterally, beyond the paper)\n");
+  }
   if (options.RemoveIsolated)
   {
     std::printf("removed:       %lld isolated points\n",

@@ -1,7 +1,7 @@
 """Denoise a point cloud with ParaView's Python, in a batch script.
 
     pvpython Examples/Python/denoise.py IN OUT [--radius R] [--normal-radius RN] [--iterations N]
-                                        [--paper]
+                                        [--paper] [--edge-aware]
     pvbatch  Examples/Python/denoise.py IN OUT ...
     mpirun -np 2 pvbatch Examples/Python/denoise.py IN OUT ...
 
@@ -83,6 +83,8 @@ def add_filter_arguments(parser, threads_help="0 (default): all cores"):
     parser.add_argument("--oriented-normals", action="store_true",
                         help="text files carry normals in columns 4-6")
     parser.add_argument("--remove-isolated", action="store_true")
+    parser.add_argument("--edge-aware", action="store_true",
+                        help="edge-aware mode (beyond the paper): sharper edges under strong noise")
     parser.add_argument("--threads", type=int, default=0, help=threads_help)
     parser.add_argument("--plugin", help="path of PointCloudBilateral.so")
 
@@ -96,6 +98,7 @@ def make_filter(source, args):
         NumberOfIterations=args.iterations,
         AutomaticParameters="Paper" if args.paper else "Measured",
         RemoveIsolatedPoints=int(args.remove_isolated),
+        EdgeAware=int(args.edge_aware),
         NumberOfThreads=args.threads,
     )
 

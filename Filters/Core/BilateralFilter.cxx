@@ -3,6 +3,7 @@
 #include "BilateralKernel.h"
 #include "CellColoringScheduler.h"
 #include "CloudMeasurement.h"
+#include "EdgeAwareNormals.h"
 #include "HugePages.h"
 #include "ProcessingOctree.h"
 
@@ -355,6 +356,30 @@ struct BilateralRun::Internals
     return true;
   }
 
+  /// One iteration of the edge-aware mode on `state` (no octree: EdgeAwareNormals.h); false
+  /// if aborted.
+  bool IterateEdgeAware(PointState& state)
+  {
+    EdgeAwareSettings settings;
+    settings.Radius = this->Radii.Radius;
+    settings.NormalRadius = this->Radii.NormalRadius;
+    std::copy(this->WholeExtent.Min, this->WholeExtent.Min + 3, settings.Origin);
+    settings.CloudReach = this->WholeExtent.LargestExtent() +
+                          (this->Parameters.NumberOfIterations + 1.0) * this->Radii.Radius;
+    settings.RemoveIsolatedPoints = this->Parameters.RemoveIsolatedPoints;
+    settings.NumberOfThreads = this->Threads;
+    settings.ShouldAbort = this->Observer.ShouldAbort;
+    settings.Progress = [this](double fraction)
+    { this->Report((this->Iteration + fraction) / this->Parameters.NumberOfIterations); };
+    std::uint64_t evaluations = 0;
+    if (!RunEdgeAwareIteration(state, settings, evaluations))
+    {
+      return false;
+    }
+    this->Result.NumberOfNeighbourEvaluations += evaluations;
+    return true;
+  }
+
   BilateralStatus EndIteration(bool completed)
   {
     if (!completed)
@@ -564,7 +589,9 @@ void BilateralRun::GetGhostReach(double box[6]) const
   }
   // Points move by less than a radius per iteration, but the box is taken from the current
   // positions, so one radius of reach is enough.
-  const double margin = GhostMargin(this->Impl->Radii.Radius, magnitude);
+  // The edge-aware mode reads its neighbours' normals, which read theirs: it reaches further.
+  const double reach = this->Impl->Parameters.EdgeAware ? EdgeAwareReachInRadii : 1.0;
+  const double margin = GhostMargin(reach * this->Impl->Radii.Radius, magnitude);
   for (int axis = 0; axis < 3; ++axis)
   {
     box[2 * axis] -= margin;
@@ -578,6 +605,22 @@ BilateralStatus BilateralRun::Step()
   if (!this->HasNextIteration())
   {
     return run.Result.Status;
+  }
+  if (run.Parameters.EdgeAware)
+  {
+    // Every point by id, in place, for each iteration.
+    BilateralResult& result = run.Result;
+    PointState state;
+    state.Positions = std::move(result.Positions);
+    state.Normals = std::move(result.Normals);
+    state.Removed = std::move(result.Removed);
+    state.OrientationNormals = run.Cloud.OrientationNormals;
+    state.FirstGhost = run.Cloud.NumberOfPoints;
+    const bool completed = run.IterateEdgeAware(state);
+    result.Positions = std::move(state.Positions);
+    result.Normals = std::move(state.Normals);
+    result.Removed = std::move(state.Removed);
+    return run.EndIteration(completed);
   }
   if (!run.Engine)
   {
@@ -632,21 +675,28 @@ BilateralStatus BilateralRun::Step(const std::vector<double>& ghosts)
       std::copy(o, o + 3, orientation.begin() + 3 * j);
     }
   }
-  PointState state;
-  state.Positions = std::move(view);
-  state.Removed.assign(state.Positions.size() / 3, 0);
+  PointState partState;
+  partState.Positions = std::move(view);
+  partState.Removed.assign(partState.Positions.size() / 3, 0);
   if (computeNormals)
   {
-    state.Normals.assign(state.Positions.size(), 0.0);
+    partState.Normals.assign(partState.Positions.size(), 0.0);
   }
-  state.OrientationNormals = orientation.empty() ? nullptr : orientation.data();
-  state.FirstGhost = active.size();
-  const std::unique_ptr<IterationEngine> engine = run.MakeEngine(std::move(state));
-  const bool completed = run.Iterate(*engine);
+  partState.OrientationNormals = orientation.empty() ? nullptr : orientation.data();
+  partState.FirstGhost = active.size();
+  std::unique_ptr<IterationEngine> engine;
+  if (!run.Parameters.EdgeAware)
+  {
+    engine = run.MakeEngine(std::move(partState));
+  }
+  const bool completed = engine ? run.Iterate(*engine) : run.IterateEdgeAware(partState);
   if (completed)
   {
-    engine->ScatterMoves();
-    const PointState& state = engine->State;
+    if (engine)
+    {
+      engine->ScatterMoves();
+    }
+    const PointState& state = engine ? engine->State : partState;
     for (std::size_t j = 0; j < active.size(); ++j)
     {
       const std::size_t i = active[j];

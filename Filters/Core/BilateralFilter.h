@@ -69,6 +69,10 @@ struct BilateralParameters
   int NumberOfThreads = 0;
   /// Also return the estimated normals of the last iteration.
   bool ComputeNormals = false;
+  /// Edge-aware mode, beyond the paper (EdgeAwareNormals.h): the normals are filtered
+  /// bilaterally before the displacement, which keeps sharp edges under strong noise. Off: the
+  /// paper's filter, bit for bit.
+  bool EdgeAware = false;
 };
 
 /// Why these parameters cannot run, in words for the user, or empty. The one check of every

@@ -216,5 +216,20 @@ int main()
   parameters.NumberOfIterations = 2;
   parameters.RemoveIsolatedPoints = true;
   CheckSameBitsAsOneRun(parameters, 3, 99u);
+  // The edge-aware mode reads its neighbours' filtered normals: its ghosts reach further
+  // (EdgeAwareReachInRadii radii), and must still give one run's bits.
+  parameters.EdgeAware = true;
+  parameters.RemoveIsolatedPoints = false;
+  parameters.Radius = 0.05;
+  parameters.NormalRadius = 0.02;
+  parameters.NumberOfIterations = 2;
+  for (const int parts : { 1, 2, 3, 5 })
+  {
+    CheckSameBitsAsOneRun(parameters, parts, 17u + static_cast<unsigned>(parts));
+  }
+  parameters.Radius = 0.0;
+  parameters.NormalRadius = 0.0;
+  parameters.RemoveIsolatedPoints = true;
+  CheckSameBitsAsOneRun(parameters, 3, 199u);
   return PCB_TEST_RESULT();
 }

@@ -63,7 +63,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                             : (normalKind & 3) == 1 ? bytes.Next<double>()
                                                     : (normalKind % 64) / 16.0;
   parameters.NumberOfIterations = bytes.Next<std::uint8_t>() % 4;
-  parameters.RemoveIsolatedPoints = bytes.Next<std::uint8_t>() & 1;
+  const auto flags = bytes.Next<std::uint8_t>();
+  parameters.RemoveIsolatedPoints = flags & 1;
+  parameters.EdgeAware = (flags & 2) != 0; // the edge-aware mode (EdgeAwareNormals.h)
   parameters.NumberOfThreads = 1 + bytes.Next<std::uint8_t>() % 2;
   parameters.ComputeNormals = true;
   const std::size_t count = bytes.Next<std::uint8_t>() % 48;

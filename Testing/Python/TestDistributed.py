@@ -2,7 +2,7 @@
 output of one process filtering the whole cloud.
 
     mpirun -np P pvbatch TestDistributed.py PLUGIN SCRATCH_FOLDER --split SPLIT [--iterations N]
-        [--radius R] [--normal-radius RN] [--remove-isolated]
+        [--radius R] [--normal-radius RN] [--remove-isolated] [--edge-aware]
 
 SPLIT says how the cloud is shared among the ranks:
 - distribute: read on one rank, then ParaView's Distribute Points (a kd-tree split into equal
@@ -41,6 +41,7 @@ parser.add_argument("--iterations", type=int, default=2)
 parser.add_argument("--radius", type=float, default=0.0)
 parser.add_argument("--normal-radius", type=float, default=0.0)
 parser.add_argument("--remove-isolated", action="store_true")
+parser.add_argument("--edge-aware", action="store_true")
 args = parser.parse_args()
 
 ranks = vtkMultiProcessController.GetGlobalController().GetNumberOfProcesses()
@@ -134,6 +135,7 @@ tagged = simple.ProcessIdScalars(Input=source)
 tagged.UpdatePipeline()
 properties = dict(Radius=args.radius, NormalRadius=args.normal_radius,
                   NumberOfIterations=args.iterations, RemoveIsolatedPoints=args.remove_isolated,
+                  EdgeAware=int(args.edge_aware),
                   OrientNormalsBy="Normals", OutputEstimatedNormals=1,
                   OutputDisplacementLength=1, NumberOfThreads=1)
 bilateral = simple.PointCloudBilateralFilter(Input=tagged, **properties)
@@ -173,6 +175,7 @@ serial.SetRadius(args.radius)
 serial.SetNormalRadius(args.normal_radius)
 serial.SetNumberOfIterations(args.iterations)
 serial.SetRemoveIsolatedPoints(args.remove_isolated)
+serial.SetEdgeAware(args.edge_aware)
 serial.SetOrientationArrayName("Normals")
 serial.GenerateEstimatedNormalsOn()
 serial.GenerateDisplacementLengthOn()

@@ -45,6 +45,20 @@ check(ours.shape == theirs.shape, f"{len(ours)} and {len(theirs)} points")
 check(np.array_equal(ours, theirs), "the same points, bit for bit")
 check(np.max(np.abs(ours - original)) > 1e-3, "the points moved")
 
+# The edge-aware mode: the same property in Python and on the command line, and other points.
+paper = np.array(ours)
+subprocess.run([program, input_path, cxx_path, "-r", "0.06", "-n", "0.02", "-N", "2",
+                "--edge-aware"], check=True, stdout=subprocess.DEVNULL)
+cxx_reader.Modified()
+cxx_reader.Update()
+check(not bilateral.GetEdgeAware(), "the edge-aware mode is off by default")
+bilateral.EdgeAwareOn()
+bilateral.Update()
+aware = np.asarray(dsa.WrapDataObject(bilateral.GetOutput()).Points)
+check(np.array_equal(aware, np.asarray(dsa.WrapDataObject(cxx_reader.GetOutput()).Points)),
+      "edge-aware: the same points, bit for bit")
+check(not np.array_equal(aware, paper), "edge-aware: other points than the paper's filter")
+
 # The automatic mode (the default) from Python: the same measurement and choice as the program.
 automatic_path = os.path.join(scratch, "cxx-automatic.vtp")
 printed = subprocess.run([program, input_path, automatic_path], check=True, capture_output=True,

@@ -1,0 +1,501 @@
+// pcb_edges: sharp edges under strong noise (issue 15). For generated shapes with exact ground
+// truth, the best of a grid search over each method's parameters, judged by the RMS distance to
+// the true surface of the points near sharp edges (edge RMS) and of all points (RMS), in 1e-3 of
+// the shape's bounding-box diagonal, with the time of one run (1 thread, the minimum of 3) at
+// the best edge setting:
+//   - the paper's filter (r, rn, N),
+//   - the edge-aware mode (EdgeAware on; r, rn, N),
+//   - CGAL's jet_smooth_point_set (k) and bilateral_smooth_point_set (Huang et al. 2013: k,
+//     sharpness angle, iterations, after pca_estimate_normals with the same k), when CGAL was
+//     found at configure time (Debian's libcgal-dev; for this benchmark only);
+// then the cheapest edge-aware setting that reaches CGAL bilateral's best edge RMS and the
+// paper's best RMS, with its time, and the automatic mode's rule (ChooseParameters) in both
+// modes.
+// Built with the project, run by hand (see README.md, "Edge-aware mode"):
+//
+//   pcb_edges [--only SUBSTRING] [--no-cgal]
+#include "BilateralFilter.h"
+#include "CloudMeasurement.h"
+#include "SampleShapes.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <string>
+#include <vector>
+
+#ifdef PCB_HAVE_CGAL
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/bilateral_smooth_point_set.h>
+#include <CGAL/jet_smooth_point_set.h>
+#include <CGAL/pca_estimate_normals.h>
+#include <CGAL/property_map.h>
+#endif
+
+namespace
+{
+using namespace pcbilateral_samples;
+
+struct Quality
+{
+  double Rms = 0.0;
+  double EdgeRms = 0.0;
+};
+
+double Seconds(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+struct Truth
+{
+  const Shape* Surface = nullptr;
+  const NoisyCloud* Cloud = nullptr;
+  std::vector<std::uint8_t> NearEdge;
+  std::size_t EdgePoints = 0;
+
+  Quality Measure(const std::vector<double>& positions) const
+  {
+    double sum = 0.0, edgeSum = 0.0;
+    for (std::size_t i = 0; i < this->Cloud->NumberOfPoints(); ++i)
+    {
+      const double d =
+        this->Surface->Distance({ positions[3 * i], positions[3 * i + 1], positions[3 * i + 2] });
+      sum += d * d;
+      edgeSum += this->NearEdge[i] ? d * d : 0.0;
+    }
+    const double unit = 1e3 / this->Surface->Diagonal();
+    Quality quality;
+    quality.Rms = unit * std::sqrt(sum / static_cast<double>(this->Cloud->NumberOfPoints()));
+    quality.EdgeRms =
+      this->EdgePoints ? unit * std::sqrt(edgeSum / static_cast<double>(this->EdgePoints)) : 0.0;
+    return quality;
+  }
+};
+
+pcbilateral::PointCloudView View(const std::vector<double>& positions)
+{
+  pcbilateral::PointCloudView view;
+  view.NumberOfPoints = positions.size() / 3;
+  view.Positions = positions.data();
+  return view;
+}
+
+/// The best of a method over its grid: each setting is a function giving the positions after
+/// 1, 2, ... steps of it (a chain), so that every number of iterations is measured on the way.
+struct Best
+{
+  Quality ByEdge{ 1e300, 1e300 }; // the setting with the best edge RMS (its RMS too)
+  Quality ByRms{ 1e300, 1e300 };  // the setting with the best RMS
+  std::string EdgeAt, RmsAt;
+  std::function<std::vector<double>()> RunBestEdge; // one whole run at the best edge setting
+  double Time = 0.0;
+  /// Every setting, with a measure of its cost (neighbours per point x steps), for the cheapest
+  /// one that reaches a target.
+  struct Setting
+  {
+    Quality Result;
+    std::string At;
+    double Cost;
+    std::function<std::vector<double>()> Run;
+  };
+  std::vector<Setting> All;
+
+  void Consider(const Quality& q,
+    const std::string& at,
+    bool hasEdges,
+    const std::function<std::vector<double>()>& run)
+  {
+    if (hasEdges ? q.EdgeRms < this->ByEdge.EdgeRms : q.Rms < this->ByEdge.Rms)
+    {
+      this->ByEdge = q;
+      this->EdgeAt = at;
+      this->RunBestEdge = run;
+    }
+    if (q.Rms < this->ByRms.Rms)
+    {
+      this->ByRms = q;
+      this->RmsAt = at;
+    }
+  }
+
+  void TimeBest()
+  {
+    this->Time = 1e300;
+    for (int k = 0; k < 3; ++k)
+    {
+      const auto start = std::chrono::steady_clock::now();
+      this->RunBestEdge();
+      this->Time = std::min(this->Time, Seconds(start));
+    }
+  }
+};
+
+std::vector<double> RunFilter(const std::vector<double>& input,
+  double r,
+  double rn,
+  int iterations,
+  bool edgeAware)
+{
+  pcbilateral::BilateralParameters parameters;
+  parameters.Radius = r;
+  parameters.NormalRadius = rn;
+  parameters.NumberOfIterations = iterations;
+  parameters.NumberOfThreads = 1;
+  parameters.EdgeAware = edgeAware;
+  pcbilateral::BilateralResult result = pcbilateral::RunBilateralFilter(View(input), parameters);
+  if (result.Status != pcbilateral::BilateralStatus::Completed)
+  {
+    std::fprintf(stderr, "run failed: %s\n", result.Error.c_str());
+    std::exit(EXIT_FAILURE);
+  }
+  return std::move(result.Positions);
+}
+
+Best SearchFilter(const Truth& truth, double s, double sigma, bool edgeAware)
+{
+  Best best;
+  const bool hasEdges = truth.EdgePoints > 0;
+  const std::vector<double>& input = truth.Cloud->Positions;
+  for (double rs : { 6.0, 8.5, 12.0, 17.0, 24.0 })
+  {
+    for (double rnSigma : { 2.2, 3.3, 5.0, 7.5, 11.0, 16.0 })
+    {
+      const double r = rs * s, rn = rnSigma * sigma;
+      std::vector<double> positions = input;
+      for (int n = 1; n <= 4; ++n)
+      {
+        positions = RunFilter(positions, r, rn, 1, edgeAware);
+        char at[64];
+        std::snprintf(at, sizeof at, "r %.1fs, rn %.1fσ, N %d", rs, rnSigma, n);
+        const Quality quality = truth.Measure(positions);
+        auto run = [&input, r, rn, n, edgeAware] { return RunFilter(input, r, rn, n, edgeAware); };
+        best.Consider(quality, at, hasEdges, run);
+        best.All.push_back({ quality, at, rs * rs * n, run });
+      }
+    }
+  }
+  return best;
+}
+
+#ifdef PCB_HAVE_CGAL
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Vector = Kernel::Vector_3;
+using PointWithNormal = std::pair<Point, Vector>;
+
+std::vector<double> Flatten(const std::vector<Point>& points)
+{
+  std::vector<double> positions;
+  positions.reserve(3 * points.size());
+  for (const Point& p : points)
+  {
+    positions.insert(positions.end(), { p.x(), p.y(), p.z() });
+  }
+  return positions;
+}
+
+std::vector<Point> Points(const std::vector<double>& positions)
+{
+  std::vector<Point> points;
+  for (std::size_t i = 0; i < positions.size(); i += 3)
+  {
+    points.emplace_back(positions[i], positions[i + 1], positions[i + 2]);
+  }
+  return points;
+}
+
+std::vector<double> RunJet(const std::vector<double>& input, unsigned k)
+{
+  std::vector<Point> points = Points(input);
+  CGAL::jet_smooth_point_set<CGAL::Sequential_tag>(points, k);
+  return Flatten(points);
+}
+
+Best SearchJet(const Truth& truth)
+{
+  Best best;
+  for (unsigned k : { 12u, 24u, 48u, 96u, 192u })
+  {
+    const std::vector<double>& input = truth.Cloud->Positions;
+    char at[32];
+    std::snprintf(at, sizeof at, "k %u", k);
+    best.Consider(truth.Measure(RunJet(input, k)),
+      at,
+      truth.EdgePoints > 0,
+      [&input, k] { return RunJet(input, k); });
+  }
+  return best;
+}
+
+/// pca_estimate_normals with k, then `iterations` of bilateral_smooth_point_set; `each` sees
+/// the positions after every iteration.
+std::vector<double> RunCgalBilateral(const std::vector<double>& input,
+  unsigned k,
+  double angle,
+  int iterations,
+  const std::function<void(int, const std::vector<double>&)>& each = {})
+{
+  std::vector<PointWithNormal> points;
+  for (std::size_t i = 0; i < input.size(); i += 3)
+  {
+    points.emplace_back(Point(input[i], input[i + 1], input[i + 2]), Vector(0, 0, 0));
+  }
+  const auto maps = CGAL::parameters::point_map(CGAL::First_of_pair_property_map<PointWithNormal>())
+                      .normal_map(CGAL::Second_of_pair_property_map<PointWithNormal>());
+  CGAL::pca_estimate_normals<CGAL::Sequential_tag>(points, k, maps);
+  std::vector<double> positions;
+  for (int n = 1; n <= iterations; ++n)
+  {
+    CGAL::bilateral_smooth_point_set<CGAL::Sequential_tag>(points, k, maps.sharpness_angle(angle));
+    positions.clear();
+    for (const PointWithNormal& p : points)
+    {
+      positions.insert(positions.end(), { p.first.x(), p.first.y(), p.first.z() });
+    }
+    if (each)
+    {
+      each(n, positions);
+    }
+  }
+  return positions;
+}
+
+Best SearchCgalBilateral(const Truth& truth)
+{
+  Best best;
+  const std::vector<double>& input = truth.Cloud->Positions;
+  for (unsigned k : { 48u, 96u, 192u })
+  {
+    for (double angle : { 10.0, 15.0, 25.0 })
+    {
+      RunCgalBilateral(input,
+        k,
+        angle,
+        5,
+        [&](int n, const std::vector<double>& positions)
+        {
+          char at[64];
+          std::snprintf(at, sizeof at, "k %u, %.0f°, N %d", k, angle, n);
+          best.Consider(truth.Measure(positions),
+            at,
+            truth.EdgePoints > 0,
+            [&input, k, angle, n] { return RunCgalBilateral(input, k, angle, n); });
+        });
+    }
+  }
+  return best;
+}
+#endif
+
+struct Case
+{
+  std::string Name;
+  std::function<std::unique_ptr<Shape>()> Make;
+  double Noise;
+};
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  std::string only;
+  bool cgal = true;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string argument = argv[i];
+    if (argument == "--only" && i + 1 < argc)
+    {
+      only = argv[++i];
+    }
+    else if (argument == "--no-cgal")
+    {
+      cgal = false;
+    }
+    else
+    {
+      std::fprintf(stderr, "usage: %s [--only SUBSTRING] [--no-cgal]\n", argv[0]);
+      return EXIT_FAILURE;
+    }
+  }
+#ifndef PCB_HAVE_CGAL
+  cgal = false;
+#endif
+  auto cube = [] { return Cube(); };
+  auto sharpEdge = [] { return SharpEdge(); };
+  auto cutCylinder = [] { return std::unique_ptr<Shape>(new CutCylinder(0.2)); };
+  auto sphere = [] { return std::unique_ptr<Shape>(new Sphere()); };
+  const std::vector<Case> cases = { { "cube", cube, 0.005 },
+    { "cube", cube, 0.01 },
+    { "sharp edge", sharpEdge, 0.005 },
+    { "sharp edge", sharpEdge, 0.01 },
+    { "cut cylinder", cutCylinder, 0.005 },
+    { "cut cylinder", cutCylinder, 0.01 },
+    { "sphere", sphere, 0.005 },
+    { "sphere", sphere, 0.01 } };
+
+  std::printf("Edge RMS / RMS in 1e-3 of the diagonal (20k points, uniform), each method at its "
+              "best edge setting; then its best RMS; time of one run at the best edge setting "
+              "(1 thread, minimum of 3)\n\n");
+  std::printf(
+    "| case | noisy | paper: edge / RMS (setting) | paper best RMS | edge-aware: edge / "
+    "RMS (setting) | edge-aware best RMS | CGAL jet: edge / RMS (k) | CGAL bilateral: "
+    "edge / RMS (setting) | time paper / edge-aware / jet / CGAL bilateral | cheapest edge-aware "
+    "setting reaching the targets: edge / RMS, time | automatic rule: paper, edge-aware |\n");
+  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+  std::uint64_t seed = 500;
+  for (const Case& c : cases)
+  {
+    ++seed;
+    char name[96];
+    std::snprintf(name, sizeof name, "%s %.1f%%", c.Name.c_str(), 100 * c.Noise);
+    if (!only.empty() && std::string(name).find(only) == std::string::npos)
+    {
+      continue;
+    }
+    const std::unique_ptr<Shape> shape = c.Make();
+    const NoisyCloud cloud = MakeNoisyCloud(*shape, 20000, c.Noise, false, 0.0, seed);
+    Truth truth;
+    truth.Surface = shape.get();
+    truth.Cloud = &cloud;
+    truth.NearEdge.assign(cloud.NumberOfPoints(), 0);
+    const double band = 3.0 * cloud.Sigma + 0.03 * shape->Diagonal();
+    for (std::size_t i = 0; i < cloud.NumberOfPoints(); ++i)
+    {
+      const Vec3 clean{ cloud.Clean[3 * i], cloud.Clean[3 * i + 1], cloud.Clean[3 * i + 2] };
+      truth.NearEdge[i] = shape->EdgeDistance(clean) <= band;
+      truth.EdgePoints += truth.NearEdge[i];
+    }
+    const bool hasEdges = truth.EdgePoints > 0;
+    const Quality noisy = truth.Measure(cloud.Positions);
+    pcbilateral::ScaleMeasurementOptions options;
+    options.NumberOfThreads = 1;
+    const pcbilateral::CloudScales scales =
+      pcbilateral::MeasureScales(View(cloud.Positions), options);
+
+    // The automatic mode's rule (ChooseParameters) as it is, in both modes.
+    pcbilateral::BilateralParameters automatic;
+    automatic.NumberOfIterations = 0;
+    automatic = pcbilateral::ChooseParameters(scales, automatic);
+    automatic.NumberOfThreads = 1;
+    const Quality autoPaper = truth.Measure(RunFilter(cloud.Positions,
+      automatic.Radius,
+      automatic.NormalRadius,
+      automatic.NumberOfIterations,
+      false));
+    const Quality autoAware = truth.Measure(RunFilter(cloud.Positions,
+      automatic.Radius,
+      automatic.NormalRadius,
+      automatic.NumberOfIterations,
+      true));
+    char autoText[160];
+    std::snprintf(autoText,
+      sizeof autoText,
+      "%s%.2f, %s%.2f (r %.1fs, rn %.1fσ, N %d)",
+      hasEdges ? (std::to_string(autoPaper.EdgeRms).substr(0, 4) + " / ").c_str() : "– / ",
+      autoPaper.Rms,
+      hasEdges ? (std::to_string(autoAware.EdgeRms).substr(0, 4) + " / ").c_str() : "– / ",
+      autoAware.Rms,
+      automatic.Radius / scales.PointSpacing,
+      automatic.NormalRadius / scales.NoiseSigma,
+      automatic.NumberOfIterations);
+    Best paper = SearchFilter(truth, scales.PointSpacing, scales.NoiseSigma, false);
+    Best edgeAware = SearchFilter(truth, scales.PointSpacing, scales.NoiseSigma, true);
+    paper.TimeBest();
+    edgeAware.TimeBest();
+    auto quality = [hasEdges](const Best& b, bool withSetting)
+    {
+      char text[160];
+      if (hasEdges)
+      {
+        std::snprintf(text, sizeof text, "%.2f / %.2f", b.ByEdge.EdgeRms, b.ByEdge.Rms);
+      }
+      else
+      {
+        std::snprintf(text, sizeof text, "– / %.2f", b.ByEdge.Rms);
+      }
+      return std::string(text) + (withSetting ? " (" + b.EdgeAt + ")" : std::string());
+    };
+    // The cheapest edge-aware setting (fewest neighbours x iterations) that reaches the targets:
+    // an edge RMS at most CGAL bilateral's best (or, without CGAL, the paper's best) and an RMS
+    // at most the paper's best.
+    double edgeTarget = hasEdges ? paper.ByEdge.EdgeRms : 1e300;
+    std::string cheapText = "–";
+    double cgalTime = 0.0;
+    std::string jetText = "–", cgalText = "–", times;
+    char timeText[160];
+    std::snprintf(timeText, sizeof timeText, "%.3f / %.3f", paper.Time, edgeAware.Time);
+    times = timeText;
+#ifdef PCB_HAVE_CGAL
+    if (cgal)
+    {
+      Best jet = SearchJet(truth);
+      Best bilateral = SearchCgalBilateral(truth);
+      jet.TimeBest();
+      bilateral.TimeBest();
+      jetText = quality(jet, true);
+      cgalText = quality(bilateral, true);
+      edgeTarget = hasEdges ? bilateral.ByEdge.EdgeRms : 1e300;
+      cgalTime = bilateral.Time;
+      std::snprintf(timeText, sizeof timeText, " / %.3f / %.3f s", jet.Time, bilateral.Time);
+      times += timeText;
+    }
+#endif
+    if (!cgal)
+    {
+      times += " s";
+    }
+    {
+      const Best::Setting* cheapest = nullptr;
+      for (const Best::Setting& setting : edgeAware.All)
+      {
+        if (setting.Result.EdgeRms <= edgeTarget && setting.Result.Rms <= paper.ByRms.Rms &&
+            (!cheapest || setting.Cost < cheapest->Cost))
+        {
+          cheapest = &setting;
+        }
+      }
+      if (cheapest)
+      {
+        Best timing;
+        timing.RunBestEdge = cheapest->Run;
+        timing.TimeBest();
+        char text[200];
+        std::snprintf(text,
+          sizeof text,
+          "%.2f / %.2f (%s), %.3f s%s",
+          cheapest->Result.EdgeRms,
+          cheapest->Result.Rms,
+          cheapest->At.c_str(),
+          timing.Time,
+          cgalTime > 0
+            ? (", " + std::to_string(cgalTime / timing.Time).substr(0, 4) + "x faster").c_str()
+            : "");
+        cheapText = text;
+      }
+    }
+    char rmsText[2][96];
+    std::snprintf(rmsText[0], sizeof rmsText[0], "%.2f (%s)", paper.ByRms.Rms, paper.RmsAt.c_str());
+    std::snprintf(
+      rmsText[1], sizeof rmsText[1], "%.2f (%s)", edgeAware.ByRms.Rms, edgeAware.RmsAt.c_str());
+    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
+      name,
+      hasEdges ? (std::to_string(noisy.EdgeRms).substr(0, 4) + " / " +
+                   std::to_string(noisy.Rms).substr(0, 4))
+                   .c_str()
+               : ("– / " + std::to_string(noisy.Rms).substr(0, 4)).c_str(),
+      quality(paper, true).c_str(),
+      rmsText[0],
+      quality(edgeAware, true).c_str(),
+      rmsText[1],
+      jetText.c_str(),
+      cgalText.c_str(),
+      times.c_str(),
+      cheapText.c_str(),
+      autoText);
+    std::fflush(stdout);
+  }
+  return EXIT_SUCCESS;
+}
