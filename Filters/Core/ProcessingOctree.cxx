@@ -218,20 +218,79 @@ void ProcessingOctree::Load(const double* positions, std::size_t count)
   ReserveWithHugePages(count, this->NextLink, this->NextLeaf);
   for (std::size_t id = 0; id < count; ++id)
   {
-    const double* p = positions + 3 * id;
-    if (IsFinitePoint(p))
+    if (IsFinitePoint(positions + 3 * id))
     {
       this->Ids.push_back(static_cast<std::uint32_t>(id));
-      this->MovedX.push_back(p[0]);
-      this->MovedY.push_back(p[1]);
-      this->MovedZ.push_back(p[2]);
     }
   }
-  this->NextLink.assign(this->Ids.size(), -1);
-  this->NextLeaf.assign(this->Ids.size(), 0);
-  for (std::size_t index = 0; index < this->Ids.size(); ++index)
+  const std::size_t n = this->Ids.size();
+
+  // Each point's cell (held in NextLink until the lists are made) and leaf. Consecutive points
+  // often share a cell (files in scan or tile order): the map is asked only when it changes.
+  this->NextLink.resize(n);
+  this->NextLeaf.resize(n);
+  LatticeCoord previousCell{ 0, 0, 0 };
+  std::int32_t previousIndex = NoCell;
+  for (std::size_t i = 0; i < n; ++i)
   {
-    this->PlaceSerially(static_cast<std::uint32_t>(index));
+    const LatticeCoord leaf = this->LeafOf(positions + 3 * static_cast<std::size_t>(this->Ids[i]));
+    const LatticeCoord cell = CellOfLeaf(leaf);
+    if (previousIndex == NoCell || !(cell == previousCell))
+    {
+      previousIndex = this->FindOrCreateCell(cell);
+      previousCell = cell;
+    }
+    this->NextLink[i] = previousIndex;
+    this->NextLeaf[i] = static_cast<std::uint8_t>(LocalLeafIndex(leaf));
+  }
+
+  // The points grouped by cell (a stable counting sort), so that each cell's list runs through
+  // consecutive indices: Compact then reads each cell's points from one stretch of memory.
+  // Placed one by one in id order instead, a cloud whose ids are not in spatial order (random,
+  // or shuffled by a previous tool) made lists that jump across the whole cloud, and the first
+  // Compact of 20 million such points took some 10 s of cache misses instead of 0.3 s.
+  const std::size_t cells = this->CellCoords.size();
+  std::vector<std::uint32_t> fill(cells + 1, 0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    ++fill[static_cast<std::size_t>(this->NextLink[i]) + 1];
+  }
+  for (std::size_t cell = 0; cell < cells; ++cell)
+  {
+    fill[cell + 1] += fill[cell];
+  }
+  // The layout arrays are free until Compact: they take the grouped ids and positions.
+  this->CompactedIds.resize(n);
+  this->X.resize(n);
+  this->Y.resize(n);
+  this->Z.resize(n);
+  std::vector<std::uint8_t> leaves(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::uint32_t to = fill[static_cast<std::size_t>(this->NextLink[i])]++;
+    const double* p = positions + 3 * static_cast<std::size_t>(this->Ids[i]);
+    this->CompactedIds[to] = this->Ids[i];
+    this->X[to] = p[0];
+    this->Y[to] = p[1];
+    this->Z[to] = p[2];
+    leaves[to] = this->NextLeaf[i];
+  }
+  this->Ids.swap(this->CompactedIds);
+  this->MovedX.swap(this->X);
+  this->MovedY.swap(this->Y);
+  this->MovedZ.swap(this->Z);
+  std::copy(leaves.begin(), leaves.end(), this->NextLeaf.begin());
+  // After the scatter, fill[cell] is the end of the cell's points, fill[cell - 1] its start.
+  std::uint32_t begin = 0;
+  for (std::size_t cell = 0; cell < cells; ++cell)
+  {
+    const std::uint32_t end = fill[cell];
+    for (std::uint32_t i = begin; i < end; ++i)
+    {
+      this->NextLink[i] = i + 1 < end ? static_cast<std::int32_t>(i + 1) : -1;
+    }
+    this->NextHead[cell] = static_cast<std::int32_t>(begin);
+    begin = end;
   }
 }
 
