@@ -229,7 +229,7 @@ public:
     , State(std::move(state))
     , Threads(threads)
   {
-    this->Octree.Load(this->State.Positions.data(), this->State.Removed.size());
+    this->Octree.Load(this->State.Positions.data(), this->State.Removed.size(), threads);
   }
 
   ProcessingOctree Octree;

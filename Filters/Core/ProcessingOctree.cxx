@@ -4,8 +4,10 @@
 #include "HugePages.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
+#include <memory>
 
 #include <numeric>
 
@@ -199,7 +201,7 @@ int ProcessingOctree::LocalLeafIndex(const LatticeCoord& leaf)
   return x + LeavesPerAxis * (y + LeavesPerAxis * z);
 }
 
-void ProcessingOctree::Load(const double* positions, std::size_t count)
+void ProcessingOctree::Load(const double* positions, std::size_t count, int numberOfThreads)
 {
   this->CellCoords.clear();
   this->CellIndex.Clear(count / 64);
@@ -224,40 +226,57 @@ void ProcessingOctree::Load(const double* positions, std::size_t count)
     }
   }
   const std::size_t n = this->Ids.size();
+  const auto signedCount = static_cast<std::int64_t>(n);
 
-  // Each point's cell (held in NextLink until the lists are made) and leaf. Consecutive points
-  // often share a cell (files in scan or tile order): the map is asked only when it changes.
+  // Each point's cell (held in NextLink until the lists are made) and leaf, in parallel: the
+  // map is filled from a sample of the points first (cells hold tens of points, so the sample
+  // finds nearly all of them), then read by all threads; the few cells the sample missed are
+  // created after, serially. Cells are numbered in no meaningful order: Compact sorts them.
   this->NextLink.resize(n);
   this->NextLeaf.resize(n);
-  LatticeCoord previousCell{ 0, 0, 0 };
-  std::int32_t previousIndex = NoCell;
-  for (std::size_t i = 0; i < n; ++i)
+  auto positionOf = [this, positions](std::size_t i)
+  { return positions + 3 * static_cast<std::size_t>(this->Ids[i]); };
+  constexpr std::size_t SampleStep = 16;
+  for (std::size_t i = 0; i < n; i += SampleStep)
   {
-    const LatticeCoord leaf = this->LeafOf(positions + 3 * static_cast<std::size_t>(this->Ids[i]));
-    const LatticeCoord cell = CellOfLeaf(leaf);
-    if (previousIndex == NoCell || !(cell == previousCell))
-    {
-      previousIndex = this->FindOrCreateCell(cell);
-      previousCell = cell;
-    }
-    this->NextLink[i] = previousIndex;
+    this->FindOrCreateCell(CellOfLeaf(this->LeafOf(positionOf(i))));
+  }
+#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
+  for (std::int64_t i = 0; i < signedCount; ++i)
+  {
+    const LatticeCoord leaf = this->LeafOf(positionOf(static_cast<std::size_t>(i)));
+    this->NextLink[i] = this->FindCell(CellOfLeaf(leaf));
     this->NextLeaf[i] = static_cast<std::uint8_t>(LocalLeafIndex(leaf));
   }
-
-  // The points grouped by cell (a stable counting sort), so that each cell's list runs through
-  // consecutive indices: Compact then reads each cell's points from one stretch of memory.
-  // Placed one by one in id order instead, a cloud whose ids are not in spatial order (random,
-  // or shuffled by a previous tool) made lists that jump across the whole cloud, and the first
-  // Compact of 20 million such points took some 10 s of cache misses instead of 0.3 s.
-  const std::size_t cells = this->CellCoords.size();
-  std::vector<std::uint32_t> fill(cells + 1, 0);
   for (std::size_t i = 0; i < n; ++i)
   {
-    ++fill[static_cast<std::size_t>(this->NextLink[i]) + 1];
+    if (this->NextLink[i] == NoCell)
+    {
+      this->NextLink[i] = this->FindOrCreateCell(CellOfLeaf(this->LeafOf(positionOf(i))));
+    }
+  }
+
+  // The points grouped by cell, so that each cell's list runs through consecutive indices:
+  // Compact then reads each cell's points from one stretch of memory. Placed one by one in id
+  // order instead, a cloud whose ids are not in spatial order (random, or shuffled by a previous
+  // tool) made lists that jump across the whole cloud, and the first Compact of 20 million such
+  // points took some 10 s of cache misses instead of 0.3 s. The order of the points within a
+  // cell's stretch depends on the threads, and need not be fixed: Compact sorts each leaf's
+  // points by geometry alone.
+  const std::size_t cells = this->CellCoords.size();
+  std::vector<std::uint32_t> starts(cells + 1, 0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    ++starts[static_cast<std::size_t>(this->NextLink[i]) + 1];
   }
   for (std::size_t cell = 0; cell < cells; ++cell)
   {
-    fill[cell + 1] += fill[cell];
+    starts[cell + 1] += starts[cell];
+  }
+  std::unique_ptr<std::atomic<std::uint32_t>[]> fill(new std::atomic<std::uint32_t>[cells]);
+  for (std::size_t cell = 0; cell < cells; ++cell)
+  {
+    fill[cell].store(starts[cell], std::memory_order_relaxed);
   }
   // The layout arrays are free until Compact: they take the grouped ids and positions.
   this->CompactedIds.resize(n);
@@ -265,32 +284,34 @@ void ProcessingOctree::Load(const double* positions, std::size_t count)
   this->Y.resize(n);
   this->Z.resize(n);
   std::vector<std::uint8_t> leaves(n);
-  for (std::size_t i = 0; i < n; ++i)
+#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
+  for (std::int64_t i = 0; i < signedCount; ++i)
   {
-    const std::uint32_t to = fill[static_cast<std::size_t>(this->NextLink[i])]++;
-    const double* p = positions + 3 * static_cast<std::size_t>(this->Ids[i]);
+    const std::uint32_t to =
+      fill[static_cast<std::size_t>(this->NextLink[i])].fetch_add(1, std::memory_order_relaxed);
+    const double* p = positionOf(static_cast<std::size_t>(i));
     this->CompactedIds[to] = this->Ids[i];
     this->X[to] = p[0];
     this->Y[to] = p[1];
     this->Z[to] = p[2];
     leaves[to] = this->NextLeaf[i];
   }
+  fill.reset();
   this->Ids.swap(this->CompactedIds);
   this->MovedX.swap(this->X);
   this->MovedY.swap(this->Y);
   this->MovedZ.swap(this->Z);
   std::copy(leaves.begin(), leaves.end(), this->NextLeaf.begin());
-  // After the scatter, fill[cell] is the end of the cell's points, fill[cell - 1] its start.
-  std::uint32_t begin = 0;
-  for (std::size_t cell = 0; cell < cells; ++cell)
+  const auto signedCells = static_cast<std::int64_t>(cells);
+#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
+  for (std::int64_t cell = 0; cell < signedCells; ++cell)
   {
-    const std::uint32_t end = fill[cell];
+    const std::uint32_t begin = starts[cell], end = starts[cell + 1];
     for (std::uint32_t i = begin; i < end; ++i)
     {
       this->NextLink[i] = i + 1 < end ? static_cast<std::int32_t>(i + 1) : -1;
     }
     this->NextHead[cell] = static_cast<std::int32_t>(begin);
-    begin = end;
   }
 }
 

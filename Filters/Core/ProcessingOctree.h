@@ -110,10 +110,10 @@ public:
 
   /**
    * Takes the points to filter: the finite ones among `count` interleaved xyz positions, which
-   * keep their index as id. They are placed into the next iteration's lists; Compact then
-   * builds the first layout.
+   * keep their index as id. They are placed into the next iteration's lists, grouped by cell,
+   * with numberOfThreads threads; Compact then builds the first layout.
    */
-  void Load(const double* positions, std::size_t count);
+  void Load(const double* positions, std::size_t count, int numberOfThreads = 1);
 
   ///@{
   /// Placement of points into the next iteration's leaf lists. A point is named by its index

@@ -2,7 +2,7 @@
 // Built with the project, not run by the tests (shared machines are too noisy for timed tests).
 //
 //   pcb_benchmark [--runs N] [--skip-10m] [--only WORKLOAD]
-//       (--skip-10m skips the workloads of 10M points and more)
+//       (--skip-10m skips the workloads of 10M points and more; --threads T runs T threads only)
 //       the filter alone, through the core, with 1 and 2 threads, on:
 //       - cube600k: the unit cube's surface, 600,000 points, noise 0.5% of the diagonal,
 //         r = 0.03, rn = 0.05, N = 2 (the paper's Table 1);
@@ -152,10 +152,22 @@ double Median(std::vector<double> values)
   return values[values.size() / 2];
 }
 
+/// User and system time of this process so far, all threads.
+double CpuSeconds()
+{
+  struct rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
+         1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
 /// What a child process reports back through a pipe.
 struct Measurement
 {
   double Seconds = 0.0;
+  /// Processor time (user and system, all threads) of the same run: on a machine shared with
+  /// other work, it grows less than the elapsed time does when the cores are taken by others.
+  double CpuSeconds = 0.0;
   double NeighbourEvaluations = 0.0;
   double RadiusUsed = 0.0;
   int Ok = 0;
@@ -184,19 +196,22 @@ Measurement RunInChild(const Workload& workload, int threads, int runs, double& 
     parameters.NormalRadius = workload.NormalRadius;
     parameters.NumberOfIterations = workload.Iterations;
     parameters.NumberOfThreads = threads;
-    std::vector<double> times;
+    std::vector<double> times, cpuTimes;
     Measurement measurement;
     for (int run = 0; run < runs; ++run)
     {
+      const double cpuStart = CpuSeconds();
       const auto start = std::chrono::steady_clock::now();
       const pcbilateral::BilateralResult result =
         pcbilateral::RunBilateralFilter(cloud, parameters);
       times.push_back(Seconds(start));
+      cpuTimes.push_back(CpuSeconds() - cpuStart);
       measurement.Ok = result.Status == pcbilateral::BilateralStatus::Completed;
       measurement.NeighbourEvaluations = static_cast<double>(result.NumberOfNeighbourEvaluations);
       measurement.RadiusUsed = result.RadiusUsed;
     }
     measurement.Seconds = Median(times);
+    measurement.CpuSeconds = Median(cpuTimes);
     const ssize_t written = write(channel[1], &measurement, sizeof(measurement));
     _exit(written == static_cast<ssize_t>(sizeof(measurement)) ? 0 : 1);
   }
@@ -385,7 +400,7 @@ double PrintFloor()
   return best;
 }
 
-int Benchmark(int runs, bool skipTenMillion, const std::string& only)
+int Benchmark(int runs, bool skipTenMillion, const std::string& only, int onlyThreads)
 {
   const Workload workloads[] = {
     { "cube600k", 600000, Surface::Cube, 0.03, 0.05, 2, 0 },
@@ -397,13 +412,14 @@ int Benchmark(int runs, bool skipTenMillion, const std::string& only)
   std::printf("kernel build: %s (floor %.3f ns per evaluation)\n",
     pcbilateral::GetName(pcbilateral::GetKernelInstructionSet()),
     floor);
-  std::printf("%-9s %9s %2s %8s %3s %8s %10s %11s %8s %7s %8s %7s %7s\n",
+  std::printf("%-9s %9s %2s %8s %3s %8s %7s %10s %11s %8s %7s %8s %7s %7s\n",
     "workload",
     "points",
     "N",
     "radius",
     "thr",
     "seconds",
+    "cpu s",
     "points/s",
     "evals/point",
     "ns/eval",
@@ -421,6 +437,10 @@ int Benchmark(int runs, bool skipTenMillion, const std::string& only)
     double oneThread = 0.0;
     for (int threads : { 1, 2 })
     {
+      if (onlyThreads > 0 && threads != onlyThreads)
+      {
+        continue;
+      }
       double peak = 0.0;
       const Measurement m = RunInChild(workload, threads, workloadRuns, peak);
       if (!m.Ok)
@@ -432,13 +452,14 @@ int Benchmark(int runs, bool skipTenMillion, const std::string& only)
       const double pointsPerSecond = workload.Points * workload.Iterations / m.Seconds;
       // Thread-seconds per neighbour evaluation: the whole filter's cost per unit of kernel work.
       const double nsPerEvaluation = m.Seconds * threads * 1e9 / m.NeighbourEvaluations;
-      std::printf("%-9s %9zu %2d %8.4g %3d %8.3f %10.3g %11.1f %8.2f %7.2f %8s %7.0f %7.0f\n",
+      std::printf("%-9s %9zu %2d %8.4g %3d %8.3f %7.2f %10.3g %11.1f %8.2f %7.2f %8s %7.0f %7.0f\n",
         workload.Name,
         workload.Points,
         workload.Iterations,
         m.RadiusUsed,
         threads,
         m.Seconds,
+        m.CpuSeconds,
         pointsPerSecond,
         m.NeighbourEvaluations / workload.Points / workload.Iterations,
         nsPerEvaluation,
@@ -449,8 +470,9 @@ int Benchmark(int runs, bool skipTenMillion, const std::string& only)
       std::fflush(stdout);
     }
   }
-  std::printf("(median of %d runs; 10M and more: 1 run; ns/eval: thread-seconds per neighbour "
-              "evaluation; x floor: over the 256-neighbour floor; peak: the child's resident "
+  std::printf("(median of %d runs; 10M and more: 1 run; cpu s: processor time of all threads; "
+              "ns/eval: thread-seconds per neighbour evaluation; x floor: over the 256-neighbour "
+              "floor; peak: the child's resident "
               "memory, input included)\n",
     runs);
   return EXIT_SUCCESS;
@@ -666,6 +688,7 @@ int main(int argc, char* argv[])
   int runs = 3;
   bool skipTenMillion = false;
   std::string only;
+  int onlyThreads = 0;
   for (int i = 1; i < argc; ++i)
   {
     const std::string argument = argv[i];
@@ -680,6 +703,10 @@ int main(int argc, char* argv[])
     else if (argument == "--only" && i + 1 < argc)
     {
       only = argv[++i];
+    }
+    else if (argument == "--threads" && i + 1 < argc)
+    {
+      onlyThreads = std::atoi(argv[++i]);
     }
     else if (argument == "--floor")
     {
@@ -705,7 +732,8 @@ int main(int argc, char* argv[])
     else
     {
       std::fprintf(stderr,
-        "usage: %s [--runs N] [--skip-10m] [--only cube600k|sphere1M|sphere10M|lidar20M] | "
+        "usage: %s [--runs N] [--skip-10m] [--threads 1|2] [--only "
+        "cube600k|sphere1M|sphere10M|lidar20M] | "
         "--floor | --write-cube600k FILE.xyz | --write-lidar20M FILE.las | "
         "[--runs N] --las FOLDER | "
         "[--runs N] --end-to-end PROGRAM ARGUMENTS...\n",
@@ -713,5 +741,5 @@ int main(int argc, char* argv[])
       return EXIT_FAILURE;
     }
   }
-  return Benchmark(runs, skipTenMillion, only);
+  return Benchmark(runs, skipTenMillion, only, onlyThreads);
 }
