@@ -10,6 +10,7 @@
 #include <memory>
 
 #include <numeric>
+#include <type_traits>
 
 namespace pcbilateral
 {
@@ -479,6 +480,26 @@ void ProcessingOctree::Compact(int numberOfThreads)
   this->NextHead.assign(newCellCount, -1);
   this->NextLink.assign(pointCount, -1);
   this->NextLeaf.assign(pointCount, 0);
+}
+
+void ProcessingOctree::ReleaseAllButMoves()
+{
+  auto release = [](auto& vector) { std::decay_t<decltype(vector)>().swap(vector); };
+  release(this->X);
+  release(this->Y);
+  release(this->Z);
+  release(this->CompactedIds);
+  release(this->NextHead);
+  release(this->NextLink);
+  release(this->NextLeaf);
+  release(this->LeafMasks);
+  release(this->CellBegins);
+  release(this->LeafSlots);
+  release(this->LeafEnds);
+  release(this->CellCoords);
+  this->CellIndex = CellIndexMap();
+  this->CellIndex.Clear(0);
+  this->NumberOfProcessingCells = 0;
 }
 
 void ProcessingOctree::GetNeighbourCells(std::size_t cell, std::int32_t neighbours[27]) const

@@ -194,6 +194,11 @@ public:
   std::size_t GetNumberOfPoints() const { return this->Ids.size(); }
   ///@}
 
+  /// After the last iteration: frees all but GetIds and the moved positions (what is needed to
+  /// write the moves back by id), so that the output can be allocated in their place. No
+  /// iteration can follow.
+  void ReleaseAllButMoves();
+
   ///@{
   /// Where the points of this iteration go, by index in its layout: written by the filter
   /// before it places them, read by the next Compact.
