@@ -90,44 +90,59 @@ void CellIndexMap::Clear(std::size_t expectedCells)
   this->Count = 0;
 }
 
-std::int32_t CellIndexMap::Find(const LatticeCoord& cell) const
+namespace
 {
+/// The slot's tag: the hash's high 32 bits (the low ones pick the slot).
+std::uint32_t TagOf(std::uint64_t hash)
+{
+  return static_cast<std::uint32_t>(hash >> 32);
+}
+} // namespace
+
+std::int32_t CellIndexMap::Find(const LatticeCoord& cell, const LatticeCoord* coords) const
+{
+  const std::uint64_t hash = LatticeCoordHash()(cell);
+  const std::uint32_t tag = TagOf(hash);
   const std::size_t mask = this->Slots.size() - 1;
-  for (std::size_t slot = LatticeCoordHash()(cell) & mask;; slot = (slot + 1) & mask)
+  for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask)
   {
     const Slot& entry = this->Slots[slot];
-    if (entry.Index == Missing || entry.Cell == cell)
+    if (entry.Index == Missing || (entry.Tag == tag && coords[entry.Index] == cell))
     {
       return entry.Index;
     }
   }
 }
 
-std::int32_t CellIndexMap::Insert(const LatticeCoord& cell, std::int32_t index)
+std::int32_t CellIndexMap::Insert(const LatticeCoord& cell,
+  std::int32_t index,
+  const LatticeCoord* coords)
 {
   if (2 * (this->Count + 1) > this->Slots.size())
   {
-    this->Grow();
+    this->Grow(coords);
   }
+  const std::uint64_t hash = LatticeCoordHash()(cell);
+  const std::uint32_t tag = TagOf(hash);
   const std::size_t mask = this->Slots.size() - 1;
-  for (std::size_t slot = LatticeCoordHash()(cell) & mask;; slot = (slot + 1) & mask)
+  for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask)
   {
     Slot& entry = this->Slots[slot];
     if (entry.Index == Missing)
     {
-      entry.Cell = cell;
+      entry.Tag = tag;
       entry.Index = index;
       ++this->Count;
       return index;
     }
-    if (entry.Cell == cell)
+    if (entry.Tag == tag && coords[entry.Index] == cell)
     {
       return entry.Index;
     }
   }
 }
 
-void CellIndexMap::Grow()
+void CellIndexMap::Grow(const LatticeCoord* coords)
 {
   std::vector<Slot> old;
   old.swap(this->Slots);
@@ -136,7 +151,7 @@ void CellIndexMap::Grow()
   {
     if (entry.Index != Missing)
     {
-      this->Insert(entry.Cell, entry.Index);
+      this->Insert(coords[entry.Index], entry.Index, coords);
     }
   }
 }
@@ -319,13 +334,13 @@ void ProcessingOctree::Load(const double* positions, std::size_t count, int numb
 std::int32_t ProcessingOctree::FindCell(const LatticeCoord& cell) const
 {
   static_assert(CellIndexMap::Missing == NoCell, "a cell not found is NoCell");
-  return this->CellIndex.Find(cell);
+  return this->CellIndex.Find(cell, this->CellCoords.data());
 }
 
 std::int32_t ProcessingOctree::FindOrCreateCell(const LatticeCoord& cell)
 {
   const auto created = static_cast<std::int32_t>(this->CellCoords.size());
-  const std::int32_t index = this->CellIndex.Insert(cell, created);
+  const std::int32_t index = this->CellIndex.Insert(cell, created, this->CellCoords.data());
   if (index != created)
   {
     return index;
@@ -499,7 +514,7 @@ void ProcessingOctree::Compact(int numberOfThreads)
   for (std::size_t cell = 0; cell < newCellCount; ++cell)
   {
     newCoords[cell] = this->CellCoords[kept[cell]];
-    this->CellIndex.Insert(newCoords[cell], static_cast<std::int32_t>(cell));
+    this->CellIndex.Insert(newCoords[cell], static_cast<std::int32_t>(cell), newCoords.data());
   }
   this->CellCoords = std::move(newCoords);
   this->NumberOfProcessingCells = newCellCount;

@@ -32,6 +32,10 @@ struct LatticeCoordHash
  * probing in one flat array (no node per cell, usually one cache line per lookup), which
  * matters for clouds of millions of sparse cells: with it instead of std::unordered_map, the
  * whole run on a 1M-point noisy sphere at the automatic radius went from 1.67 s to 1.11 s.
+ * A slot holds the cell's index and 32 bits of its hash, not its coordinates, which the caller
+ * keeps by index (`coords`): 8 bytes instead of 32, so the map, two to four slots per cell,
+ * costs sparse clouds (up to a cell per two points) some 40 bytes per point less at their peak;
+ * the coordinates are read only when the hash bits agree.
  * Lookups may run in parallel; insertions may not.
  */
 class CellIndexMap
@@ -39,17 +43,19 @@ class CellIndexMap
 public:
   static constexpr std::int32_t Missing = -1;
   void Clear(std::size_t expectedCells);
-  std::int32_t Find(const LatticeCoord& cell) const;
-  /// The index stored for the cell, or `index` if there was none (then stored).
-  std::int32_t Insert(const LatticeCoord& cell, std::int32_t index);
+  /// The index of the cell, whose coordinates are coords[index], or Missing.
+  std::int32_t Find(const LatticeCoord& cell, const LatticeCoord* coords) const;
+  /// The index stored for the cell, or `index` if there was none (then stored); coords holds
+  /// the coordinates of the cells stored so far, by index.
+  std::int32_t Insert(const LatticeCoord& cell, std::int32_t index, const LatticeCoord* coords);
 
 private:
   struct Slot
   {
-    LatticeCoord Cell;
+    std::uint32_t Tag = 0;
     std::int32_t Index = Missing;
   };
-  void Grow();
+  void Grow(const LatticeCoord* coords);
   std::vector<Slot> Slots; // a power of two, at most half full
   std::size_t Count = 0;
 };
