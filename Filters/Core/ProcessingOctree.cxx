@@ -299,7 +299,7 @@ void ProcessingOctree::Load(const double* positions, std::size_t count, int numb
   this->X.resize(n);
   this->Y.resize(n);
   this->Z.resize(n);
-  std::vector<std::uint8_t> leaves(n);
+  PointArray<std::uint8_t> leaves(n);
 #pragma omp parallel for schedule(static) num_threads(numberOfThreads)
   for (std::int64_t i = 0; i < signedCount; ++i)
   {
