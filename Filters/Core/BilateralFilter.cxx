@@ -222,8 +222,10 @@ std::string CheckParameters(const BilateralParameters& parameters)
 class IterationEngine
 {
 public:
-  /// `state` holds the points' positions (the last `ghosts` of them ghosts), by id.
+  /// The points' positions (the last `ghosts` of them ghosts), by id, are `positions`, or the
+  /// state's when that is null.
   IterationEngine(PointState state,
+    const double* positions,
     const CloudExtent& extent,
     const RadiiUsed& radii,
     bool removeIsolatedPoints,
@@ -237,7 +239,8 @@ public:
     , State(std::move(state))
     , Threads(threads)
   {
-    this->Octree.Load(this->State.Positions.data(), this->State.Removed.size());
+    this->Octree.Load(
+      positions ? positions : this->State.Positions.data(), this->State.Removed.size(), threads);
   }
 
   ProcessingOctree Octree;
@@ -281,6 +284,10 @@ struct BilateralRun::Internals
   int Iteration = 0;
   bool Started = false;
   bool Finished = false;
+  bool PositionsCopied = false;
+  /// Whether the constructor accepted the parameters and the cloud (the result then has
+  /// positions, even when no iteration ran).
+  bool Accepted = false;
   double LastReported = -1.0;
   std::chrono::steady_clock::time_point LastReportTime;
   BilateralResult Result;
@@ -311,9 +318,23 @@ struct BilateralRun::Internals
     }
   }
 
-  std::unique_ptr<IterationEngine> MakeEngine(PointState state)
+  /// The result's positions as a copy of the input's, if not made yet: made only when needed,
+  /// so that a whole cloud's run does not hold its positions beside the octree's.
+  void CopyInputPositions()
+  {
+    if (!this->PositionsCopied)
+    {
+      ReserveWithHugePages(3 * this->Cloud.NumberOfPoints, this->Result.Positions);
+      this->Result.Positions.assign(
+        this->Cloud.Positions, this->Cloud.Positions + 3 * this->Cloud.NumberOfPoints);
+      this->PositionsCopied = true;
+    }
+  }
+
+  std::unique_ptr<IterationEngine> MakeEngine(PointState state, const double* positions)
   {
     auto engine = std::make_unique<IterationEngine>(std::move(state),
+      positions,
       this->WholeExtent,
       this->Radii,
       this->Parameters.RemoveIsolatedPoints,
@@ -421,8 +442,9 @@ BilateralRun::BilateralRun(const PointCloudView& cloud,
   result.Status = BilateralStatus::Completed;
   run.Threads = ResolveThreadCount(parameters.NumberOfThreads);
   const std::size_t n = cloud.NumberOfPoints;
-  ReserveWithHugePages(3 * n, result.Positions);
-  result.Positions.assign(cloud.Positions, cloud.Positions + 3 * n);
+  // The positions are copied when first needed (CopyInputPositions): the input stays valid
+  // until Finish.
+  run.Accepted = true;
   result.Removed.assign(n, 0);
   if (parameters.ComputeNormals)
   {
@@ -553,10 +575,13 @@ bool BilateralRun::HasNextIteration() const
 std::vector<double> BilateralRun::GetPositionsForOthers() const
 {
   const BilateralResult& result = this->Impl->Result;
+  // Before the first step, the input's positions are the current ones.
+  const double* current =
+    this->Impl->PositionsCopied ? result.Positions.data() : this->Impl->Cloud.Positions;
   std::vector<double> positions;
   for (std::size_t i = 0; i < result.Removed.size(); ++i)
   {
-    const double* p = result.Positions.data() + 3 * i;
+    const double* p = current + 3 * i;
     if (!result.Removed[i] && IsFinitePoint(p))
     {
       positions.insert(positions.end(), p, p + 3);
@@ -609,6 +634,7 @@ BilateralStatus BilateralRun::Step()
   if (run.Parameters.EdgeAware)
   {
     // Every point by id, in place, for each iteration.
+    run.CopyInputPositions();
     BilateralResult& result = run.Result;
     PointState state;
     state.Positions = std::move(result.Positions);
@@ -625,14 +651,14 @@ BilateralStatus BilateralRun::Step()
   if (!run.Engine)
   {
     // All points, their ids kept, for every iteration; the result's arrays become the engine's
-    // state and come back in Finish.
+    // state and come back in Finish. The positions are read from the input: the octree holds
+    // them from then on, and Finish writes them back by id.
     PointState state;
-    state.Positions = std::move(run.Result.Positions);
     state.Normals = std::move(run.Result.Normals);
     state.Removed = std::move(run.Result.Removed);
     state.OrientationNormals = run.Cloud.OrientationNormals;
     state.FirstGhost = run.Cloud.NumberOfPoints;
-    run.Engine = run.MakeEngine(std::move(state));
+    run.Engine = run.MakeEngine(std::move(state), run.Cloud.Positions);
   }
   return run.EndIteration(run.Iterate(*run.Engine));
 }
@@ -644,6 +670,7 @@ BilateralStatus BilateralRun::Step(const std::vector<double>& ghosts)
   {
     return run.Result.Status;
   }
+  run.CopyInputPositions();
   BilateralResult& result = run.Result;
   // This part's points that are not removed, then the ghosts; rebuilt for every iteration,
   // since the ghosts change.
@@ -687,7 +714,7 @@ BilateralStatus BilateralRun::Step(const std::vector<double>& ghosts)
   std::unique_ptr<IterationEngine> engine;
   if (!run.Parameters.EdgeAware)
   {
-    engine = run.MakeEngine(std::move(partState));
+    engine = run.MakeEngine(std::move(partState), nullptr);
   }
   const bool completed = engine ? run.Iterate(*engine) : run.IterateEdgeAware(partState);
   if (completed)
@@ -732,15 +759,31 @@ BilateralResult BilateralRun::Finish()
   run.Finished = true;
   if (run.Engine)
   {
+    // The output's positions take the place of the octree's layout, freed first, so that the
+    // peak memory is that of the iterations: the input's positions, then the moves by id, then
+    // where removed points stopped.
     PointState& state = run.Engine->State;
+    run.Engine->Octree.ReleaseAllButMoves();
+    run.CopyInputPositions();
+    state.Positions = std::move(result.Positions);
     if (result.Status == BilateralStatus::Completed)
     {
       run.Engine->ScatterMoves();
+    }
+    for (const StoppedPoint& stopped : state.Stopped)
+    {
+      std::copy(stopped.Position,
+        stopped.Position + 3,
+        state.Positions.data() + 3 * static_cast<std::size_t>(stopped.Id));
     }
     result.Positions = std::move(state.Positions);
     result.Removed = std::move(state.Removed);
     result.Normals = std::move(state.Normals);
     run.Engine.reset();
+  }
+  else if (run.Accepted)
+  {
+    run.CopyInputPositions();
   }
   result.NumberOfRemovedPoints = static_cast<std::size_t>(
     std::count(result.Removed.begin(), result.Removed.end(), std::uint8_t{ 1 }));

@@ -175,7 +175,8 @@ class BilateralRun
 {
 public:
   /// Checks the parameters and the cloud; a failure shows in GetStatus() and GetError(), and
-  /// the run then does nothing.
+  /// the run then does nothing. The cloud's arrays are read until Finish, which copies them:
+  /// they must stay valid and unchanged until then.
   BilateralRun(const PointCloudView& cloud,
     const BilateralParameters& parameters,
     const BilateralObserver& observer = BilateralObserver());

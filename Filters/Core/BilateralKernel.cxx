@@ -22,6 +22,13 @@ namespace pcbilateral
     KernelScratch& scratch,                                                                        \
     FilteredPoint& result);                                                                        \
   void ExpOfNonPositive(const double* in, double* out, std::size_t count);                         \
+  double ArithmeticFloor(const double* dx,                                                         \
+    const double* dy,                                                                              \
+    const double* dz,                                                                              \
+    std::size_t padded,                                                                            \
+    const KernelConstants& constants,                                                              \
+    const double n[3],                                                                             \
+    double* distanceWeight);                                                                       \
   }
 PCB_DECLARE_KERNEL_BUILD(generic)
 #if PCB_KERNEL_X86
@@ -155,6 +162,32 @@ void KernelExp(const double* x, double* result, std::size_t count)
 #endif
     default:
       return generic::ExpOfNonPositive(x, result, count);
+  }
+}
+
+double KernelArithmetic(KernelInstructionSet instructionSet,
+  const double* dx,
+  const double* dy,
+  const double* dz,
+  std::size_t count,
+  const KernelConstants& constants,
+  const double normal[3],
+  double* distanceWeight)
+{
+  if (count % KernelLanes != 0 || !IsAvailable(instructionSet))
+  {
+    return 0.0;
+  }
+  switch (instructionSet)
+  {
+#if PCB_KERNEL_X86
+    case KernelInstructionSet::Avx512:
+      return avx512::ArithmeticFloor(dx, dy, dz, count, constants, normal, distanceWeight);
+    case KernelInstructionSet::Avx2:
+      return avx2::ArithmeticFloor(dx, dy, dz, count, constants, normal, distanceWeight);
+#endif
+    default:
+      return generic::ArithmeticFloor(dx, dy, dz, count, constants, normal, distanceWeight);
   }
 }
 

@@ -115,6 +115,22 @@ bool SetKernelInstructionSet(KernelInstructionSet instructionSet);
 /// value, 0 below x = -708. For tests.
 void KernelExp(const double* x, double* result, std::size_t count);
 
+/**
+ * The kernel's arithmetic alone, for the benchmark's floor: FilterPoint's two passes (the two
+ * exponentials and the sums per neighbour) over `count` neighbours already selected and packed
+ * (offsets q - p; count a multiple of KernelLanes), with the given normal, in the given build
+ * of the kernel. No selection, padding or eigensolver. Returns a sum of all the sums (0 if that
+ * build is not available here); distanceWeight holds count values.
+ */
+double KernelArithmetic(KernelInstructionSet instructionSet,
+  const double* dx,
+  const double* dy,
+  const double* dz,
+  std::size_t count,
+  const KernelConstants& constants,
+  const double normal[3],
+  double* distanceWeight);
+
 /// Eigenvector of the smallest eigenvalue of a symmetric 3x3 matrix given by its upper
 /// triangle (xx, xy, xz, yy, yz, zz), as a unit vector.
 void SmallestEigenvector(const double covariance[6], double eigenvector[3]);

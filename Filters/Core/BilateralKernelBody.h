@@ -22,7 +22,7 @@
 #include <cstdint>
 #include <cstring>
 
-#if defined(__AVX512F__)
+#if defined(__AVX512F__) || defined(__AVX2__)
 #include <immintrin.h>
 #endif
 
@@ -54,6 +54,26 @@ inline DoubleLanes Select(IntLanes mask, DoubleLanes a, DoubleLanes b)
   return (DoubleLanes)((mask & (IntLanes)a) | (~mask & (IntLanes)b));
 }
 
+/// All ones in the lanes where x < limit, zero elsewhere.
+inline IntLanes LessThan(DoubleLanes x, double limit)
+{
+#if defined(__AVX2__) && !defined(__AVX512F__)
+  // GCC compiles the vector comparison below one lane at a time for AVX2 (a scalar compare and
+  // a conditional move per lane, which made the AVX2 build as slow as the SSE2 one); two AVX
+  // comparisons give the same masks.
+  __m256d halves[2];
+  std::memcpy(halves, &x, sizeof(halves));
+  const __m256d bound = _mm256_set1_pd(limit);
+  halves[0] = _mm256_cmp_pd(halves[0], bound, _CMP_LT_OQ);
+  halves[1] = _mm256_cmp_pd(halves[1], bound, _CMP_LT_OQ);
+  IntLanes mask;
+  std::memcpy(&mask, halves, sizeof(mask));
+  return mask;
+#else
+  return (IntLanes)(x < limit);
+#endif
+}
+
 /// The sum of the lanes, in a fixed tree: the same bits for any vector width.
 inline double SumLanes(DoubleLanes lanes)
 {
@@ -81,7 +101,7 @@ inline DoubleLanes ExpOfNonPositive(DoubleLanes x)
   constexpr double Lowest = -708.0;
 
   const DoubleLanes zero = {};
-  const IntLanes underflows = (IntLanes)(x < Lowest);
+  const IntLanes underflows = LessThan(x, Lowest);
   x = Select(underflows, zero + Lowest, x); // also turns -inf into a finite number
   const DoubleLanes shifted = x * InverseLn2 + RoundingShift;
   const DoubleLanes k = shifted - RoundingShift;
@@ -167,6 +187,75 @@ inline std::size_t SelectNeighbours(const double p[3],
   return neighbours;
 }
 
+/// The weighted sums of pass 1 (see FilterPoint), one partial sum per lane.
+struct DistanceMoments
+{
+  DoubleLanes WeightSum, FirstX, FirstY, FirstZ, XX, XY, XZ, YY, YZ, ZZ;
+};
+
+/**
+ * Pass 1 over `padded` packed offsets (a multiple of Lanes): the distance weights, stored for
+ * pass 2, and the weighted first and second moments of the offsets q - p, for the regression
+ * plane. Shared by FilterPoint and ArithmeticFloor, so that the floor times this very code.
+ */
+inline DistanceMoments AccumulateDistanceMoments(const double* dx,
+  const double* dy,
+  const double* dz,
+  std::size_t padded,
+  double distanceScale,
+  double* distanceWeight)
+{
+  const DoubleLanes zero = {};
+  DoubleLanes weightSum = zero, firstX = zero, firstY = zero, firstZ = zero;
+  DoubleLanes xx = zero, xy = zero, xz = zero, yy = zero, yz = zero, zz = zero;
+  for (std::size_t k = 0; k < padded; k += Lanes)
+  {
+    const DoubleLanes ox = Load(dx + k);
+    const DoubleLanes oy = Load(dy + k);
+    const DoubleLanes oz = Load(dz + k);
+    // The squared distance again, as SelectNeighbours computed it: cheaper than packing it.
+    const DoubleLanes distanceSquared = (ox * ox + oy * oy) + oz * oz;
+    const DoubleLanes w = ExpOfNonPositive(-distanceSquared * distanceScale);
+    Store(distanceWeight + k, w);
+    weightSum += w;
+    const DoubleLanes wx = w * ox, wy = w * oy, wz = w * oz;
+    firstX += wx;
+    firstY += wy;
+    firstZ += wz;
+    xx += wx * ox;
+    xy += wx * oy;
+    xz += wx * oz;
+    yy += wy * oy;
+    yz += wy * oz;
+    zz += wz * oz;
+  }
+  return DistanceMoments{ weightSum, firstX, firstY, firstZ, xx, xy, xz, yy, yz, zz };
+}
+
+/// Pass 2 over the same offsets: the sums of the bilateral weights and of the weighted heights
+/// h = <n, q - p>, one partial sum per lane.
+inline void AccumulateBilateralHeights(const double* dx,
+  const double* dy,
+  const double* dz,
+  const double* distanceWeight,
+  std::size_t padded,
+  const double n[3],
+  double normalScale,
+  DoubleLanes& bilateralWeightSum,
+  DoubleLanes& weightedHeightSum)
+{
+  const DoubleLanes zero = {};
+  bilateralWeightSum = zero;
+  weightedHeightSum = zero;
+  for (std::size_t k = 0; k < padded; k += Lanes)
+  {
+    const DoubleLanes h = (Load(dx + k) * n[0] + Load(dy + k) * n[1]) + Load(dz + k) * n[2];
+    const DoubleLanes w = Load(distanceWeight + k) * ExpOfNonPositive(-(h * h) * normalScale);
+    bilateralWeightSum += w;
+    weightedHeightSum += w * h;
+  }
+}
+
 /// Algorithm 1 for the point p (see FilterPoint in BilateralKernel.h), the entry point of this
 /// build (declared in BilateralKernel.cxx). `result` arrives zeroed: the point does not move
 /// unless this says so.
@@ -199,33 +288,10 @@ void FilterPoint(const double p[3],
     dx[k] = dy[k] = dz[k] = 1e300;
   }
 
-  // Pass 1: distance weights, and the weighted first and second moments of the offsets q - p,
-  // for the regression plane.
-  const DoubleLanes zero = {};
-  DoubleLanes weightSum = zero, firstX = zero, firstY = zero, firstZ = zero;
-  DoubleLanes xx = zero, xy = zero, xz = zero, yy = zero, yz = zero, zz = zero;
-  for (std::size_t k = 0; k < padded; k += Lanes)
-  {
-    const DoubleLanes ox = Load(dx + k);
-    const DoubleLanes oy = Load(dy + k);
-    const DoubleLanes oz = Load(dz + k);
-    // The squared distance again, as SelectNeighbours computed it: cheaper than packing it.
-    const DoubleLanes distanceSquared = (ox * ox + oy * oy) + oz * oz;
-    const DoubleLanes w = ExpOfNonPositive(-distanceSquared * constants.DistanceScale);
-    Store(distanceWeight + k, w);
-    weightSum += w;
-    const DoubleLanes wx = w * ox, wy = w * oy, wz = w * oz;
-    firstX += wx;
-    firstY += wy;
-    firstZ += wz;
-    xx += wx * ox;
-    xy += wx * oy;
-    xz += wx * oz;
-    yy += wy * oy;
-    yz += wy * oz;
-    zz += wz * oz;
-  }
-  const double totalWeight = SumLanes(weightSum);
+  // Pass 1: distance weights and moments.
+  const DistanceMoments m =
+    AccumulateDistanceMoments(dx, dy, dz, padded, constants.DistanceScale, distanceWeight);
+  const double totalWeight = SumLanes(m.WeightSum);
   if (!(totalWeight > 0.0))
   {
     return;
@@ -233,30 +299,31 @@ void FilterPoint(const double p[3],
 
   // Weighted covariance about the weighted mean; the offsets are small, so the one-pass form
   // loses nothing that matters next to the noise it measures.
-  const double mean[3] = {
-    SumLanes(firstX) / totalWeight, SumLanes(firstY) / totalWeight, SumLanes(firstZ) / totalWeight
-  };
+  const double mean[3] = { SumLanes(m.FirstX) / totalWeight,
+    SumLanes(m.FirstY) / totalWeight,
+    SumLanes(m.FirstZ) / totalWeight };
   const double covariance[6] = {
-    SumLanes(xx) / totalWeight - mean[0] * mean[0],
-    SumLanes(xy) / totalWeight - mean[0] * mean[1],
-    SumLanes(xz) / totalWeight - mean[0] * mean[2],
-    SumLanes(yy) / totalWeight - mean[1] * mean[1],
-    SumLanes(yz) / totalWeight - mean[1] * mean[2],
-    SumLanes(zz) / totalWeight - mean[2] * mean[2],
+    SumLanes(m.XX) / totalWeight - mean[0] * mean[0],
+    SumLanes(m.XY) / totalWeight - mean[0] * mean[1],
+    SumLanes(m.XZ) / totalWeight - mean[0] * mean[2],
+    SumLanes(m.YY) / totalWeight - mean[1] * mean[1],
+    SumLanes(m.YZ) / totalWeight - mean[1] * mean[2],
+    SumLanes(m.ZZ) / totalWeight - mean[2] * mean[2],
   };
   double n[3];
   SmallestEigenvector(covariance, n);
 
   // Pass 2: the bilateral average of the heights h = <n, q - p> over the same neighbours.
-  DoubleLanes bilateralWeightSum = zero, weightedHeightSum = zero;
-  for (std::size_t k = 0; k < padded; k += Lanes)
-  {
-    const DoubleLanes h = (Load(dx + k) * n[0] + Load(dy + k) * n[1]) + Load(dz + k) * n[2];
-    const DoubleLanes w =
-      Load(distanceWeight + k) * ExpOfNonPositive(-(h * h) * constants.NormalScale);
-    bilateralWeightSum += w;
-    weightedHeightSum += w * h;
-  }
+  DoubleLanes bilateralWeightSum, weightedHeightSum;
+  AccumulateBilateralHeights(dx,
+    dy,
+    dz,
+    distanceWeight,
+    padded,
+    n,
+    constants.NormalScale,
+    bilateralWeightSum,
+    weightedHeightSum);
   const double totalBilateralWeight = SumLanes(bilateralWeightSum);
   if (!(totalBilateralWeight > 0.0))
   {
@@ -267,6 +334,35 @@ void FilterPoint(const double p[3],
   result.Normal[1] = n[1];
   result.Normal[2] = n[2];
   result.Filtered = true;
+}
+
+/// The kernel's arithmetic alone (see KernelArithmetic in BilateralKernel.h): both passes over
+/// packed neighbours with a given normal, without selection, padding or eigensolver.
+double ArithmeticFloor(const double* dx,
+  const double* dy,
+  const double* dz,
+  std::size_t padded,
+  const KernelConstants& constants,
+  const double n[3],
+  double* distanceWeight)
+{
+  const DistanceMoments m =
+    AccumulateDistanceMoments(dx, dy, dz, padded, constants.DistanceScale, distanceWeight);
+  DoubleLanes bilateralWeightSum, weightedHeightSum;
+  AccumulateBilateralHeights(dx,
+    dy,
+    dz,
+    distanceWeight,
+    padded,
+    n,
+    constants.NormalScale,
+    bilateralWeightSum,
+    weightedHeightSum);
+  // Every sum reaches the result, so that none of the arithmetic can be left out.
+  const DoubleLanes all = ((m.WeightSum + m.FirstX) + (m.FirstY + m.FirstZ)) +
+                          ((m.XX + m.XY) + (m.XZ + m.YY)) +
+                          ((m.YZ + m.ZZ) + (bilateralWeightSum + weightedHeightSum));
+  return SumLanes(all);
 }
 
 /// The exponential of this build, for the tests: out[i] = exp(in[i]) for in[i] <= 0.

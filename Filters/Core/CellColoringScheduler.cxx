@@ -228,7 +228,14 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
       if (!filtered.Filtered && this->RemoveIsolatedPoints)
       {
         state.Removed[id] = 1;
-        std::copy(p, p + 3, state.Positions.data() + 3 * static_cast<std::size_t>(id));
+        if (state.Positions.empty())
+        {
+          scratch.Stopped.push_back(StoppedPoint{ id, { p[0], p[1], p[2] } });
+        }
+        else
+        {
+          std::copy(p, p + 3, state.Positions.data() + 3 * static_cast<std::size_t>(id));
+        }
         continue;
       }
       movedX[i] = moved[0];
@@ -370,6 +377,8 @@ bool CellColoringScheduler::RunIteration(PointState& state)
   this->NeighbourEvaluations = 0;
   for (auto& scratch : this->Scratch)
   {
+    state.Stopped.insert(state.Stopped.end(), scratch.Stopped.begin(), scratch.Stopped.end());
+    scratch.Stopped.clear();
     scratch.PointsSinceReport = 0;
     scratch.EvaluationsSinceReport = 0;
     this->NeighbourEvaluations += scratch.NeighbourEvaluations;

@@ -16,10 +16,20 @@ namespace pcbilateral
 {
 
 /// What a run keeps by point id, besides the octree's layout.
+/// Where a removed point stopped, by id.
+struct StoppedPoint
+{
+  std::uint32_t Id;
+  double Position[3];
+};
+
 struct PointState
 {
-  /// Positions; a removed point's is set to where it stopped.
+  /// Positions; a removed point's is set to where it stopped. May be empty while the octree
+  /// holds the points (a whole cloud's run: the positions are then not held twice); removed
+  /// points are then listed in Stopped instead.
   std::vector<double> Positions;
+  std::vector<StoppedPoint> Stopped;
   /// Estimated normals, when asked for (else empty).
   std::vector<double> Normals;
   std::vector<std::uint8_t> Removed;
@@ -74,6 +84,7 @@ private:
   {
     CandidateNeighbours Candidates;
     std::vector<std::uint32_t> Deferred;
+    std::vector<StoppedPoint> Stopped;
     std::size_t PointsSinceReport = 0;
     std::uint64_t EvaluationsSinceReport = 0;
     std::uint64_t NeighbourEvaluations = 0;

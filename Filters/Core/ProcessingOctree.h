@@ -6,6 +6,10 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace pcbilateral
@@ -22,6 +26,42 @@ struct LatticeCoord
   }
 };
 
+/**
+ * std::allocator, except that resize() leaves new elements of the octree's per-point arrays
+ * uninitialised instead of zeroing them: every element is written before it is read, and the
+ * zeroing was a serial pass over fresh memory (its page faults included) of some 30 bytes per
+ * point, 1.4 s of lidar20M's 2-thread Load and as much of its first Compact. Now the pages are
+ * first touched where the arrays are filled, in parallel.
+ */
+template<typename T>
+struct UninitializedAllocator : std::allocator<T>
+{
+  template<typename U>
+  struct rebind
+  {
+    using other = UninitializedAllocator<U>;
+  };
+  UninitializedAllocator() = default;
+  template<typename U>
+  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept
+  {
+  }
+  template<typename U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value)
+  {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template<typename U, typename... Arguments>
+  void construct(U* p, Arguments&&... arguments)
+  {
+    ::new (static_cast<void*>(p)) U(std::forward<Arguments>(arguments)...);
+  }
+};
+
+/// A per-point array of the octree (see UninitializedAllocator).
+template<typename T>
+using PointArray = std::vector<T, UninitializedAllocator<T>>;
+
 struct LatticeCoordHash
 {
   std::size_t operator()(const LatticeCoord& c) const;
@@ -32,6 +72,10 @@ struct LatticeCoordHash
  * probing in one flat array (no node per cell, usually one cache line per lookup), which
  * matters for clouds of millions of sparse cells: with it instead of std::unordered_map, the
  * whole run on a 1M-point noisy sphere at the automatic radius went from 1.67 s to 1.11 s.
+ * A slot holds the cell's index and 32 bits of its hash, not its coordinates, which the caller
+ * keeps by index (`coords`): 8 bytes instead of 32, so the map, two to four slots per cell,
+ * costs sparse clouds (up to a cell per two points) some 40 bytes per point less at their peak;
+ * the coordinates are read only when the hash bits agree.
  * Lookups may run in parallel; insertions may not.
  */
 class CellIndexMap
@@ -39,17 +83,19 @@ class CellIndexMap
 public:
   static constexpr std::int32_t Missing = -1;
   void Clear(std::size_t expectedCells);
-  std::int32_t Find(const LatticeCoord& cell) const;
-  /// The index stored for the cell, or `index` if there was none (then stored).
-  std::int32_t Insert(const LatticeCoord& cell, std::int32_t index);
+  /// The index of the cell, whose coordinates are coords[index], or Missing.
+  std::int32_t Find(const LatticeCoord& cell, const LatticeCoord* coords) const;
+  /// The index stored for the cell, or `index` if there was none (then stored); coords holds
+  /// the coordinates of the cells stored so far, by index.
+  std::int32_t Insert(const LatticeCoord& cell, std::int32_t index, const LatticeCoord* coords);
 
 private:
   struct Slot
   {
-    LatticeCoord Cell;
+    std::uint32_t Tag = 0;
     std::int32_t Index = Missing;
   };
-  void Grow();
+  void Grow(const LatticeCoord* coords);
   std::vector<Slot> Slots; // a power of two, at most half full
   std::size_t Count = 0;
 };
@@ -110,10 +156,10 @@ public:
 
   /**
    * Takes the points to filter: the finite ones among `count` interleaved xyz positions, which
-   * keep their index as id. They are placed into the next iteration's lists; Compact then
-   * builds the first layout.
+   * keep their index as id. They are placed into the next iteration's lists, grouped by cell,
+   * with numberOfThreads threads; Compact then builds the first layout.
    */
-  void Load(const double* positions, std::size_t count);
+  void Load(const double* positions, std::size_t count, int numberOfThreads = 1);
 
   ///@{
   /// Placement of points into the next iteration's leaf lists. A point is named by its index
@@ -194,6 +240,11 @@ public:
   std::size_t GetNumberOfPoints() const { return this->Ids.size(); }
   ///@}
 
+  /// After the last iteration: frees all but GetIds and the moved positions (what is needed to
+  /// write the moves back by id), so that the output can be allocated in their place. No
+  /// iteration can follow.
+  void ReleaseAllButMoves();
+
   ///@{
   /// Where the points of this iteration go, by index in its layout: written by the filter
   /// before it places them, read by the next Compact.
@@ -228,8 +279,8 @@ private:
   // Next iteration: per cell, the head of a list of indices linked through NextLink (-1 ends
   // it), and each index's leaf in its cell.
   std::vector<std::int32_t> NextHead;
-  std::vector<std::int32_t> NextLink;
-  std::vector<std::uint8_t> NextLeaf;
+  PointArray<std::int32_t> NextLink;
+  PointArray<std::uint8_t> NextLeaf;
 
   // This iteration: ids and coordinates sorted by cell, leaf, then coordinates; the moved
   // positions by the same index. Only leaves that hold points are stored: a cell's points
@@ -237,9 +288,9 @@ private:
   // and on.
   std::vector<std::uint64_t> LeafMasks;
   std::vector<std::uint32_t> CellBegins, LeafSlots, LeafEnds;
-  std::vector<std::uint32_t> Ids, CompactedIds;
-  std::vector<double> X, Y, Z;
-  std::vector<double> MovedX, MovedY, MovedZ;
+  PointArray<std::uint32_t> Ids, CompactedIds;
+  PointArray<double> X, Y, Z;
+  PointArray<double> MovedX, MovedY, MovedZ;
 };
 
 } // namespace pcbilateral

@@ -2,12 +2,21 @@
 // Built with the project, not run by the tests (shared machines are too noisy for timed tests).
 //
 //   pcb_benchmark [--runs N] [--skip-10m] [--only WORKLOAD]
+//       (--skip-10m skips the workloads of 10M points and more; --threads T runs T threads only)
 //       the filter alone, through the core, with 1 and 2 threads, on:
 //       - cube600k: the unit cube's surface, 600,000 points, noise 0.5% of the diagonal,
 //         r = 0.03, rn = 0.05, N = 2 (the paper's Table 1);
 //       - sphere1M: a sphere, 1,000,000 points, noise 0.5%, the automatic radius, N = 1;
-//       - sphere10M: the same with 10,000,000 points.
-//       Each workload runs in a child process, so its peak resident memory is its own.
+//       - sphere10M: the same with 10,000,000 points;
+//       - lidar20M: an airborne-LiDAR-like tile, 20,000,000 points (see Lidar below), r = 3.6
+//         (about 40 neighbours), rn = 0.5, N = 2.
+//       Each workload runs in a child process, so its peak resident memory is its own (the
+//       generated input cloud included, as a program holding the cloud would have it).
+//       First, the kernel's floor (see Floor below) and the kernel alone, per kernel build.
+//   pcb_benchmark --floor
+//       the floor and the kernel alone only.
+//   pcb_benchmark --write-lidar20M FILE.las
+//       writes the lidar20M workload as a LAS file (point format 1, millimetre scale).
 //   pcb_benchmark --write-cube600k FILE.xyz
 //       writes the cube600k workload as an ASCII file, for other programs.
 //   pcb_benchmark [--runs N] --las FOLDER
@@ -40,21 +49,85 @@ namespace
 {
 using namespace pcbilateral_samples;
 
+enum class Surface
+{
+  Cube,
+  Sphere,
+  Lidar
+};
+
 struct Workload
 {
   const char* Name;
   std::size_t Points;
-  bool Cube;
+  Surface Shape;
   double Radius, NormalRadius;
   int Iterations;
   int Runs; // 0: as given on the command line
 };
 
+/// The lidar20M workload: pi r^2 = 40.7 neighbours per point at one point per square metre;
+/// rn = 10 times the noise keeps the roof edges (buildings are 4 m high or more).
+constexpr std::size_t LidarPoints = 20000000;
+constexpr double LidarRadius = 3.6;
+constexpr double LidarNormalRadius = 0.5;
+
+/**
+ * An airborne LiDAR tile in metres: one point per square metre, uniformly at random over a
+ * 5000 m x (points / 5000) m rectangle at georeferenced coordinates (UTM-like offsets), seen
+ * from above: rolling ground (hills of some 20 m over kilometres) and, on a 60 m grid of
+ * blocks, buildings with flat roofs 4 to 25 m high and 15 to 45 m wide in about half of the
+ * blocks, whose roofs hide the ground below (no wall points, as from nadir). Vertical noise of
+ * 5 cm, as in survey-grade LiDAR.
+ */
+std::vector<double> GenerateLidar(std::size_t points)
+{
+  constexpr double Width = 5000.0;
+  constexpr double Block = 60.0;
+  constexpr double OffsetX = 600000.0, OffsetY = 5000000.0, Noise = 0.05;
+  const double depth = static_cast<double>(points) / Width;
+  Random random(20171029);
+  std::vector<double> xyz(3 * points);
+  for (std::size_t i = 0; i < points; ++i)
+  {
+    const double x = random.Uniform(0.0, Width), y = random.Uniform(0.0, depth);
+    double z = 120.0 + 12.0 * std::sin(x / 700.0) * std::cos(y / 900.0) + 0.004 * x;
+    // The block's building, from a hash of the block's indices (the same for every point).
+    const auto bx = static_cast<std::uint64_t>(x / Block);
+    const auto by = static_cast<std::uint64_t>(y / Block);
+    std::uint64_t h = (bx * 0x9E3779B97F4A7C15ull) ^ (by * 0xC2B2AE3D27D4EB4Full);
+    h ^= h >> 29;
+    h *= 0xBF58476D1CE4E5B9ull;
+    h ^= h >> 32;
+    if ((h & 1) != 0)
+    {
+      const double size = 15.0 + static_cast<double>((h >> 8) % 31);
+      const double height = 4.0 + static_cast<double>((h >> 16) % 22);
+      const double lx = x - bx * Block, ly = y - by * Block;
+      const double margin = (Block - size) / 2.0;
+      if (lx > margin && lx < Block - margin && ly > margin && ly < Block - margin)
+      {
+        // Ground level at the block's centre: roofs are flat.
+        const double cx = (bx + 0.5) * Block, cy = (by + 0.5) * Block;
+        z = 120.0 + 12.0 * std::sin(cx / 700.0) * std::cos(cy / 900.0) + 0.004 * cx + height;
+      }
+    }
+    xyz[3 * i] = OffsetX + x;
+    xyz[3 * i + 1] = OffsetY + y;
+    xyz[3 * i + 2] = z + Noise * random.Gaussian();
+  }
+  return xyz;
+}
+
 std::vector<double> Generate(const Workload& workload)
 {
+  if (workload.Shape == Surface::Lidar)
+  {
+    return GenerateLidar(workload.Points);
+  }
   Random random(20171029);
   const std::unique_ptr<Shape> shape =
-    workload.Cube ? Cube() : std::unique_ptr<Shape>(new Sphere());
+    workload.Shape == Surface::Cube ? Cube() : std::unique_ptr<Shape>(new Sphere());
   const double sigma = 0.005 * shape->Diagonal();
   std::vector<double> xyz(3 * workload.Points);
   for (std::size_t i = 0; i < workload.Points; ++i)
@@ -79,10 +152,22 @@ double Median(std::vector<double> values)
   return values[values.size() / 2];
 }
 
+/// User and system time of this process so far, all threads.
+double CpuSeconds()
+{
+  struct rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
+         1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
 /// What a child process reports back through a pipe.
 struct Measurement
 {
   double Seconds = 0.0;
+  /// Processor time (user and system, all threads) of the same run: on a machine shared with
+  /// other work, it grows less than the elapsed time does when the cores are taken by others.
+  double CpuSeconds = 0.0;
   double NeighbourEvaluations = 0.0;
   double RadiusUsed = 0.0;
   int Ok = 0;
@@ -113,19 +198,22 @@ Measurement RunInChild(const Workload& workload, int threads, int runs, double& 
     // A radius of 0 is the paper's automatic radius, as in the speed table.
     parameters.Automatic = pcbilateral::AutomaticParameters::Paper;
     parameters.NumberOfThreads = threads;
-    std::vector<double> times;
+    std::vector<double> times, cpuTimes;
     Measurement measurement;
     for (int run = 0; run < runs; ++run)
     {
+      const double cpuStart = CpuSeconds();
       const auto start = std::chrono::steady_clock::now();
       const pcbilateral::BilateralResult result =
         pcbilateral::RunBilateralFilter(cloud, parameters);
       times.push_back(Seconds(start));
+      cpuTimes.push_back(CpuSeconds() - cpuStart);
       measurement.Ok = result.Status == pcbilateral::BilateralStatus::Completed;
       measurement.NeighbourEvaluations = static_cast<double>(result.NumberOfNeighbourEvaluations);
       measurement.RadiusUsed = result.RadiusUsed;
     }
     measurement.Seconds = Median(times);
+    measurement.CpuSeconds = Median(cpuTimes);
     const ssize_t written = write(channel[1], &measurement, sizeof(measurement));
     _exit(written == static_cast<ssize_t>(sizeof(measurement)) ? 0 : 1);
   }
@@ -142,81 +230,6 @@ Measurement RunInChild(const Workload& workload, int threads, int runs, double& 
     measurement.Ok = 0;
   }
   return measurement;
-}
-
-int Benchmark(int runs, bool skipTenMillion, const std::string& only)
-{
-  const Workload workloads[] = {
-    { "cube600k", 600000, true, 0.03, 0.05, 2, 0 },
-    { "sphere1M", 1000000, false, 0.0, 0.0, 1, 0 },
-    { "sphere10M", 10000000, false, 0.0, 0.0, 1, 1 },
-  };
-  std::printf("kernel build: %s\n", pcbilateral::GetName(pcbilateral::GetKernelInstructionSet()));
-  std::printf("%-10s %9s %3s %9s %7s %11s %12s %15s %8s %8s\n",
-    "workload",
-    "points",
-    "N",
-    "radius",
-    "threads",
-    "seconds",
-    "points/s",
-    "evals/s/core",
-    "speedup",
-    "peak MB");
-  for (const Workload& workload : workloads)
-  {
-    if ((skipTenMillion && workload.Points >= 10000000) || (!only.empty() && only != workload.Name))
-    {
-      continue;
-    }
-    const int workloadRuns = workload.Runs > 0 ? workload.Runs : runs;
-    double oneThread = 0.0;
-    for (int threads : { 1, 2 })
-    {
-      double peak = 0.0;
-      const Measurement m = RunInChild(workload, threads, workloadRuns, peak);
-      if (!m.Ok)
-      {
-        std::printf("%-10s failed\n", workload.Name);
-        return EXIT_FAILURE;
-      }
-      oneThread = threads == 1 ? m.Seconds : oneThread;
-      const double pointsPerSecond = workload.Points * workload.Iterations / m.Seconds;
-      const double evaluationsPerCore = m.NeighbourEvaluations / m.Seconds / threads;
-      std::printf("%-10s %9zu %3d %9.4g %7d %11.3f %12.3g %15.3g %8s %8.0f\n",
-        workload.Name,
-        workload.Points,
-        workload.Iterations,
-        m.RadiusUsed,
-        threads,
-        m.Seconds,
-        pointsPerSecond,
-        evaluationsPerCore,
-        threads == 1 ? "" : std::to_string(oneThread / m.Seconds).substr(0, 4).c_str(),
-        peak);
-      std::fflush(stdout);
-    }
-  }
-  std::printf("(median of %d runs; sphere10M: 1 run; neighbour evaluations per second per "
-              "thread used)\n",
-    runs);
-  return EXIT_SUCCESS;
-}
-
-int WriteCube(const char* path)
-{
-  const Workload cube{ "cube600k", 600000, true, 0.03, 0.05, 2, 0 };
-  pcbilateral::PointCloudTable table;
-  table.NumberOfPoints = cube.Points;
-  table.Positions = Generate(cube);
-  const std::string error = pcbilateral::WritePointCloudText(path, table);
-  if (!error.empty())
-  {
-    std::fprintf(stderr, "%s\n", error.c_str());
-    return EXIT_FAILURE;
-  }
-  std::printf("wrote %s (600,000 points); the paper's parameters: -r 0.03 -n 0.05 -N 2\n", path);
-  return EXIT_SUCCESS;
 }
 
 /// The columns of a LAS file's dimensions, uninitialised (as a reader allocates them).
@@ -238,13 +251,297 @@ struct LASColumns
   }
 };
 
+/// Nanoseconds per call of `call`, the fastest of 5 rounds of at least 0.05 s each.
+template<typename Call>
+double FastestNanoseconds(Call call)
+{
+  double best = 1e300;
+  for (int round = 0; round < 5; ++round)
+  {
+    std::size_t calls = 0;
+    const auto start = std::chrono::steady_clock::now();
+    double elapsed = 0.0;
+    do
+    {
+      for (int k = 0; k < 64; ++k)
+      {
+        call();
+      }
+      calls += 64;
+      elapsed = Seconds(start);
+    } while (elapsed < 0.05);
+    best = std::min(best, elapsed * 1e9 / static_cast<double>(calls));
+  }
+  return best;
+}
+
+/// Kernel ns per neighbour evaluation on one thread, by build, from Floor(): the arithmetic
+/// alone and the whole kernel.
+struct FloorMeasurement
+{
+  double Floor = 0.0;
+  double Kernel = 0.0;
+};
+
+/**
+ * The floor: the kernel's arithmetic alone (both exponentials and all the sums of its two
+ * passes, KernelArithmetic) on `neighbours` packed, pre-selected offsets that stay in the L1
+ * cache, in ns per neighbour evaluation on one thread. No selection, candidate gathering,
+ * eigensolver, octree or memory traffic: what no formulation of these sums with this
+ * exponential can go below on this machine. Beside it, the whole kernel (FilterPoint) on
+ * candidates spread uniformly in the cube circumscribing the ball (52% of them neighbours),
+ * also in the L1 cache: the floor plus selection, padding and the eigensolver.
+ */
+FloorMeasurement Floor(pcbilateral::KernelInstructionSet build, std::size_t neighbours)
+{
+  FloorMeasurement measurement;
+  if (!pcbilateral::IsAvailable(build))
+  {
+    return measurement;
+  }
+  const double radius = 0.03;
+  const pcbilateral::KernelConstants constants(radius, 0.05);
+  Random random(7);
+  // Neighbours uniform in the ball, a rough plane's offsets: as the cube's faces give them.
+  const std::size_t padded = (neighbours + pcbilateral::KernelLanes - 1) /
+                             pcbilateral::KernelLanes * pcbilateral::KernelLanes;
+  std::vector<double> dx(padded), dy(padded), dz(padded), weights(padded);
+  for (std::size_t k = 0; k < padded; ++k)
+  {
+    double o[3];
+    do
+    {
+      for (double& c : o)
+      {
+        c = random.Uniform(-radius, radius);
+      }
+    } while (o[0] * o[0] + o[1] * o[1] + o[2] * o[2] >= radius * radius);
+    dx[k] = o[0];
+    dy[k] = o[1];
+    dz[k] = 0.1 * o[2];
+  }
+  const double normal[3] = { 0.0, 0.0, 1.0 };
+  volatile double sink = 0.0;
+  const double floorCall = FastestNanoseconds(
+    [&]
+    {
+      sink =
+        sink + pcbilateral::KernelArithmetic(
+                 build, dx.data(), dy.data(), dz.data(), padded, constants, normal, weights.data());
+    });
+  measurement.Floor = floorCall / static_cast<double>(padded);
+
+  // Candidates in the cube [-r, r]^3 around p: about pi / 6 of them are neighbours.
+  const std::size_t candidateCount =
+    static_cast<std::size_t>(static_cast<double>(neighbours) * 6.0 / M_PI);
+  pcbilateral::CandidateNeighbours candidates;
+  std::vector<double> cx(candidateCount), cy(candidateCount), cz(candidateCount);
+  for (std::size_t k = 0; k < candidateCount; ++k)
+  {
+    cx[k] = random.Uniform(-radius, radius);
+    cy[k] = random.Uniform(-radius, radius);
+    cz[k] = 0.1 * random.Uniform(-radius, radius);
+  }
+  candidates.Append(cx.data(), cy.data(), cz.data(), candidateCount);
+  const double p[3] = { 0.0, 0.0, 0.0 };
+  const pcbilateral::KernelInstructionSet previous = pcbilateral::GetKernelInstructionSet();
+  pcbilateral::SetKernelInstructionSet(build);
+  std::uint64_t found = 0, calls = 0;
+  const double kernelCall = FastestNanoseconds(
+    [&]
+    {
+      found += pcbilateral::FilterPoint(p, candidates, constants).NeighbourCount;
+      ++calls;
+    });
+  pcbilateral::SetKernelInstructionSet(previous);
+  measurement.Kernel = kernelCall / (static_cast<double>(found) / static_cast<double>(calls));
+  return measurement;
+}
+
+/// The floor table; returns the best build's floor at 256 neighbours (the cube's count).
+double PrintFloor()
+{
+  using pcbilateral::KernelInstructionSet;
+  std::printf("kernel floor: the arithmetic alone (2 exponentials and the sums) on packed "
+              "neighbours in L1,\nand the whole kernel on in-cache candidates (52%% "
+              "neighbours), ns per neighbour evaluation, 1 thread:\n");
+  std::printf("%-8s %11s %11s %12s %12s %14s\n",
+    "build",
+    "neighbours",
+    "floor ns",
+    "kernel ns",
+    "kernel/floor",
+    "floor evals/s");
+  double best = 0.0;
+  for (const KernelInstructionSet build :
+    { KernelInstructionSet::Generic, KernelInstructionSet::Avx2, KernelInstructionSet::Avx512 })
+  {
+    if (!pcbilateral::IsAvailable(build))
+    {
+      std::printf("%-8s not available on this machine or build\n", pcbilateral::GetName(build));
+      continue;
+    }
+    for (const std::size_t neighbours : { std::size_t{ 40 }, std::size_t{ 256 } })
+    {
+      const FloorMeasurement m = Floor(build, neighbours);
+      std::printf("%-8s %11zu %11.3f %12.3f %12.2f %14.3g\n",
+        pcbilateral::GetName(build),
+        neighbours,
+        m.Floor,
+        m.Kernel,
+        m.Kernel / m.Floor,
+        1e9 / m.Floor);
+      if (build == pcbilateral::GetKernelInstructionSet() && neighbours == 256)
+      {
+        best = m.Floor;
+      }
+    }
+    std::fflush(stdout);
+  }
+  std::printf("\n");
+  return best;
+}
+
+int Benchmark(int runs, bool skipTenMillion, const std::string& only, int onlyThreads)
+{
+  const Workload workloads[] = {
+    { "cube600k", 600000, Surface::Cube, 0.03, 0.05, 2, 0 },
+    { "sphere1M", 1000000, Surface::Sphere, 0.0, 0.0, 1, 0 },
+    { "sphere10M", 10000000, Surface::Sphere, 0.0, 0.0, 1, 1 },
+    { "lidar20M", LidarPoints, Surface::Lidar, LidarRadius, LidarNormalRadius, 2, 1 },
+  };
+  const double floor = PrintFloor();
+  std::printf("kernel build: %s (floor %.3f ns per evaluation)\n",
+    pcbilateral::GetName(pcbilateral::GetKernelInstructionSet()),
+    floor);
+  std::printf("%-9s %9s %2s %8s %3s %8s %7s %10s %11s %8s %7s %8s %7s %7s\n",
+    "workload",
+    "points",
+    "N",
+    "radius",
+    "thr",
+    "seconds",
+    "cpu s",
+    "points/s",
+    "evals/point",
+    "ns/eval",
+    "x floor",
+    "speedup",
+    "peak MB",
+    "B/point");
+  for (const Workload& workload : workloads)
+  {
+    if ((skipTenMillion && workload.Points >= 10000000) || (!only.empty() && only != workload.Name))
+    {
+      continue;
+    }
+    const int workloadRuns = workload.Runs > 0 ? workload.Runs : runs;
+    double oneThread = 0.0;
+    for (int threads : { 1, 2 })
+    {
+      if (onlyThreads > 0 && threads != onlyThreads)
+      {
+        continue;
+      }
+      double peak = 0.0;
+      const Measurement m = RunInChild(workload, threads, workloadRuns, peak);
+      if (!m.Ok)
+      {
+        std::printf("%-9s failed\n", workload.Name);
+        return EXIT_FAILURE;
+      }
+      oneThread = threads == 1 ? m.Seconds : oneThread;
+      const double pointsPerSecond = workload.Points * workload.Iterations / m.Seconds;
+      // Thread-seconds per neighbour evaluation: the whole filter's cost per unit of kernel work.
+      const double nsPerEvaluation = m.Seconds * threads * 1e9 / m.NeighbourEvaluations;
+      std::printf("%-9s %9zu %2d %8.4g %3d %8.3f %7.2f %10.3g %11.1f %8.2f %7.2f %8s %7.0f %7.0f\n",
+        workload.Name,
+        workload.Points,
+        workload.Iterations,
+        m.RadiusUsed,
+        threads,
+        m.Seconds,
+        m.CpuSeconds,
+        pointsPerSecond,
+        m.NeighbourEvaluations / workload.Points / workload.Iterations,
+        nsPerEvaluation,
+        nsPerEvaluation / floor,
+        threads == 1 ? "" : std::to_string(oneThread / m.Seconds).substr(0, 4).c_str(),
+        peak,
+        peak * 1048576.0 / workload.Points);
+      std::fflush(stdout);
+    }
+  }
+  std::printf("(median of %d runs; 10M and more: 1 run; cpu s: processor time of all threads; "
+              "ns/eval: thread-seconds per neighbour evaluation; x floor: over the 256-neighbour "
+              "floor; peak: the child's resident "
+              "memory, input included)\n",
+    runs);
+  return EXIT_SUCCESS;
+}
+
+int WriteLidar(const char* path)
+{
+  const std::vector<double> xyz = GenerateLidar(LidarPoints);
+  double bounds[6] = { 1e300, 1e300, 1e300, -1e300, -1e300, -1e300 };
+  for (std::size_t i = 0; i < LidarPoints; ++i)
+  {
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      bounds[axis] = std::min(bounds[axis], xyz[3 * i + axis]);
+      bounds[3 + axis] = std::max(bounds[3 + axis], xyz[3 * i + axis]);
+    }
+  }
+  // Point format 1 (GPS time, no colour), millimetres: what airborne surveys deliver.
+  pcbilateral::LASFileInfo info = pcbilateral::DefaultLASFileInfo(LidarPoints, bounds, true, false);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    info.Header.Scale[axis] = 0.001;
+  }
+  LASColumns columns(info, LidarPoints);
+  for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+  {
+    const std::size_t bytes =
+      LidarPoints * pcbilateral::LASSizeOf(info.Dimensions[d].Type) * info.Dimensions[d].Components;
+    std::memset(columns.Storage[d].get(), 0, bytes);
+  }
+  const std::string error =
+    pcbilateral::WriteLAS(path, info, LidarPoints, xyz.data(), columns.Columns.data());
+  if (!error.empty())
+  {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return EXIT_FAILURE;
+  }
+  std::printf("wrote %s (20,000,000 points); the workload's parameters: -r %g -n %g -N 2\n",
+    path,
+    LidarRadius,
+    LidarNormalRadius);
+  return EXIT_SUCCESS;
+}
+
+int WriteCube(const char* path)
+{
+  const Workload cube{ "cube600k", 600000, Surface::Cube, 0.03, 0.05, 2, 0 };
+  pcbilateral::PointCloudTable table;
+  table.NumberOfPoints = cube.Points;
+  table.Positions = Generate(cube);
+  const std::string error = pcbilateral::WritePointCloudText(path, table);
+  if (!error.empty())
+  {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return EXIT_FAILURE;
+  }
+  std::printf("wrote %s (600,000 points); the paper's parameters: -r 0.03 -n 0.05 -N 2\n", path);
+  return EXIT_SUCCESS;
+}
+
 int BenchmarkLAS(int runs, const std::string& folder)
 {
   const std::size_t count = 10000000;
   const std::string path = folder + "/pcb_benchmark_10M.las";
   const std::string copy = folder + "/pcb_benchmark_10M_copy.las";
   {
-    const Workload sphere{ "sphere10M", count, false, 0.0, 0.0, 1, 1 };
+    const Workload sphere{ "sphere10M", count, Surface::Sphere, 0.0, 0.0, 1, 1 };
     const std::vector<double> xyz = Generate(sphere);
     const double bounds[6] = { -1.1, -1.1, -1.1, 1.1, 1.1, 1.1 };
     const pcbilateral::LASFileInfo info =
@@ -393,6 +690,7 @@ int main(int argc, char* argv[])
   int runs = 3;
   bool skipTenMillion = false;
   std::string only;
+  int onlyThreads = 0;
   for (int i = 1; i < argc; ++i)
   {
     const std::string argument = argv[i];
@@ -407,6 +705,19 @@ int main(int argc, char* argv[])
     else if (argument == "--only" && i + 1 < argc)
     {
       only = argv[++i];
+    }
+    else if (argument == "--threads" && i + 1 < argc)
+    {
+      onlyThreads = std::atoi(argv[++i]);
+    }
+    else if (argument == "--floor")
+    {
+      PrintFloor();
+      return EXIT_SUCCESS;
+    }
+    else if (argument == "--write-lidar20M" && i + 1 < argc)
+    {
+      return WriteLidar(argv[i + 1]);
     }
     else if (argument == "--write-cube600k" && i + 1 < argc)
     {
@@ -423,12 +734,14 @@ int main(int argc, char* argv[])
     else
     {
       std::fprintf(stderr,
-        "usage: %s [--runs N] [--skip-10m] [--only cube600k|sphere1M|sphere10M] | "
-        "--write-cube600k FILE.xyz | [--runs N] --las FOLDER | "
+        "usage: %s [--runs N] [--skip-10m] [--threads 1|2] [--only "
+        "cube600k|sphere1M|sphere10M|lidar20M] | "
+        "--floor | --write-cube600k FILE.xyz | --write-lidar20M FILE.las | "
+        "[--runs N] --las FOLDER | "
         "[--runs N] --end-to-end PROGRAM ARGUMENTS...\n",
         argv[0]);
       return EXIT_FAILURE;
     }
   }
-  return Benchmark(runs, skipTenMillion, only);
+  return Benchmark(runs, skipTenMillion, only, onlyThreads);
 }
