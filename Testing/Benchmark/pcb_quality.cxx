@@ -306,6 +306,17 @@ int main(int argc, char* argv[])
     pcbilateral::BilateralParameters automatic;
     automatic.NumberOfIterations = 0;
     automatic = pcbilateral::ChooseParameters(scales, automatic);
+    std::fprintf(stderr,
+      "%s: spacing %.4g, sigma %.4g, curvature excess %.4g, feature fraction %.4g: r %.4g, rn "
+      "%.4g, N %d\n",
+      name.c_str(),
+      s,
+      sigma,
+      scales.CurvatureExcess,
+      scales.FeatureFraction,
+      automatic.Radius,
+      automatic.NormalRadius,
+      automatic.NumberOfIterations);
 
     // The grid, in the measured units: r geometric from min(3 s, 4 sigma) to max(36 s,
     // 20 sigma), rn from 1.5 to 7.5 sigma, N from 1 to 4. The 1M-point cases, where the wide
