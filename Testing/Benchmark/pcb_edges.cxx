@@ -16,6 +16,7 @@
 //   pcb_edges [--only SUBSTRING] [--no-cgal]
 #include "BilateralFilter.h"
 #include "CloudMeasurement.h"
+#include "GroundTruth.h"
 #include "SampleShapes.h"
 
 #include <algorithm>
@@ -38,51 +39,7 @@
 namespace
 {
 using namespace pcbilateral_samples;
-
-struct Quality
-{
-  double Rms = 0.0;
-  double EdgeRms = 0.0;
-};
-
-double Seconds(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-struct Truth
-{
-  const Shape* Surface = nullptr;
-  const NoisyCloud* Cloud = nullptr;
-  std::vector<std::uint8_t> NearEdge;
-  std::size_t EdgePoints = 0;
-
-  Quality Measure(const std::vector<double>& positions) const
-  {
-    double sum = 0.0, edgeSum = 0.0;
-    for (std::size_t i = 0; i < this->Cloud->NumberOfPoints(); ++i)
-    {
-      const double d =
-        this->Surface->Distance({ positions[3 * i], positions[3 * i + 1], positions[3 * i + 2] });
-      sum += d * d;
-      edgeSum += this->NearEdge[i] ? d * d : 0.0;
-    }
-    const double unit = 1e3 / this->Surface->Diagonal();
-    Quality quality;
-    quality.Rms = unit * std::sqrt(sum / static_cast<double>(this->Cloud->NumberOfPoints()));
-    quality.EdgeRms =
-      this->EdgePoints ? unit * std::sqrt(edgeSum / static_cast<double>(this->EdgePoints)) : 0.0;
-    return quality;
-  }
-};
-
-pcbilateral::PointCloudView View(const std::vector<double>& positions)
-{
-  pcbilateral::PointCloudView view;
-  view.NumberOfPoints = positions.size() / 3;
-  view.Positions = positions.data();
-  return view;
-}
+using namespace pcbilateral_benchmark;
 
 /// The best of a method over its grid: each setting is a function giving the positions after
 /// 1, 2, ... steps of it (a chain), so that every number of iterations is measured on the way.
@@ -357,17 +314,7 @@ int main(int argc, char* argv[])
     }
     const std::unique_ptr<Shape> shape = c.Make();
     const NoisyCloud cloud = MakeNoisyCloud(*shape, 20000, c.Noise, false, 0.0, seed);
-    Truth truth;
-    truth.Surface = shape.get();
-    truth.Cloud = &cloud;
-    truth.NearEdge.assign(cloud.NumberOfPoints(), 0);
-    const double band = 3.0 * cloud.Sigma + 0.03 * shape->Diagonal();
-    for (std::size_t i = 0; i < cloud.NumberOfPoints(); ++i)
-    {
-      const Vec3 clean{ cloud.Clean[3 * i], cloud.Clean[3 * i + 1], cloud.Clean[3 * i + 2] };
-      truth.NearEdge[i] = shape->EdgeDistance(clean) <= band;
-      truth.EdgePoints += truth.NearEdge[i];
-    }
+    const Truth truth(*shape, cloud, 1e3 / shape->Diagonal());
     const bool hasEdges = truth.EdgePoints > 0;
     const Quality noisy = truth.Measure(cloud.Positions);
     pcbilateral::ScaleMeasurementOptions options;

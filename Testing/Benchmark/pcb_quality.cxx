@@ -19,6 +19,7 @@
 //       on a 600k-point cube and a 1M-point sphere (noise 0.5%).
 #include "BilateralFilter.h"
 #include "CloudMeasurement.h"
+#include "GroundTruth.h"
 #include "SampleShapes.h"
 
 #include <algorithm>
@@ -33,6 +34,7 @@
 namespace
 {
 using namespace pcbilateral_samples;
+using namespace pcbilateral_benchmark;
 
 struct Case
 {
@@ -44,60 +46,6 @@ struct Case
   double Outliers;
   bool Big; // left out by --quick; coarser grid
 };
-
-struct Quality
-{
-  double Rms = 0.0;
-  double EdgeRms = 0.0;
-};
-
-double Seconds(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-/// The ground truth a case is judged against.
-struct Truth
-{
-  const Shape* Surface = nullptr;
-  const NoisyCloud* Cloud = nullptr;
-  std::vector<std::uint8_t> NearEdge;
-  std::size_t EdgePoints = 0;
-
-  Quality Measure(const std::vector<double>& positions) const
-  {
-    double sum = 0.0, edgeSum = 0.0;
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < this->Cloud->NumberOfPoints(); ++i)
-    {
-      if (this->Cloud->Outlier[i])
-      {
-        continue;
-      }
-      const double d =
-        this->Surface->Distance({ positions[3 * i], positions[3 * i + 1], positions[3 * i + 2] });
-      sum += d * d;
-      ++count;
-      if (this->NearEdge[i])
-      {
-        edgeSum += d * d;
-      }
-    }
-    Quality quality;
-    quality.Rms = std::sqrt(sum / static_cast<double>(count));
-    quality.EdgeRms =
-      this->EdgePoints ? std::sqrt(edgeSum / static_cast<double>(this->EdgePoints)) : 0.0;
-    return quality;
-  }
-};
-
-pcbilateral::PointCloudView View(const std::vector<double>& positions)
-{
-  pcbilateral::PointCloudView view;
-  view.NumberOfPoints = positions.size() / 3;
-  view.Positions = positions.data();
-  return view;
-}
 
 /// N iterations with radius r and normal radius rn, one at a time so that every N up to the
 /// last is measured on the way (the same as a run of N iterations but for the order of sums).
@@ -283,17 +231,7 @@ int main(int argc, char* argv[])
     const std::unique_ptr<Shape> shape = c.Make();
     const NoisyCloud cloud =
       MakeNoisyCloud(*shape, c.Points, c.Noise, c.ScanLines, c.Outliers, seed);
-    Truth truth;
-    truth.Surface = shape.get();
-    truth.Cloud = &cloud;
-    truth.NearEdge.assign(cloud.NumberOfPoints(), 0);
-    const double band = 3.0 * cloud.Sigma + 0.03 * shape->Diagonal();
-    for (std::size_t i = 0; i < cloud.NumberOfPoints(); ++i)
-    {
-      const Vec3 clean{ cloud.Clean[3 * i], cloud.Clean[3 * i + 1], cloud.Clean[3 * i + 2] };
-      truth.NearEdge[i] = !cloud.Outlier[i] && shape->EdgeDistance(clean) <= band;
-      truth.EdgePoints += truth.NearEdge[i];
-    }
+    const Truth truth(*shape, cloud);
     const bool hasEdges = truth.EdgePoints > 0;
     const Quality noisy = truth.Measure(cloud.Positions);
 

@@ -71,21 +71,6 @@ BilateralResult Run(const std::vector<double>& positions, BilateralParameters pa
   return result;
 }
 
-std::uint64_t Hash(const std::vector<double>& values)
-{
-  std::uint64_t hash = 14695981039346656037ULL; // FNV-1a
-  for (const double value : values)
-  {
-    unsigned char bytes[sizeof(double)];
-    std::memcpy(bytes, &value, sizeof(value));
-    for (const unsigned char byte : bytes)
-    {
-      hash = (hash ^ byte) * 1099511628211ULL;
-    }
-  }
-  return hash;
-}
-
 /// r = 12 spacings, rn = 5 sigma, N = 2 from the measured spacing and noise: near the best of
 /// both modes on these shapes (pcb_edges).
 BilateralParameters Parameters(const std::vector<double>& positions, bool edgeAware)
@@ -163,7 +148,8 @@ void Determinism()
     {
       parameters.NumberOfThreads = threads;
       const BilateralResult result = Run(cloud.Positions, parameters);
-      const std::uint64_t hash = Hash(result.Positions) ^ (Hash(result.Normals) << 1);
+      const std::uint64_t hash = pcbilateral_testing::HashBits(result.Positions) ^
+                                 (pcbilateral_testing::HashBits(result.Normals) << 1);
       std::printf("%s, %d thread(s): 0x%016llx\n",
         GetName(set),
         threads,

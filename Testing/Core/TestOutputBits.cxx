@@ -39,20 +39,6 @@ std::vector<double> NoisyCube(std::size_t count)
   return xyz;
 }
 
-std::uint64_t Hash(const std::vector<double>& values)
-{
-  std::uint64_t hash = 14695981039346656037ULL; // FNV-1a
-  for (const double value : values)
-  {
-    unsigned char bytes[sizeof(double)];
-    std::memcpy(bytes, &value, sizeof(value));
-    for (const unsigned char byte : bytes)
-    {
-      hash = (hash ^ byte) * 1099511628211ULL;
-    }
-  }
-  return hash;
-}
 } // namespace
 
 int main()
@@ -84,7 +70,7 @@ int main()
       parameters.NumberOfThreads = threads;
       const BilateralResult result = RunBilateralFilter(cloud, parameters);
       PCB_CHECK(result.Status == BilateralStatus::Completed, "%s", result.Error.c_str());
-      const std::uint64_t hash = Hash(result.Positions);
+      const std::uint64_t hash = pcbilateral_testing::HashBits(result.Positions);
       std::printf("%s, %d thread(s): 0x%016llx\n",
         GetName(set),
         threads,
