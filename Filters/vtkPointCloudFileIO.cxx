@@ -379,6 +379,27 @@ vtkAlgorithm* vtkPointCloudFileIO::NewReader(const char* path)
   return nullptr;
 }
 
+std::string vtkPointCloudFileIO::CheckFileName(const char* path, bool forWriting)
+{
+  const std::string name = path ? path : "";
+  if (!IsSupported(path))
+  {
+    return name + ": unsupported file type '" + Extension(path) + "' (use " +
+           GetSupportedExtensions() + ")";
+  }
+  if (forWriting && Extension(path) == ".laz")
+  {
+    return name + ": compressed LAS (LAZ) is not written: write .las (then compress it with "
+                  "laszip if needed)";
+  }
+  return std::string();
+}
+
+bool vtkPointCloudFileIO::IsTextFormat(const char* path)
+{
+  return IsText(Extension(path));
+}
+
 vtkAlgorithm* vtkPointCloudFileIO::NewWriter(const char* path)
 {
   const std::string extension = Extension(path);

@@ -54,6 +54,16 @@ public:
   static bool IsSupported(const char* path);
 
   /**
+   * Whether a file of this name can be read (`forWriting` false) or written (true), judged by
+   * its extension alone: an empty string, or one line naming the file and the problem (an
+   * unsupported extension; .laz for writing).
+   */
+  static std::string CheckFileName(const char* path, bool forWriting);
+
+  /// Whether the path names a file of the authors' text format (.txt, .xyz).
+  static bool IsTextFormat(const char* path);
+
+  /**
    * A new reader for the path's extension with its file name set, or nullptr for an unknown
    * extension. It is not run and the file is not checked (see CheckInputFile()). The caller
    * owns it.

@@ -20,8 +20,6 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 
-#include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <climits>
@@ -29,7 +27,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -110,32 +107,12 @@ struct ReportMessages
   std::exit(EXIT_FAILURE);
 }
 
-std::string Extension(const std::string& path)
+void CheckFileName(const std::string& path, bool output)
 {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(),
-    extension.end(),
-    extension.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
-}
-
-bool IsText(const std::string& extension)
-{
-  return extension == ".txt" || extension == ".xyz";
-}
-
-void CheckFormat(const std::string& path, bool output)
-{
-  if (!vtkPointCloudFileIO::IsSupported(path.c_str()))
+  const std::string problem = vtkPointCloudFileIO::CheckFileName(path.c_str(), output);
+  if (!problem.empty())
   {
-    Fail(path + ": unsupported file type '" + Extension(path) + "' (use " +
-         vtkPointCloudFileIO::GetSupportedExtensions() + ")");
-  }
-  if (output && Extension(path) == ".laz")
-  {
-    Fail(path + ": compressed LAS (LAZ) is not written: write .las (then compress it with "
-                "laszip if needed)");
+    Fail(problem);
   }
 }
 
@@ -262,8 +239,8 @@ Options ParseArguments(int argc, char* argv[])
   {
     Fail(problem);
   }
-  CheckFormat(options.Input, false);
-  CheckFormat(options.Output, true);
+  CheckFileName(options.Input, false);
+  CheckFileName(options.Output, true);
   return options;
 }
 
@@ -363,7 +340,7 @@ int main(int argc, char* argv[])
       static_cast<long long>(filter->GetNumberOfRemovedPoints()));
   }
   std::printf("filtering:     %.3f s\n", seconds);
-  if (IsText(Extension(options.Output)))
+  if (vtkPointCloudFileIO::IsTextFormat(options.Output.c_str()))
   {
     // The authors' layout: the input's columns in order, no columns of the filter's own.
     output->GetPointData()->RemoveArray("vtkOriginalPointIds");
