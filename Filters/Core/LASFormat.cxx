@@ -1,5 +1,7 @@
 #include "LASFormat.h"
 
+#include "ReplacingFile.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -889,18 +891,12 @@ std::string WriteLAS(const std::string& path,
     return path + ": the variable-length records are too long for a LAS header";
   }
 
-  const std::string temporary = path + ".partial";
-  std::FILE* file = std::fopen(temporary.c_str(), "wb");
+  ReplacingFile output(path);
+  std::FILE* file = output.Get();
   if (!file)
   {
-    return path + ": cannot be written (" + std::strerror(errno) + ")";
+    return output.OpenError();
   }
-  auto fail = [&](const std::string& message)
-  {
-    std::fclose(file);
-    std::remove(temporary.c_str());
-    return path + ": " + message;
-  };
 
   // The header's place first; it is written again at the end with the bounds and counts.
   std::vector<std::uint8_t> header(headerSize, 0);
@@ -1048,8 +1044,8 @@ std::string WriteLAS(const std::string& path,
       if (summaries[firstBlock + static_cast<std::size_t>(b)].OutOfRange)
       {
         finishWriting();
-        return fail("a point's coordinates do not fit the LAS records' 32-bit integers with "
-                    "the scale and offset of the header (or are not finite)");
+        return path + ": a point's coordinates do not fit the LAS records' 32-bit integers with "
+                      "the scale and offset of the header (or are not finite)";
       }
     }
     const std::size_t first = firstBlock * PointsPerBlock;
@@ -1094,14 +1090,7 @@ std::string WriteLAS(const std::string& path,
     bounds);
   ok = ok && std::fseek(file, 0, SEEK_SET) == 0 &&
        std::fwrite(header.data(), 1, header.size(), file) == header.size();
-  ok = (std::fclose(file) == 0) && ok;
-  if (!ok || std::rename(temporary.c_str(), path.c_str()) != 0)
-  {
-    const std::string reason = std::strerror(errno);
-    std::remove(temporary.c_str());
-    return path + ": write failed (" + reason + ")";
-  }
-  return std::string();
+  return output.Commit(ok);
 }
 
 LASFileInfo DefaultLASFileInfo(std::size_t count, const double bounds[6], bool gpsTime, bool rgb)

@@ -1,5 +1,7 @@
 #include "PointCloudText.h"
 
+#include "ReplacingFile.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -304,11 +306,11 @@ std::string ReadPointCloudText(const std::string& path, bool hasNormals, PointCl
 
 std::string WritePointCloudText(const std::string& path, const PointCloudTable& table)
 {
-  const std::string temporary = path + ".partial";
-  std::FILE* file = std::fopen(temporary.c_str(), "wb");
+  ReplacingFile output(path);
+  std::FILE* file = output.Get();
   if (file == nullptr)
   {
-    return path + ": cannot be written (" + std::strerror(errno) + ")";
+    return output.OpenError();
   }
   const bool withNormals =
     table.Normals.size() == 3 * table.NumberOfPoints && !table.Normals.empty();
@@ -381,14 +383,7 @@ std::string WritePointCloudText(const std::string& path, const PointCloudTable& 
       ok = std::fwrite(blocks[b].data(), 1, blocks[b].size(), file) == blocks[b].size();
     }
   }
-  ok = (std::fclose(file) == 0) && ok;
-  if (!ok || std::rename(temporary.c_str(), path.c_str()) != 0)
-  {
-    const std::string reason = std::strerror(errno);
-    std::remove(temporary.c_str());
-    return path + ": write failed (" + reason + ")";
-  }
-  return std::string();
+  return output.Commit(ok);
 }
 
 } // namespace pcbilateral
