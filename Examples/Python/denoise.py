@@ -103,6 +103,18 @@ def make_filter(source, args):
     )
 
 
+def run_filter(source, args):
+    """The bilateral filter on `source`, run; exits with a message when it gave no points.
+    Returns the filter and its number of output points."""
+    bilateral = make_filter(source, args)
+    bilateral.UpdatePipeline()
+    bilateral.UpdatePropertyInformation()
+    points = bilateral.GetDataInformation().GetNumberOfPoints()
+    if points == 0:
+        sys.exit("error: the filter produced no points (see the messages above)")
+    return bilateral, points
+
+
 def describe_run(bilateral):
     """What the last run measured and used (call UpdatePropertyInformation first)."""
     measured = ""
@@ -123,12 +135,7 @@ def main():
     where = load_plugin(args.plugin)
     reader = open_cloud(args.input, args.oriented_normals)
     reader.UpdatePipeline()
-    bilateral = make_filter(reader, args)
-    bilateral.UpdatePipeline()
-    bilateral.UpdatePropertyInformation()
-    points = bilateral.GetDataInformation().GetNumberOfPoints()
-    if points == 0:
-        sys.exit("error: the filter produced no points (see the messages above)")
+    bilateral, points = run_filter(reader, args)
     if args.output.endswith((".xyz", ".txt")):
         simple.SaveData(args.output, proxy=bilateral, WriteNormals=int(args.oriented_normals))
     else:

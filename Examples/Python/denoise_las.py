@@ -17,7 +17,7 @@ import sys
 from paraview import simple
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from denoise import add_filter_arguments, describe_run, load_plugin, make_filter  # noqa: E402
+from denoise import add_filter_arguments, describe_run, load_plugin, run_filter  # noqa: E402
 
 
 def main():
@@ -37,12 +37,7 @@ def main():
     count = reader.GetDataInformation().GetNumberOfPoints()
     if count == 0:
         sys.exit(f"error: {args.input}: no points read (see the message above)")
-    bilateral = make_filter(reader, args)
-    bilateral.UpdatePipeline()
-    bilateral.UpdatePropertyInformation()
-    points = bilateral.GetDataInformation().GetNumberOfPoints()
-    if points == 0:
-        sys.exit("error: the filter produced no points (see the messages above)")
+    bilateral, points = run_filter(reader, args)
     # The LAS writer takes the point format, scales, offsets and records of the file read from
     # the field data the reader left, which the filter passes on.
     simple.SaveData(args.output, proxy=bilateral)

@@ -27,7 +27,7 @@ from vtkmodules.vtkParallelCore import vtkMultiProcessController
 
 # The plugin search, the reader choice and the filter's options are denoise.py's, beside this.
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from denoise import add_filter_arguments, describe_run, load_plugin, make_filter, open_cloud  # noqa: E402
+from denoise import add_filter_arguments, describe_run, load_plugin, open_cloud, run_filter  # noqa: E402
 
 
 def main():
@@ -48,13 +48,8 @@ def main():
     start = time.perf_counter()
     parts.UpdatePipeline()
     read = time.perf_counter()
-    bilateral = make_filter(parts, args)
-    bilateral.UpdatePipeline()
+    bilateral, points = run_filter(parts, args)
     filtered = time.perf_counter()
-    bilateral.UpdatePropertyInformation()
-    points = bilateral.GetDataInformation().GetNumberOfPoints()
-    if points == 0:
-        sys.exit("error: the filter produced no points (see the messages above)")
     simple.SaveData(args.output, proxy=bilateral)
     written = time.perf_counter()
     print(f"plugin: {where}")
