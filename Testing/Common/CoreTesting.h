@@ -2,14 +2,11 @@
 #ifndef pcbilateral_CoreTesting_h
 #define pcbilateral_CoreTesting_h
 
-#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <functional>
 #include <map>
 #include <string>
-#include <vector>
 
 namespace pcbilateral_testing
 {
@@ -17,22 +14,6 @@ inline int& FailureCount()
 {
   static int failures = 0;
   return failures;
-}
-
-/// FNV-1a over the bytes of the values: a pinned fingerprint of a run's output bits.
-inline std::uint64_t HashBits(const std::vector<double>& values)
-{
-  std::uint64_t hash = 14695981039346656037ULL;
-  for (const double value : values)
-  {
-    unsigned char bytes[sizeof(double)];
-    std::memcpy(bytes, &value, sizeof(value));
-    for (const unsigned char byte : bytes)
-    {
-      hash = (hash ^ byte) * 1099511628211ULL;
-    }
-  }
-  return hash;
 }
 } // namespace pcbilateral_testing
 

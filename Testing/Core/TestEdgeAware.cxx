@@ -11,7 +11,7 @@
 #include "BilateralFilter.h"
 #include "BilateralKernel.h"
 #include "CloudMeasurement.h"
-#include "CoreTesting.h"
+#include "PinnedBits.h"
 #include "SampleShapes.h"
 
 #include <cmath>
@@ -135,34 +135,15 @@ void Determinism()
   parameters.NumberOfIterations = 2;
   parameters.EdgeAware = true;
   parameters.ComputeNormals = true;
-  const KernelInstructionSet best = GetKernelInstructionSet();
-  for (const auto set :
-    { KernelInstructionSet::Generic, KernelInstructionSet::Avx2, KernelInstructionSet::Avx512 })
-  {
-    if (!SetKernelInstructionSet(set))
-    {
-      std::printf("%s: not available here\n", GetName(set));
-      continue;
-    }
-    for (const int threads : { 1, 2, 4 })
+  pcbilateral_testing::CheckPinnedBits(Expected,
+    { 1, 2, 4 },
+    [&](int threads)
     {
       parameters.NumberOfThreads = threads;
       const BilateralResult result = Run(cloud.Positions, parameters);
-      const std::uint64_t hash = pcbilateral_testing::HashBits(result.Positions) ^
-                                 (pcbilateral_testing::HashBits(result.Normals) << 1);
-      std::printf("%s, %d thread(s): 0x%016llx\n",
-        GetName(set),
-        threads,
-        static_cast<unsigned long long>(hash));
-      PCB_CHECK(hash == Expected,
-        "%s, %d thread(s): hash 0x%016llx, expected 0x%016llx",
-        GetName(set),
-        threads,
-        static_cast<unsigned long long>(hash),
-        static_cast<unsigned long long>(Expected));
-    }
-  }
-  SetKernelInstructionSet(best);
+      return pcbilateral_testing::HashBits(result.Positions) ^
+             (pcbilateral_testing::HashBits(result.Normals) << 1);
+    });
 }
 
 void Inputs()

@@ -5,7 +5,7 @@
 // and cos.)
 #include "BilateralFilter.h"
 #include "BilateralKernel.h"
-#include "CoreTesting.h"
+#include "PinnedBits.h"
 #include "SampleShapes.h"
 
 #include <cmath>
@@ -56,33 +56,14 @@ int main()
   parameters.NormalRadius = 0.03;
   parameters.NumberOfIterations = 3;
 
-  const KernelInstructionSet best = GetKernelInstructionSet();
-  for (const auto set :
-    { KernelInstructionSet::Generic, KernelInstructionSet::Avx2, KernelInstructionSet::Avx512 })
-  {
-    if (!SetKernelInstructionSet(set))
-    {
-      std::printf("%s: not available here\n", GetName(set));
-      continue;
-    }
-    for (const int threads : { 1, 2, 3 })
+  pcbilateral_testing::CheckPinnedBits(Expected,
+    { 1, 2, 3 },
+    [&](int threads)
     {
       parameters.NumberOfThreads = threads;
       const BilateralResult result = RunBilateralFilter(cloud, parameters);
       PCB_CHECK(result.Status == BilateralStatus::Completed, "%s", result.Error.c_str());
-      const std::uint64_t hash = pcbilateral_testing::HashBits(result.Positions);
-      std::printf("%s, %d thread(s): 0x%016llx\n",
-        GetName(set),
-        threads,
-        static_cast<unsigned long long>(hash));
-      PCB_CHECK(hash == Expected,
-        "%s, %d thread(s): output hash 0x%016llx, expected 0x%016llx",
-        GetName(set),
-        threads,
-        static_cast<unsigned long long>(hash),
-        static_cast<unsigned long long>(Expected));
-    }
-  }
-  SetKernelInstructionSet(best);
+      return pcbilateral_testing::HashBits(result.Positions);
+    });
   return PCB_TEST_RESULT();
 }
