@@ -80,24 +80,19 @@ std::uint64_t SelectionKey(const double* p)
   return Mix(MeasurementKey(p) ^ 0x5bd1e995ull);
 }
 
-/// The indices of the count finite points with the smallest (key, coordinates), in that order.
-std::vector<std::size_t> SmallestKeys(const PointCloudView& cloud, std::size_t count)
+/// A finite point's MeasurementKey and index.
+struct KeyedPoint
 {
-  struct Keyed
-  {
-    std::uint64_t Key;
-    std::size_t Index;
-  };
-  std::vector<Keyed> keyed;
-  keyed.reserve(cloud.NumberOfPoints);
-  for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
-  {
-    if (IsFinitePoint(cloud.Positions + 3 * i))
-    {
-      keyed.push_back({ MeasurementKey(cloud.Positions + 3 * i), i });
-    }
-  }
-  auto before = [&](const Keyed& a, const Keyed& b)
+  std::uint64_t Key;
+  std::size_t Index;
+};
+
+/// The indices of the count points with the smallest (key, coordinates), in that order.
+std::vector<std::size_t> SmallestKeys(const PointCloudView& cloud,
+  std::vector<KeyedPoint> keyed,
+  std::size_t count)
+{
+  auto before = [&](const KeyedPoint& a, const KeyedPoint& b)
   {
     if (a.Key != b.Key)
     {
@@ -685,7 +680,10 @@ CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOpt
     return scales;
   }
 
-  // The finite points, and their level: level l holds the points with key < 4^-l.
+  // The finite points with their keys, and their level: level l holds the points with key
+  // < 4^-l.
+  std::vector<KeyedPoint> keyed;
+  keyed.reserve(n);
   std::vector<std::vector<std::size_t>> levels(1);
   for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
   {
@@ -694,6 +692,7 @@ CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOpt
       continue;
     }
     const std::uint64_t key = MeasurementKey(cloud.Positions + 3 * i);
+    keyed.push_back({ key, i });
     // Each level keeps the keys whose top 2l bits are zero.
     std::size_t level = 0;
     while (level < 28 && (key >> (62 - 2 * level)) == 0)
@@ -745,7 +744,7 @@ CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOpt
   std::vector<std::size_t> samples = options.SampleIndices;
   if (samples.empty())
   {
-    samples = SmallestKeys(cloud, std::min(options.NumberOfSamples, n));
+    samples = SmallestKeys(cloud, std::move(keyed), std::min(options.NumberOfSamples, n));
   }
   samples.erase(std::remove_if(samples.begin(),
                   samples.end(),
