@@ -93,7 +93,7 @@ import -window "$panel" -crop 520x430+0+0 "$out/properties_panel.png"
 
 # Colour by the displacement: tick Output Displacement Length, Apply, choose it in the toolbar's
 # colour list (typing its first letter selects it).
-xdotool mousemove 917 587 click 1
+xdotool mousemove 917 614 click 1
 sleep 0.5
 xdotool mousemove 970 101 click 1
 sleep 5
