@@ -41,7 +41,7 @@ enum class AutomaticParameters
 {
   /// From the cloud's measured point spacing and noise (CloudMeasurement.h, README.md
   /// "Automatic parameters"): r = 5 spacings + 4 sigma, rn = 5 sigma, N = 2 (flat clouds:
-  /// 1.5 r, N = 3).
+  /// 1.5 r, N = 3; smooth clouds with noise below half a spacing: 1.25 r, rn = r, N = 1).
   Measured = 0,
   /// The paper's heuristic: r = sqrt(20 / number of points) x the bounding box's largest
   /// extent, rn = r, N = 1 (the authors' program).

@@ -2,7 +2,7 @@
 // automatic parameters against a grid search, the paper's heuristic and the old default.
 // Built with the project (core only), run by hand (see README.md, "Automatic parameters"):
 //
-//   pcb_quality [--quick] [--only SUBSTRING] [--csv FILE]
+//   pcb_quality [--quick] [--no-grid] [--only SUBSTRING] [--csv FILE]
 //       each case: a shape (cube, sharp edge, cylinder with a planar cut, sphere, CAD part,
 //       terrain), noise 0.1%, 0.5% or 1% of the diagonal, 20k to 1M points, uniform or
 //       scan-line density, with or without 1% outliers. Prints a Markdown table of the RMS
@@ -13,7 +13,9 @@
 //       (r = 2.5% of the largest extent, rn = r, N = 1) and the automatic mode. --csv writes
 //       every grid point; --quick runs the small cases only. The grid: r from 3 spacings or
 //       4 sigma to 36 spacings or 20 sigma, rn from 1.5 to 7.5 sigma, N from 1 to 4 (coarser
-//       for 100k points; around the automatic r for 1M points).
+//       for 100k points; around the automatic r for 1M points). --no-grid leaves the grid out
+//       (its columns print as "–"): the quick check of a change to the automatic rule, whose
+//       grid bests stay those of the last full run as long as the measurement is unchanged.
 //   pcb_quality --cost
 //       times MeasureScales against one filter iteration with the automatic radius, 1 thread,
 //       on a 600k-point cube and a 1M-point sphere (noise 0.5%).
@@ -183,6 +185,7 @@ std::string Describe(const Case& c)
 int main(int argc, char* argv[])
 {
   bool quick = false;
+  bool grid = true;
   std::string only;
   FILE* csv = nullptr;
   for (int i = 1; i < argc; ++i)
@@ -191,6 +194,10 @@ int main(int argc, char* argv[])
     if (argument == "--quick")
     {
       quick = true;
+    }
+    else if (argument == "--no-grid")
+    {
+      grid = false;
     }
     else if (argument == "--only" && i + 1 < argc)
     {
@@ -206,8 +213,9 @@ int main(int argc, char* argv[])
     }
     else
     {
-      std::fprintf(
-        stderr, "usage: %s [--quick] [--only SUBSTRING] [--csv FILE] | --cost\n", argv[0]);
+      std::fprintf(stderr,
+        "usage: %s [--quick] [--no-grid] [--only SUBSTRING] [--csv FILE] | --cost\n",
+        argv[0]);
       return EXIT_FAILURE;
     }
   }
@@ -245,13 +253,15 @@ int main(int argc, char* argv[])
     automatic.NumberOfIterations = 0;
     automatic = pcbilateral::ChooseParameters(scales, automatic);
     std::fprintf(stderr,
-      "%s: spacing %.4g, sigma %.4g, curvature excess %.4g, feature fraction %.4g: r %.4g, rn "
+      "%s: spacing %.4g, sigma %.4g, curvature excess %.4g, feature fraction %.4g, crease fraction "
+      "%.4g: r %.4g, rn "
       "%.4g, N %d\n",
       name.c_str(),
       s,
       sigma,
       scales.CurvatureExcess,
       scales.FeatureFraction,
+      scales.CreaseFraction,
       automatic.Radius,
       automatic.NormalRadius,
       automatic.NumberOfIterations);
@@ -260,7 +270,11 @@ int main(int argc, char* argv[])
     // 20 sigma), rn from 1.5 to 7.5 sigma, N from 1 to 4. The 1M-point cases, where the wide
     // grid would take hours, search around the automatic radius (0.5 to 2 times) instead.
     std::vector<double> radii, normalRadii;
-    if (c.Points >= 1000000)
+    if (!grid)
+    {
+      // radii stays empty: no grid point is run.
+    }
+    else if (c.Points >= 1000000)
     {
       for (double k : { 0.5, 0.7, 1.0, 1.4, 2.0 })
       {
@@ -335,30 +349,32 @@ int main(int argc, char* argv[])
     const Quality oldQuality = RunOnce(truth, old);
     const Quality autoQuality = RunOnce(truth, automatic);
 
-    auto edge = [&](const Quality& q)
+    auto format = [](const char* pattern, double value)
     {
       char text[32];
-      std::snprintf(text, sizeof text, hasEdges ? "%.3g" : "–", q.EdgeRms);
+      std::snprintf(text, sizeof text, pattern, value);
       return std::string(text);
     };
-    std::printf(
-      "| %s | %.3g | %.3g (%s) | %s%s%s%s | %.3g / %s | %.3g / %s | %.3g | %s | %.2f | %s |\n",
+    auto edge = [&](const Quality& q) { return hasEdges ? format("%.3g", q.EdgeRms) : "–"; };
+    const std::string gridBest = grid ? format("%.3g", best.Rms) + " (" + bestAt + ")" : "–";
+    const std::string gridBestEdge =
+      grid && hasEdges ? format("%.3g", best.EdgeRms) + " (" + bestEdgeAt + ")" : "–";
+    const std::string ratio = grid ? format("%.2f", autoQuality.Rms / best.Rms) : "–";
+    const std::string edgeRatio =
+      grid && hasEdges ? format("%.2f", autoQuality.EdgeRms / best.EdgeRms) : "–";
+    std::printf("| %s | %.3g | %s | %s | %.3g / %s | %.3g / %s | %.3g | %s | %s | %s |\n",
       name.c_str(),
       noisy.Rms,
-      best.Rms,
-      bestAt.c_str(),
-      edge(best).c_str(),
-      hasEdges ? " (" : "",
-      hasEdges ? bestEdgeAt.c_str() : "",
-      hasEdges ? ")" : "",
+      gridBest.c_str(),
+      gridBestEdge.c_str(),
       paperQuality.Rms,
       edge(paperQuality).c_str(),
       oldQuality.Rms,
       edge(oldQuality).c_str(),
       autoQuality.Rms,
       edge(autoQuality).c_str(),
-      autoQuality.Rms / best.Rms,
-      hasEdges ? std::to_string(autoQuality.EdgeRms / best.EdgeRms).substr(0, 4).c_str() : "–");
+      ratio.c_str(),
+      edgeRatio.c_str());
     std::fflush(stdout);
   }
   if (csv)
