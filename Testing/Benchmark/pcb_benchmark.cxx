@@ -244,8 +244,7 @@ struct LASColumns
   {
     for (const pcbilateral::LASDimension& dimension : info.Dimensions)
     {
-      Storage.emplace_back(
-        new std::uint8_t[count * pcbilateral::LASSizeOf(dimension.Type) * dimension.Components]);
+      Storage.emplace_back(new std::uint8_t[count * pcbilateral::LASColumnBytes(dimension)]);
       Columns.push_back(Storage.back().get());
     }
   }
@@ -501,8 +500,7 @@ int WriteLidar(const char* path)
   LASColumns columns(info, LidarPoints);
   for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
   {
-    const std::size_t bytes =
-      LidarPoints * pcbilateral::LASSizeOf(info.Dimensions[d].Type) * info.Dimensions[d].Components;
+    const std::size_t bytes = LidarPoints * pcbilateral::LASColumnBytes(info.Dimensions[d]);
     std::memset(columns.Storage[d].get(), 0, bytes);
   }
   const std::string error =
@@ -549,8 +547,7 @@ int BenchmarkLAS(int runs, const std::string& folder)
     LASColumns columns(info, count);
     for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
     {
-      const std::size_t bytes =
-        count * pcbilateral::LASSizeOf(info.Dimensions[d].Type) * info.Dimensions[d].Components;
+      const std::size_t bytes = count * pcbilateral::LASColumnBytes(info.Dimensions[d]);
       for (std::size_t b = 0; b < bytes; ++b)
       {
         columns.Storage[d][b] = static_cast<std::uint8_t>(b * 2654435761u >> 13);

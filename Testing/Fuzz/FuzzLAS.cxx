@@ -43,8 +43,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::vector<void*> columns;
   for (const pcbilateral::LASDimension& dimension : info.Dimensions)
   {
-    storage.emplace_back(count * pcbilateral::LASSizeOf(dimension.Type) *
-                         static_cast<std::size_t>(dimension.Components));
+    storage.emplace_back(count * pcbilateral::LASColumnBytes(dimension));
     columns.push_back(storage.back().data());
   }
   pcbilateral::DecodeLASPoints(
