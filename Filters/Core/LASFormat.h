@@ -138,7 +138,8 @@ std::string ParseLASHeader(const std::uint8_t* data,
  * coordinates as doubles into `positions` (x y z interleaved), and each of
  * `info.Dimensions` into `columns[d]` (Components values of the dimension's ColumnType per
  * point; a null column is skipped). Parallel (OpenMP); each thread first touches the part of
- * the outputs it writes.
+ * the outputs it writes, and the outputs are expected to be fresh memory (large ones are
+ * advised to the kernel as huge pages).
  */
 void DecodeLASPoints(const LASFileInfo& info,
   const std::uint8_t* records,
