@@ -431,7 +431,9 @@ std::string LASDimensionsFor(int pointFormat,
 
   // The extra bytes, named by their descriptors.
   std::size_t at = standard;
-  std::set<std::string> names;
+  // "Colors" is taken too: the readers add the display colours under that name, which would
+  // replace an extra-bytes field of that name (and the writer would write them in its place).
+  std::set<std::string> names = { "Colors" };
   for (const LASDimension& dimension : dimensions)
   {
     names.insert(dimension.Name);

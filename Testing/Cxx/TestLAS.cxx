@@ -625,6 +625,32 @@ void TestScanAngle()
   CheckRecordsWrittenBack("scan-angle.las", read, "scan-angle-again.las");
 }
 
+void TestExtraBytesNamedColors()
+{
+  // Format 2 (RGB) with 3 extra bytes named "Colors" (3 unsigned bytes, type 21): the reader's
+  // display colours, also "Colors", must not replace them.
+  const std::vector<char> vlr = ExtraBytesVLR({ Descriptor(21, 0, "Colors", {}, {}) });
+  const int count = 5;
+  std::vector<char> records(static_cast<std::size_t>(29) * count, 0);
+  for (int i = 0; i < count; ++i)
+  {
+    const std::size_t at = static_cast<std::size_t>(i) * 29;
+    for (int c = 0; c < 3; ++c)
+    {
+      Put<std::uint16_t>(records, at + 20 + 2 * c, static_cast<std::uint16_t>(1000 * (c + 1)));
+      records[at + 26 + c] = static_cast<char>(10 * i + c);
+    }
+  }
+  WriteBytes("extra-colors.las", HandMadeLAS(2, 29, vlr, records));
+  vtkSmartPointer<vtkPolyData> read = Read("extra-colors.las");
+  vtkDataArray* extra = read->GetPointData()->GetArray("Colors_2");
+  PCB_CHECK(extra && extra->GetNumberOfComponents() == 3 && extra->GetComponent(4, 2) == 42,
+    "the extra bytes named Colors are read as Colors_2");
+  vtkDataArray* display = read->GetPointData()->GetArray("Colors");
+  PCB_CHECK(display && display->GetComponent(4, 2) == 3000 / 256, "the display colours");
+  CheckRecordsWrittenBack("extra-colors.las", read, "extra-colors-again.las");
+}
+
 void TestDamagedFiles()
 {
   vtkSmartPointer<vtkPolyData> cloud = MakeCloud(6, 1000);
@@ -690,6 +716,7 @@ int main(int argc, char* argv[])
     { "extra-bytes", TestExtraBytes },
     { "scaled-extra-bytes", TestScaledExtraBytes },
     { "scan-angle", TestScanAngle },
+    { "extra-bytes-named-colors", TestExtraBytesNamedColors },
     { "damaged-files", TestDamagedFiles },
   };
   return RunNamedCase(argc, argv, cases);
