@@ -102,18 +102,6 @@ void AddWavePacket(std::vector<LASDimension>& dimensions, std::size_t at)
   Add(dimensions, "WaveformXYZt", LASValueType::Float32, at + 17, 0, 0, 3);
 }
 
-/// Whether raw * scale + offset, in doubles, gives every integer of 32 bits or fewer back
-/// exactly through round((value - offset) / scale): the rounding errors of both ways stay far
-/// below half a step when the scale is a normal number well within the double range and the
-/// offset is less than 2^48 steps (a bound on the errors: (4 |raw| + 3 |offset / scale|)
-/// 2^-53 < 0.2).
-bool ScalingIsExact(double scale, double offset)
-{
-  const double magnitude = std::fabs(scale);
-  return std::isfinite(scale) && std::isfinite(offset) && magnitude >= 0x1p-900 &&
-         magnitude <= 0x1p900 && std::fabs(offset) <= 0x1p48 * magnitude;
-}
-
 bool FitsIntegerType(double value, LASValueType type)
 {
   double low = 0, high = 0;
@@ -174,7 +162,7 @@ void ApplyExtraBytesScaling(const std::uint8_t* descriptor, int options, LASDime
     {
       offset[c] = Load<double>(descriptor + 136 + 8 * c);
     }
-    if (!ScalingIsExact(scale[c], offset[c]))
+    if (!LASScalingIsExact(scale[c], offset[c]))
     {
       return;
     }
@@ -340,6 +328,15 @@ std::size_t LASSizeOf(LASValueType type)
 std::size_t LASColumnBytes(const LASDimension& dimension)
 {
   return LASSizeOf(dimension.ColumnType) * static_cast<std::size_t>(dimension.Components);
+}
+
+bool LASScalingIsExact(double scale, double offset)
+{
+  // The rounding errors of both ways stay far below half a step: (4 |raw| + 3 |offset /
+  // scale|) 2^-53 < 0.2 for |raw| < 2^32, and raw * scale is never subnormal nor infinite.
+  const double magnitude = std::fabs(scale);
+  return std::isfinite(scale) && std::isfinite(offset) && magnitude >= 0x1p-900 &&
+         magnitude <= 0x1p900 && std::fabs(offset) <= 0x1p48 * magnitude;
 }
 
 std::size_t LASStandardRecordLength(int pointFormat)

@@ -63,6 +63,13 @@ struct LASDimension
 /// Bytes of one point's values in a dimension's decoded column.
 std::size_t LASColumnBytes(const LASDimension& dimension);
 
+/**
+ * Whether raw * scale + offset, in doubles, gives every integer of 32 bits or fewer back
+ * exactly through round((value - offset) / scale): true when the scale is a finite number
+ * between 2^-900 and 2^900 in magnitude and the offset less than 2^48 steps.
+ */
+bool LASScalingIsExact(double scale, double offset);
+
 /// A variable-length record (VLR), or an extended one (EVLR, LAS 1.4).
 struct LASRecord
 {

@@ -9,7 +9,6 @@
 // the same values, not to the same integers.
 #include "LASFormat.h"
 
-#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -53,14 +52,6 @@ void CheckOneLine(const std::string& error, const std::string& source)
   {
     std::abort(); // an error must be one line naming the source
   }
-}
-
-/// Whether every stored integer of an axis comes back through the scale and offset (the bound
-/// of the writer's rounding errors; see ScalingIsExact in LASFormat.cxx).
-bool AxisIsExact(double scale, double offset)
-{
-  const double magnitude = std::fabs(scale);
-  return magnitude >= 0x1p-900 && magnitude <= 0x1p900 && std::fabs(offset) <= 0x1p48 * magnitude;
 }
 
 void CheckWrittenBack(const pcbilateral::LASFileInfo& info,
@@ -114,7 +105,7 @@ void CheckWrittenBack(const pcbilateral::LASFileInfo& info,
   bool exact[3];
   for (int axis = 0; axis < 3; ++axis)
   {
-    exact[axis] = AxisIsExact(info.Header.Scale[axis], info.Header.Offset[axis]);
+    exact[axis] = pcbilateral::LASScalingIsExact(info.Header.Scale[axis], info.Header.Offset[axis]);
   }
   const DecodedPoints again = Decode(back, file.Data());
   for (std::size_t i = 0; i < count; ++i)
