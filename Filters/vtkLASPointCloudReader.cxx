@@ -91,7 +91,7 @@ int vtkLASPointCloudReader::RequestData(vtkInformation*,
   for (const pcbilateral::LASDimension& dimension : info.Dimensions)
   {
     auto array = vtkSmartPointer<vtkDataArray>::Take(
-      vtkDataArray::CreateDataArray(vtkLASArrayType(dimension.Type)));
+      vtkDataArray::CreateDataArray(vtkLASArrayType(dimension.ColumnType)));
     array->SetName(dimension.Name.c_str());
     array->SetNumberOfComponents(dimension.Components);
     array->SetNumberOfTuples(count);

@@ -7,10 +7,13 @@
  * a point array of the record's own type: Intensity, ReturnNumber, NumberOfReturns,
  * ScanDirectionFlag, EdgeOfFlightLine, Classification, Synthetic, KeyPoint, Withheld,
  * Overlap and ScannerChannel (formats 6-10), ScanAngleRank (formats 0-5, degrees) or ScanAngle
- * (formats 6-10, the stored integer in units of 0.006 degree), UserData, PointSourceId,
+ * (formats 6-10, degrees as floats: the stored integer times 0.006), UserData, PointSourceId,
  * GpsTime, RGB (3 unsigned shorts, the file's 16-bit values), NIR, the wave packet fields, and
- * the extra bytes named by the file's extra-bytes record (stored values; their scale and offset
- * stay in that record). Files with colours also get "Colors", the colours as 3 unsigned chars
+ * the extra bytes named by the file's extra-bytes record (as doubles, stored value times scale
+ * plus offset, when the record gives a scale or an offset for an integer type of up to 32 bits,
+ * NaN for its no-data value; else the stored values). The writer stores these values back
+ * rounded to the nearest step, so a file read and written unchanged keeps its point records.
+ * Files with colours also get "Colors", the colours as 3 unsigned chars
  * (the 16-bit values divided by 256, or as they are when no value exceeds 255) that ParaView
  * shows as they are when "Map Scalars" is off.
  *

@@ -50,7 +50,7 @@ const void* Column(vtkDataArray* array,
   const pcbilateral::LASDimension& dimension,
   std::vector<std::uint8_t>& buffer)
 {
-  const int type = vtkLASArrayType(dimension.Type);
+  const int type = vtkLASArrayType(dimension.ColumnType);
   if (array->GetDataType() == type && array->HasStandardMemoryLayout())
   {
     return array->GetVoidPointer(0);
@@ -59,7 +59,7 @@ const void* Column(vtkDataArray* array,
   const double factor =
     dimension.Name == "RGB" && array->GetDataType() == VTK_UNSIGNED_CHAR ? 257.0 : 1.0;
   using T = pcbilateral::LASValueType;
-  switch (dimension.Type)
+  switch (dimension.ColumnType)
   {
     case T::UInt8:
       Convert<std::uint8_t>(array, factor, buffer);

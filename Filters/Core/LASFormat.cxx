@@ -1,5 +1,6 @@
 #include "LASFormat.h"
 
+#include "HugePages.h"
 #include "ReplacingFile.h"
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <set>
 #include <sstream>
 #include <system_error>
+#include <type_traits>
 
 #if defined(__unix__) || defined(__APPLE__)
 #include <fcntl.h>
@@ -83,6 +85,7 @@ void Add(std::vector<LASDimension>& dimensions,
   LASDimension dimension;
   dimension.Name = name;
   dimension.Type = type;
+  dimension.ColumnType = type;
   dimension.ByteOffset = offset;
   dimension.BitShift = shift;
   dimension.BitCount = bits;
@@ -97,6 +100,89 @@ void AddWavePacket(std::vector<LASDimension>& dimensions, std::size_t at)
   Add(dimensions, "WaveformPacketSize", LASValueType::UInt32, at + 9);
   Add(dimensions, "ReturnPointWaveformLocation", LASValueType::Float32, at + 13);
   Add(dimensions, "WaveformXYZt", LASValueType::Float32, at + 17, 0, 0, 3);
+}
+
+bool FitsIntegerType(double value, LASValueType type)
+{
+  double low = 0, high = 0;
+  switch (type)
+  {
+    case LASValueType::UInt8:
+      high = 255;
+      break;
+    case LASValueType::Int8:
+      low = -128;
+      high = 127;
+      break;
+    case LASValueType::UInt16:
+      high = 65535;
+      break;
+    case LASValueType::Int16:
+      low = -32768;
+      high = 32767;
+      break;
+    case LASValueType::UInt32:
+      high = 4294967295.0;
+      break;
+    case LASValueType::Int32:
+      low = -2147483648.0;
+      high = 2147483647.0;
+      break;
+    default:
+      return false;
+  }
+  return value >= low && value <= high && value == std::floor(value);
+}
+
+/// The scale, offset and no-data value of an extra-bytes descriptor (`options` bits 0, 3 and
+/// 4; the minimum and maximum, bits 1 and 2, describe the values and change nothing), applied
+/// when the stored values are integers of 32 bits or fewer that the scaling gives back exactly.
+/// Other types keep their stored values, and the descriptor stays in the record either way.
+void ApplyExtraBytesScaling(const std::uint8_t* descriptor, int options, LASDimension& dimension)
+{
+  const bool integer = dimension.Type != LASValueType::Float32 &&
+                       dimension.Type != LASValueType::Float64 && LASSizeOf(dimension.Type) <= 4;
+  if (!integer || (options & (8 | 16)) == 0)
+  {
+    return;
+  }
+  double scale[3] = { 1.0, 1.0, 1.0 };
+  double offset[3] = { 0.0, 0.0, 0.0 };
+  double noData[3] = { 0.0, 0.0, 0.0 };
+  bool hasNoData = (options & 1) != 0;
+  for (int c = 0; c < dimension.Components; ++c)
+  {
+    // Each of these fields is 3 values of 8 bytes (one per component of the deprecated
+    // arrays); a no-data value of an integer type is stored as a 64-bit integer.
+    if (options & 8)
+    {
+      scale[c] = Load<double>(descriptor + 112 + 8 * c);
+    }
+    if (options & 16)
+    {
+      offset[c] = Load<double>(descriptor + 136 + 8 * c);
+    }
+    if (!LASScalingIsExact(scale[c], offset[c]))
+    {
+      return;
+    }
+    const bool isSigned = dimension.Type == LASValueType::Int8 ||
+                          dimension.Type == LASValueType::Int16 ||
+                          dimension.Type == LASValueType::Int32;
+    noData[c] = isSigned ? static_cast<double>(Load<std::int64_t>(descriptor + 40 + 8 * c))
+                         : static_cast<double>(Load<std::uint64_t>(descriptor + 40 + 8 * c));
+    // A no-data value the type cannot hold marks nothing.
+    hasNoData = hasNoData && FitsIntegerType(noData[c], dimension.Type);
+  }
+  dimension.Scaled = true;
+  dimension.ColumnType = LASValueType::Float64;
+  dimension.HasNoData = hasNoData;
+  for (int c = 0; c < 3; ++c)
+  {
+    dimension.Scale[c] = scale[c];
+    dimension.Offset[c] = offset[c];
+    dimension.NoData[c] = noData[c];
+  }
 }
 
 const LASRecord* FindExtraBytesRecord(const std::vector<LASRecord>& records)
@@ -127,7 +213,26 @@ std::string CompressedMessage(const std::string& source)
 template<std::size_t Bytes>
 void Gather(const std::uint8_t* from, std::size_t stride, std::uint8_t* to, std::size_t count)
 {
-  for (std::size_t i = 0; i < count; ++i)
+  std::size_t i = 0;
+  if constexpr (Bytes == 1 || Bytes == 2)
+  {
+    // Values of one or two bytes are put together in a 64-bit word (little-endian host), so
+    // one store writes 8 or 4 of them: the stores, not the loads, limit these loops.
+    constexpr std::size_t PerWord = 8 / Bytes;
+    for (; i + PerWord <= count; i += PerWord)
+    {
+      std::uint64_t word = 0;
+      for (std::size_t k = 0; k < PerWord; ++k)
+      {
+        word |= static_cast<std::uint64_t>(
+                  Load<std::conditional_t<Bytes == 1, std::uint8_t, std::uint16_t>>(
+                    from + (i + k) * stride))
+                << (8 * Bytes * k);
+      }
+      Store<std::uint64_t>(to + i * Bytes, word);
+    }
+  }
+  for (; i < count; ++i)
   {
     std::memcpy(to + i * Bytes, from + i * stride, Bytes);
   }
@@ -220,6 +325,20 @@ std::size_t LASSizeOf(LASValueType type)
   }
 }
 
+std::size_t LASColumnBytes(const LASDimension& dimension)
+{
+  return LASSizeOf(dimension.ColumnType) * static_cast<std::size_t>(dimension.Components);
+}
+
+bool LASScalingIsExact(double scale, double offset)
+{
+  // The rounding errors of both ways stay far below half a step: (4 |raw| + 3 |offset /
+  // scale|) 2^-53 < 0.2 for |raw| < 2^32, and raw * scale is never subnormal nor infinite.
+  const double magnitude = std::fabs(scale);
+  return std::isfinite(scale) && std::isfinite(offset) && magnitude >= 0x1p-900 &&
+         magnitude <= 0x1p900 && std::fabs(offset) <= 0x1p48 * magnitude;
+}
+
 std::size_t LASStandardRecordLength(int pointFormat)
 {
   static const std::size_t lengths[] = { 20, 28, 26, 34, 57, 63, 30, 36, 38, 59, 67 };
@@ -285,7 +404,12 @@ std::string LASDimensionsFor(int pointFormat,
     Add(dimensions, "EdgeOfFlightLine", T::UInt8, 15, 7, 1);
     Add(dimensions, "Classification", T::UInt8, 16);
     Add(dimensions, "UserData", T::UInt8, 17);
+    // Stored in units of 0.006 degree; read in degrees, like ScanAngleRank of formats 0-5.
+    // A float holds every stored value closely enough to give it back (within 0.002 unit).
     Add(dimensions, "ScanAngle", T::Int16, 18);
+    dimensions.back().ColumnType = T::Float32;
+    dimensions.back().Scaled = true;
+    dimensions.back().Scale[0] = 0.006;
     Add(dimensions, "PointSourceId", T::UInt16, 20);
     Add(dimensions, "GpsTime", T::Float64, 22);
     if (pointFormat == 7 || pointFormat == 8 || pointFormat == 10)
@@ -304,7 +428,9 @@ std::string LASDimensionsFor(int pointFormat,
 
   // The extra bytes, named by their descriptors.
   std::size_t at = standard;
-  std::set<std::string> names;
+  // "Colors" is taken too: the readers add the display colours under that name, which would
+  // replace an extra-bytes field of that name (and the writer would write them in its place).
+  std::set<std::string> names = { "Colors" };
   for (const LASDimension& dimension : dimensions)
   {
     names.insert(dimension.Name);
@@ -326,15 +452,9 @@ std::string LASDimensionsFor(int pointFormat,
     else if (dataType <= 30)
     {
       dimension.Type = static_cast<T>((dataType - 1) % 10);
+      dimension.ColumnType = dimension.Type;
       dimension.Components = 1 + (dataType - 1) / 10; // 11-30: deprecated arrays of 2 and 3
-      if (options & 8)
-      {
-        dimension.Scale = Load<double>(d + 112);
-      }
-      if (options & 16)
-      {
-        dimension.Offset = Load<double>(d + 136);
-      }
+      ApplyExtraBytesScaling(d, options, dimension);
     }
     else
     {
@@ -569,54 +689,293 @@ std::string ParseLASHeader(const std::uint8_t* data,
   return std::string();
 }
 
+namespace
+{
+/// The decoded value of a stored integer of a scaled field (NaN for its no-data value).
+template<typename Raw>
+double ScaledValue(Raw raw, const LASDimension& dimension, int component)
+{
+  if (dimension.HasNoData && static_cast<double>(raw) == dimension.NoData[component])
+  {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  return static_cast<double>(raw) * dimension.Scale[component] + dimension.Offset[component];
+}
+
+template<typename Raw, typename Value>
+void DecodeScaledAs(const std::uint8_t* from,
+  std::size_t stride,
+  const LASDimension& dimension,
+  std::uint8_t* to,
+  std::size_t count)
+{
+  const int components = dimension.Components;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    for (int c = 0; c < components; ++c)
+    {
+      const Value value = static_cast<Value>(
+        ScaledValue(Load<Raw>(from + i * stride + c * sizeof(Raw)), dimension, c));
+      Store<Value>(to + (i * components + c) * sizeof(Value), value);
+    }
+  }
+}
+
+template<typename Raw>
+void DecodeScaled(const std::uint8_t* from,
+  std::size_t stride,
+  const LASDimension& dimension,
+  std::uint8_t* to,
+  std::size_t count)
+{
+  if (dimension.ColumnType == LASValueType::Float32)
+  {
+    DecodeScaledAs<Raw, float>(from, stride, dimension, to, count);
+  }
+  else
+  {
+    DecodeScaledAs<Raw, double>(from, stride, dimension, to, count);
+  }
+}
+
+/// The stored integer of a value of a scaled field: rounded to the nearest step, NaN as the
+/// no-data value (else 0), clamped to the type's range.
+template<typename Raw>
+Raw ScaledRaw(double value, const LASDimension& dimension, int component)
+{
+  if (std::isnan(value))
+  {
+    return static_cast<Raw>(dimension.HasNoData ? dimension.NoData[component] : 0.0);
+  }
+  const double raw = std::round((value - dimension.Offset[component]) / dimension.Scale[component]);
+  return static_cast<Raw>(
+    std::min<double>(std::max<double>(raw, static_cast<double>(std::numeric_limits<Raw>::lowest())),
+      static_cast<double>(std::numeric_limits<Raw>::max())));
+}
+
+template<typename Raw, typename Value>
+void EncodeScaledAs(const std::uint8_t* from,
+  const LASDimension& dimension,
+  std::uint8_t* to,
+  std::size_t stride,
+  std::size_t count)
+{
+  const int components = dimension.Components;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    for (int c = 0; c < components; ++c)
+    {
+      const double value = Load<Value>(from + (i * components + c) * sizeof(Value));
+      Store<Raw>(to + i * stride + c * sizeof(Raw), ScaledRaw<Raw>(value, dimension, c));
+    }
+  }
+}
+
+template<typename Raw>
+void EncodeScaled(const std::uint8_t* from,
+  const LASDimension& dimension,
+  std::uint8_t* to,
+  std::size_t stride,
+  std::size_t count)
+{
+  if (dimension.ColumnType == LASValueType::Float32)
+  {
+    EncodeScaledAs<Raw, float>(from, dimension, to, stride, count);
+  }
+  else
+  {
+    EncodeScaledAs<Raw, double>(from, dimension, to, stride, count);
+  }
+}
+
+/// Dispatches on the stored integer type of a scaled field (8 to 32 bits).
+template<typename Function>
+void WithRawType(LASValueType type, Function function)
+{
+  switch (type)
+  {
+    case LASValueType::UInt8:
+      return function(std::uint8_t());
+    case LASValueType::Int8:
+      return function(std::int8_t());
+    case LASValueType::UInt16:
+      return function(std::uint16_t());
+    case LASValueType::Int16:
+      return function(std::int16_t());
+    case LASValueType::UInt32:
+      return function(std::uint32_t());
+    default:
+      return function(std::int32_t());
+  }
+}
+
+/// Points decoded at once by a thread: their records stay in its cache for all the passes.
+constexpr std::size_t PointsPerDecodedBlock = 4096;
+
+/// The fields packed in bits of one byte, decoded together: one pass reads the byte once and
+/// writes every field of it.
+struct BitFieldByte
+{
+  std::size_t ByteOffset = 0;
+  std::vector<std::size_t> Dimensions;
+};
+
+/// Decodes blocks of point records into the columns, one pass per field, except the fields
+/// packed in bits of one byte: one pass reads the byte once and writes each of its fields.
+class BlockDecoder
+{
+public:
+  BlockDecoder(const LASFileInfo& info, double* positions, void* const* columns)
+    : Info(info)
+    , Positions(positions)
+    , Columns(columns)
+  {
+    for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+    {
+      const LASDimension& dimension = info.Dimensions[d];
+      if (!columns[d] || dimension.BitCount == 0)
+      {
+        continue;
+      }
+      auto byte = std::find_if(this->BitFields.begin(),
+        this->BitFields.end(),
+        [&](const BitFieldByte& b) { return b.ByteOffset == dimension.ByteOffset; });
+      if (byte == this->BitFields.end())
+      {
+        this->BitFields.push_back(BitFieldByte{ dimension.ByteOffset, {} });
+        byte = this->BitFields.end() - 1;
+      }
+      byte->Dimensions.push_back(d);
+    }
+  }
+
+  /// Decodes the `count` records at `block`, the points from `first` on.
+  void Decode(const std::uint8_t* block, std::size_t first, std::size_t count) const
+  {
+    const std::size_t stride = this->Info.Header.RecordLength;
+    const double* scale = this->Info.Header.Scale;
+    const double* offset = this->Info.Header.Offset;
+    double* p = this->Positions + 3 * first;
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      const std::uint8_t* record = block + i * stride;
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        p[3 * i + axis] = Load<std::int32_t>(record + 4 * axis) * scale[axis] + offset[axis];
+      }
+    }
+    for (std::size_t d = 0; d < this->Info.Dimensions.size(); ++d)
+    {
+      const LASDimension& dimension = this->Info.Dimensions[d];
+      if (!this->Columns[d] || dimension.BitCount > 0)
+      {
+        continue;
+      }
+      const std::uint8_t* from = block + dimension.ByteOffset;
+      std::uint8_t* to = this->Column(d, first);
+      if (dimension.Scaled)
+      {
+        WithRawType(dimension.Type,
+          [&](auto raw) { DecodeScaled<decltype(raw)>(from, stride, dimension, to, count); });
+      }
+      else
+      {
+        GatherBytes(from, stride, to, LASColumnBytes(dimension), count);
+      }
+    }
+    for (const BitFieldByte& byte : this->BitFields)
+    {
+      this->DecodeBitFields(block + byte.ByteOffset, stride, byte, first, count);
+    }
+  }
+
+private:
+  std::uint8_t* Column(std::size_t d, std::size_t first) const
+  {
+    return static_cast<std::uint8_t*>(this->Columns[d]) +
+           first * LASColumnBytes(this->Info.Dimensions[d]);
+  }
+
+  void DecodeBitFields(const std::uint8_t* from,
+    std::size_t stride,
+    const BitFieldByte& byte,
+    std::size_t first,
+    std::size_t count) const
+  {
+    constexpr std::size_t MostFields = 8;
+    std::uint8_t* to[MostFields];
+    unsigned shift[MostFields];
+    unsigned mask[MostFields];
+    const std::size_t fields = std::min(byte.Dimensions.size(), MostFields);
+    for (std::size_t f = 0; f < fields; ++f)
+    {
+      const LASDimension& dimension = this->Info.Dimensions[byte.Dimensions[f]];
+      to[f] = this->Column(byte.Dimensions[f], first);
+      shift[f] = static_cast<unsigned>(dimension.BitShift);
+      mask[f] = (1u << dimension.BitCount) - 1u;
+    }
+    // Eight points at a time, as the eight bytes of a 64-bit word (the host is little-endian,
+    // as checked when the header was parsed): shifting the word moves each point's bits within
+    // its byte, as long as a field does not go beyond its byte, which the mask makes sure of.
+    // One store writes a field of eight points.
+    constexpr std::uint64_t EveryByte = 0x0101010101010101ull;
+    std::size_t i = 0;
+    for (; i + 8 <= count; i += 8)
+    {
+      std::uint64_t bytes = 0;
+      for (unsigned k = 0; k < 8; ++k)
+      {
+        bytes |= static_cast<std::uint64_t>(from[(i + k) * stride]) << (8 * k);
+      }
+      for (std::size_t f = 0; f < fields; ++f)
+      {
+        Store<std::uint64_t>(to[f] + i, (bytes >> shift[f]) & (mask[f] * EveryByte));
+      }
+    }
+    for (; i < count; ++i)
+    {
+      const unsigned value = from[i * stride];
+      for (std::size_t f = 0; f < fields; ++f)
+      {
+        to[f][i] = static_cast<std::uint8_t>((value >> shift[f]) & mask[f]);
+      }
+    }
+  }
+
+  const LASFileInfo& Info;
+  double* Positions;
+  void* const* Columns;
+  std::vector<BitFieldByte> BitFields;
+};
+} // namespace
+
 void DecodeLASPoints(const LASFileInfo& info,
   const std::uint8_t* records,
   std::size_t count,
   double* positions,
   void* const* columns)
 {
+  // Fresh memory as huge pages: a page fault per 4 KB of the columns (1.5 times the file's
+  // size) would cost more than the decoding.
+  AdviseHugePages(positions, 3 * sizeof(double) * count);
+  for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+  {
+    if (columns[d])
+    {
+      AdviseHugePages(columns[d], LASColumnBytes(info.Dimensions[d]) * count);
+    }
+  }
   const std::size_t stride = info.Header.RecordLength;
-  const double* scale = info.Header.Scale;
-  const double* offset = info.Header.Offset;
-  const auto blocks = static_cast<std::int64_t>((count + PointsPerBlock - 1) / PointsPerBlock);
+  const auto blocks =
+    static_cast<std::int64_t>((count + PointsPerDecodedBlock - 1) / PointsPerDecodedBlock);
+  // Each thread decodes one contiguous range of blocks, so it is the first to touch (and
+  // place) the memory it writes.
+  const BlockDecoder decoder(info, positions, columns);
 #pragma omp parallel for schedule(static)
   for (std::int64_t b = 0; b < blocks; ++b)
   {
-    const std::size_t first = static_cast<std::size_t>(b) * PointsPerBlock;
-    const std::size_t n = std::min(PointsPerBlock, count - first);
-    const std::uint8_t* block = records + first * stride;
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const std::uint8_t* record = block + i * stride;
-      double* p = positions + 3 * (first + i);
-      for (int axis = 0; axis < 3; ++axis)
-      {
-        p[axis] = Load<std::int32_t>(record + 4 * axis) * scale[axis] + offset[axis];
-      }
-    }
-    for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
-    {
-      const LASDimension& dimension = info.Dimensions[d];
-      if (!columns[d])
-      {
-        continue;
-      }
-      const std::size_t bytes = LASSizeOf(dimension.Type) * dimension.Components;
-      auto* to = static_cast<std::uint8_t*>(columns[d]) + first * bytes;
-      const std::uint8_t* from = block + dimension.ByteOffset;
-      if (dimension.BitCount > 0)
-      {
-        const unsigned mask = (1u << dimension.BitCount) - 1u;
-        for (std::size_t i = 0; i < n; ++i)
-        {
-          to[i] = static_cast<std::uint8_t>((from[i * stride] >> dimension.BitShift) & mask);
-        }
-      }
-      else
-      {
-        GatherBytes(from, stride, to, bytes, n);
-      }
-    }
+    const std::size_t first = static_cast<std::size_t>(b) * PointsPerDecodedBlock;
+    decoder.Decode(records + first * stride, first, std::min(PointsPerDecodedBlock, count - first));
   }
 }
 
@@ -1005,10 +1364,15 @@ std::string WriteLAS(const std::string& path,
         {
           continue;
         }
-        const std::size_t bytes = LASSizeOf(dimension.Type) * dimension.Components;
+        const std::size_t bytes = LASColumnBytes(dimension);
         const auto* from = static_cast<const std::uint8_t*>(columns[d]) + first * bytes;
         std::uint8_t* to = block + dimension.ByteOffset;
-        if (dimension.BitCount == 0)
+        if (dimension.Scaled)
+        {
+          WithRawType(dimension.Type,
+            [&](auto raw) { EncodeScaled<decltype(raw)>(from, dimension, to, stride, n); });
+        }
+        else if (dimension.BitCount == 0)
         {
           ScatterBytes(from, to, stride, bytes, n);
         }

@@ -44,11 +44,31 @@ struct LASDimension
   /// how many; 0 for whole values.
   int BitShift = 0;
   int BitCount = 0;
-  /// Extra bytes only: the scale and offset of the extra-bytes record (1 and 0 when it gives
-  /// none); the column holds the stored values, unscaled.
-  double Scale = 1.0;
-  double Offset = 0.0;
+  /// The type of the decoded column: Type, unless the field is scaled.
+  LASValueType ColumnType = LASValueType::UInt8;
+  /// Scaled fields hold what the stored integers mean: raw * Scale + Offset per component,
+  /// as doubles (Float64) or, for the scan angle of formats 6-10 (0.006 degree units), floats.
+  /// The writer stores round((value - Offset) / Scale), so the stored integers come back
+  /// exactly. Extra bytes are scaled when their descriptor gives a scale or an offset, their
+  /// type is an integer of 8 to 32 bits and every such integer maps back exactly.
+  bool Scaled = false;
+  double Scale[3] = { 1.0, 1.0, 1.0 };
+  double Offset[3] = { 0.0, 0.0, 0.0 };
+  /// Scaled extra bytes whose descriptor gives a no-data value (a stored integer): that value
+  /// reads as NaN, and NaN is written as it.
+  bool HasNoData = false;
+  double NoData[3] = { 0.0, 0.0, 0.0 };
 };
+
+/// Bytes of one point's values in a dimension's decoded column.
+std::size_t LASColumnBytes(const LASDimension& dimension);
+
+/**
+ * Whether raw * scale + offset, in doubles, gives every integer of 32 bits or fewer back
+ * exactly through round((value - offset) / scale): true when the scale is a finite number
+ * between 2^-900 and 2^900 in magnitude and the offset less than 2^48 steps.
+ */
+bool LASScalingIsExact(double scale, double offset);
 
 /// A variable-length record (VLR), or an extended one (EVLR, LAS 1.4).
 struct LASRecord
@@ -123,8 +143,10 @@ std::string ParseLASHeader(const std::uint8_t* data,
 /**
  * Decodes `count` point records from `records` (the first byte of the point data):
  * coordinates as doubles into `positions` (x y z interleaved), and each of
- * `info.Dimensions` into `columns[d]` (Components values of the dimension's type per point;
- * a null column is skipped). Parallel (OpenMP).
+ * `info.Dimensions` into `columns[d]` (Components values of the dimension's ColumnType per
+ * point; a null column is skipped). Parallel (OpenMP); each thread first touches the part of
+ * the outputs it writes, and the outputs are expected to be fresh memory (large ones are
+ * advised to the kernel as huge pages).
  */
 void DecodeLASPoints(const LASFileInfo& info,
   const std::uint8_t* records,

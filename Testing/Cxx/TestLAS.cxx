@@ -150,7 +150,13 @@ void FillArraysLike(vtkPolyData* like, vtkPolyData* cloud)
         double value =
           static_cast<double>((i * 2654435761u + c * 40503u) % 1000003u) / 1000003.0 * (range + 1);
         value = std::floor(value);
-        if (array->GetDataType() == VTK_DOUBLE || array->GetDataType() == VTK_FLOAT)
+        if (name == "ScanAngle")
+        {
+          // Degrees, on the grid of the stored integers (0.006 degree), as the reader gives
+          // them: a float of the stored value times 0.006.
+          value = static_cast<float>(static_cast<double>(i * 7 % 60001 - 30000) * 0.006);
+        }
+        else if (array->GetDataType() == VTK_DOUBLE || array->GetDataType() == VTK_FLOAT)
         {
           value = 0.25 * i + c; // exact in float too for these sizes
         }
@@ -389,6 +395,262 @@ void TestExtraBytes()
   PCB_CHECK(rest && rest->GetNumberOfComponents() == 6, "the undescribed bytes");
 }
 
+template<typename T>
+void Put(std::vector<char>& bytes, std::size_t offset, T value)
+{
+  std::memcpy(bytes.data() + offset, &value, sizeof(T));
+}
+
+/// A LAS file made byte by byte here (not by the writer under test): LAS 1.2, or 1.4 for the
+/// formats beyond 5, with one VLR when `vlr` is not empty, and `records` as the point records.
+std::vector<char> HandMadeLAS(int format,
+  std::uint16_t recordLength,
+  const std::vector<char>& vlr,
+  const std::vector<char>& records)
+{
+  const bool wide = format > 5;
+  const std::size_t headerSize = wide ? 375 : 227;
+  const std::size_t count = records.size() / recordLength;
+  std::vector<char> bytes(headerSize, 0);
+  std::memcpy(bytes.data(), "LASF", 4);
+  bytes[24] = 1;
+  bytes[25] = wide ? 4 : 2;
+  Put<std::uint16_t>(bytes, 94, static_cast<std::uint16_t>(headerSize));
+  Put<std::uint32_t>(bytes, 96, static_cast<std::uint32_t>(headerSize + vlr.size()));
+  Put<std::uint32_t>(bytes, 100, vlr.empty() ? 0u : 1u);
+  bytes[104] = static_cast<char>(format);
+  Put<std::uint16_t>(bytes, 105, recordLength);
+  Put<std::uint32_t>(bytes, 107, wide ? 0u : static_cast<std::uint32_t>(count));
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    Put<double>(bytes, 131 + 8 * axis, 0.01);
+  }
+  if (wide)
+  {
+    Put<std::uint64_t>(bytes, 247, count);
+  }
+  bytes.insert(bytes.end(), vlr.begin(), vlr.end());
+  bytes.insert(bytes.end(), records.begin(), records.end());
+  return bytes;
+}
+
+void WriteBytes(const std::string& path, const std::vector<char>& bytes)
+{
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+/// The extra-bytes VLR (record 4 of LASF_Spec) for `descriptors` of 192 bytes each.
+std::vector<char> ExtraBytesVLR(const std::vector<std::vector<char>>& descriptors)
+{
+  std::vector<char> vlr(54, 0);
+  std::memcpy(vlr.data() + 2, "LASF_Spec", 9);
+  vlr[18] = 4;
+  Put<std::uint16_t>(vlr, 20, static_cast<std::uint16_t>(192 * descriptors.size()));
+  for (const std::vector<char>& descriptor : descriptors)
+  {
+    vlr.insert(vlr.end(), descriptor.begin(), descriptor.end());
+  }
+  return vlr;
+}
+
+std::vector<char> Descriptor(int dataType,
+  int options,
+  const char* name,
+  std::vector<double> scales,
+  std::vector<double> offsets,
+  std::int64_t noData = 0)
+{
+  std::vector<char> descriptor(192, 0);
+  descriptor[2] = static_cast<char>(dataType);
+  descriptor[3] = static_cast<char>(options);
+  std::memcpy(descriptor.data() + 4, name, std::strlen(name));
+  for (std::size_t c = 0; c < scales.size(); ++c)
+  {
+    Put<std::int64_t>(descriptor, 40 + 8 * c, noData);
+    Put<double>(descriptor, 112 + 8 * c, scales[c]);
+    Put<double>(descriptor, 136 + 8 * c, offsets[c]);
+  }
+  return descriptor;
+}
+
+/// Reads `path`, writes it back unchanged to `again`: the point records must be the same.
+void CheckRecordsWrittenBack(const std::string& path, vtkPolyData* read, const std::string& again)
+{
+  if (Write(read, again))
+  {
+    const std::vector<char> first = PointRecords(FileBytes(path));
+    const std::vector<char> second = PointRecords(FileBytes(again));
+    PCB_CHECK(
+      !first.empty() && first == second, "%s: the point records written back differ", path.c_str());
+  }
+}
+
+void TestScaledExtraBytes()
+{
+  // Format 0 with 4 + 2 + 6 + 4 + 1 extra bytes: "Height", an int32 with a scale and an offset;
+  // "Temperature", a uint16 with a scale, an offset and a no-data value; "Shift", a deprecated
+  // array of 3 int16 with a scale and an offset per component; "Ratio", a float with a scale
+  // (floats keep their stored values); "Flags", a uint8 with neither (kept as it is).
+  const std::vector<char> vlr = ExtraBytesVLR({
+    Descriptor(6, 8 | 16, "Height", { 0.001 }, { 100.0 }),
+    Descriptor(3, 1 | 2 | 4 | 8 | 16, "Temperature", { 0.01 }, { -40.0 }, 65535),
+    Descriptor(24, 8 | 16, "Shift", { 0.5, 0.25, 2.0 }, { 1.0, -2.0, 1000.0 }),
+    Descriptor(9, 8, "Ratio", { 10.0 }, { 0.0 }),
+    Descriptor(1, 0, "Flags", { 1.0 }, { 0.0 }),
+  });
+  const std::uint16_t length = 20 + 4 + 2 + 6 + 4 + 1;
+  const int count = 10;
+  std::vector<char> records(static_cast<std::size_t>(length) * count, 0);
+  for (int i = 0; i < count; ++i)
+  {
+    const std::size_t at = static_cast<std::size_t>(i) * length;
+    Put<std::int32_t>(records, at, 100 * i);
+    Put<std::int32_t>(records, at + 20, static_cast<std::int32_t>(-2000000000LL + 400000000LL * i));
+    Put<std::uint16_t>(
+      records, at + 24, static_cast<std::uint16_t>(i == 3 ? 65535 : 6000 + 37 * i));
+    for (int c = 0; c < 3; ++c)
+    {
+      Put<std::int16_t>(
+        records, at + 26 + 2 * c, static_cast<std::int16_t>((c + 1) * (i - 5) * 1000));
+    }
+    Put<float>(records, at + 32, 0.5f * i);
+    records[at + 36] = static_cast<char>(200 + i);
+  }
+  WriteBytes("scaled-extra.las", HandMadeLAS(0, length, vlr, records));
+  vtkSmartPointer<vtkPolyData> read = Read("scaled-extra.las");
+  vtkPointData* data = read->GetPointData();
+  vtkDataArray* height = data->GetArray("Height");
+  vtkDataArray* temperature = data->GetArray("Temperature");
+  vtkDataArray* shift = data->GetArray("Shift");
+  vtkDataArray* ratio = data->GetArray("Ratio");
+  vtkDataArray* flags = data->GetArray("Flags");
+  PCB_CHECK(read->GetNumberOfPoints() == count,
+    "%lld points",
+    static_cast<long long>(read->GetNumberOfPoints()));
+  PCB_CHECK(height && height->GetDataType() == VTK_DOUBLE && temperature &&
+              temperature->GetDataType() == VTK_DOUBLE && shift &&
+              shift->GetDataType() == VTK_DOUBLE && shift->GetNumberOfComponents() == 3,
+    "the scaled extra bytes are doubles");
+  PCB_CHECK(ratio && ratio->GetDataType() == VTK_FLOAT && flags &&
+              flags->GetDataType() == VTK_UNSIGNED_CHAR,
+    "unscaled extra bytes keep their types");
+  if (!height || !temperature || !shift || !ratio || !flags || read->GetNumberOfPoints() != count)
+  {
+    return;
+  }
+  for (int i = 0; i < count; ++i)
+  {
+    const double expectedHeight = (-2000000000.0 + 400000000.0 * i) * 0.001 + 100.0;
+    PCB_CHECK(height->GetComponent(i, 0) == expectedHeight,
+      "point %d: Height %.17g, expected %.17g",
+      i,
+      height->GetComponent(i, 0),
+      expectedHeight);
+    if (i == 3)
+    {
+      PCB_CHECK(std::isnan(temperature->GetComponent(i, 0)), "the no-data value reads as NaN");
+    }
+    else
+    {
+      const double expected = (6000 + 37 * i) * 0.01 - 40.0;
+      PCB_CHECK(temperature->GetComponent(i, 0) == expected,
+        "point %d: Temperature %.17g, "
+        "expected %.17g",
+        i,
+        temperature->GetComponent(i, 0),
+        expected);
+    }
+    const double scales[3] = { 0.5, 0.25, 2.0 };
+    const double offsets[3] = { 1.0, -2.0, 1000.0 };
+    for (int c = 0; c < 3; ++c)
+    {
+      const double expected = (c + 1) * (i - 5) * 1000 * scales[c] + offsets[c];
+      PCB_CHECK(shift->GetComponent(i, c) == expected,
+        "point %d: Shift[%d] %g, expected %g",
+        i,
+        c,
+        shift->GetComponent(i, c),
+        expected);
+    }
+    PCB_CHECK(ratio->GetComponent(i, 0) == 0.5 * i && flags->GetComponent(i, 0) == 200 + i,
+      "point %d: Ratio and Flags as stored",
+      i);
+  }
+  CheckRecordsWrittenBack("scaled-extra.las", read, "scaled-extra-again.las");
+  // Values changed (as a filter would) are stored rounded to the nearest step.
+  temperature->SetComponent(0, 0, 20.004);
+  temperature->SetComponent(1, 0, std::nan(""));
+  height->SetComponent(0, 0, 100.0006);
+  if (Write(read, "scaled-extra-changed.las"))
+  {
+    const std::vector<char> changed = PointRecords(FileBytes("scaled-extra-changed.las"));
+    PCB_CHECK(At<std::uint16_t>(changed, 24) == 6000 &&
+                At<std::uint16_t>(changed, length + 24) == 65535 &&
+                At<std::int32_t>(changed, 20) == 1,
+      "changed values stored as %u, %u and %d",
+      At<std::uint16_t>(changed, 24),
+      At<std::uint16_t>(changed, length + 24),
+      At<std::int32_t>(changed, 20));
+  }
+}
+
+void TestScanAngle()
+{
+  // Format 6 stores the scan angle in units of 0.006 degree; it reads in degrees.
+  const std::int16_t stored[] = { -32768, -30000, -12345, -1, 0, 1, 2, 15000, 30000, 32767 };
+  const int count = 10;
+  std::vector<char> records(static_cast<std::size_t>(30) * count, 0);
+  for (int i = 0; i < count; ++i)
+  {
+    Put<std::int16_t>(records, static_cast<std::size_t>(i) * 30 + 18, stored[i]);
+  }
+  WriteBytes("scan-angle.las", HandMadeLAS(6, 30, {}, records));
+  vtkSmartPointer<vtkPolyData> read = Read("scan-angle.las");
+  vtkDataArray* angle = read->GetPointData()->GetArray("ScanAngle");
+  PCB_CHECK(angle && (angle->GetDataType() == VTK_FLOAT || angle->GetDataType() == VTK_DOUBLE),
+    "ScanAngle is a floating-point array");
+  if (!angle || read->GetNumberOfPoints() != count)
+  {
+    return;
+  }
+  for (int i = 0; i < count; ++i)
+  {
+    PCB_CHECK(std::abs(angle->GetComponent(i, 0) - stored[i] * 0.006) < 1e-5,
+      "ScanAngle %g degrees, stored %d",
+      angle->GetComponent(i, 0),
+      stored[i]);
+  }
+  PCB_CHECK(angle->GetComponent(8, 0) == static_cast<float>(180.0), "30000 steps: 180 degrees");
+  CheckRecordsWrittenBack("scan-angle.las", read, "scan-angle-again.las");
+}
+
+void TestExtraBytesNamedColors()
+{
+  // Format 2 (RGB) with 3 extra bytes named "Colors" (3 unsigned bytes, type 21): the reader's
+  // display colours, also "Colors", must not replace them.
+  const std::vector<char> vlr = ExtraBytesVLR({ Descriptor(21, 0, "Colors", {}, {}) });
+  const int count = 5;
+  std::vector<char> records(static_cast<std::size_t>(29) * count, 0);
+  for (int i = 0; i < count; ++i)
+  {
+    const std::size_t at = static_cast<std::size_t>(i) * 29;
+    for (int c = 0; c < 3; ++c)
+    {
+      Put<std::uint16_t>(records, at + 20 + 2 * c, static_cast<std::uint16_t>(1000 * (c + 1)));
+      records[at + 26 + c] = static_cast<char>(10 * i + c);
+    }
+  }
+  WriteBytes("extra-colors.las", HandMadeLAS(2, 29, vlr, records));
+  vtkSmartPointer<vtkPolyData> read = Read("extra-colors.las");
+  vtkDataArray* extra = read->GetPointData()->GetArray("Colors_2");
+  PCB_CHECK(extra && extra->GetNumberOfComponents() == 3 && extra->GetComponent(4, 2) == 42,
+    "the extra bytes named Colors are read as Colors_2");
+  vtkDataArray* display = read->GetPointData()->GetArray("Colors");
+  PCB_CHECK(display && display->GetComponent(4, 2) == 3000 / 256, "the display colours");
+  CheckRecordsWrittenBack("extra-colors.las", read, "extra-colors-again.las");
+}
+
 void TestDamagedFiles()
 {
   vtkSmartPointer<vtkPolyData> cloud = MakeCloud(6, 1000);
@@ -452,6 +714,9 @@ int main(int argc, char* argv[])
     { "every-point-format", TestEveryPointFormat },
     { "default-header", TestDefaultHeader },
     { "extra-bytes", TestExtraBytes },
+    { "scaled-extra-bytes", TestScaledExtraBytes },
+    { "scan-angle", TestScanAngle },
+    { "extra-bytes-named-colors", TestExtraBytesNamedColors },
     { "damaged-files", TestDamagedFiles },
   };
   return RunNamedCase(argc, argv, cases);

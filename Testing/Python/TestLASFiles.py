@@ -2,9 +2,10 @@
 
 Each file is also decoded here, independently, with `struct` (the LAS 1.4 R15 layout): the
 point count, the header's bounds, and the first and last points' coordinates, intensity,
-return number, classification, GPS time and colour must be what the reader gives. Files
-whose header promises more than they hold must give one error line and no points. Each
-readable file, written back by the writer, must have the same point records byte for byte.
+return number, classification, scan angle (degrees), GPS time and colour must be what the
+reader gives. Files whose header promises more than they hold must give one error line and no
+points. Each readable file, written back by the writer, must have the same point records byte
+for byte.
 
     python3 TestLASFiles.py LAS_FOLDER SCRATCH_FOLDER
 
@@ -68,11 +69,15 @@ def decode(data):
         if point_format <= 5:
             point["ReturnNumber"] = record[14] & 7
             point["Classification"] = record[15] & 31
+            point["ScanAngleRank"] = struct.unpack_from("<b", record, 16)[0]
             gps_at = 20 if point_format in (1, 3, 4, 5) else None
             rgb_at = {2: 20, 3: 28, 5: 28}.get(point_format)
         else:
             point["ReturnNumber"] = record[14] & 15
             point["Classification"] = record[16]
+            # Stored in units of 0.006 degree, read in degrees as a float.
+            degrees = struct.unpack_from("<h", record, 18)[0] * 0.006
+            point["ScanAngle"] = struct.unpack("<f", struct.pack("<f", degrees))[0]
             gps_at = 22
             rgb_at = 30 if point_format in (7, 8, 10) else None
         if gps_at is not None:
