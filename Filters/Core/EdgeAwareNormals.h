@@ -26,7 +26,9 @@
 // distributed run. Neighbours are visited in an order fixed by their coordinates alone (a grid
 // of cell size r anchored at the whole cloud's lower corner, then coordinates within a cell),
 // so the bits depend neither on the number of threads nor on how the cloud is split or
-// numbered; the exponentials are the kernel's own (KernelExp), the same bits in every build.
+// numbered. The per-point arithmetic of the three steps is the kernel's (EdgeAwareKernel in
+// BilateralKernel.h): vectorised like the paper's kernel, with its exponential and its partial
+// sums per lane added in a fixed tree, so the same bits in every build.
 #ifndef pcbilateral_EdgeAwareNormals_h
 #define pcbilateral_EdgeAwareNormals_h
 
