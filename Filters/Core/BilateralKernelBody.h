@@ -608,7 +608,13 @@ void EdgeAwareNormalSum(const double p[3],
  * Step 3 for sorted point p of filtered normal m over its `count` neighbours (sorted indices
  * `index`, filtered `normals`): the sums of the weights
  * exp(-|q - p|^2 * distanceScale - h^2 * normalScale) psi(m, m_j) and of the weighted heights
- * h = <m, q - p>.
+ * h = <(m + s m_j) / 2, q - p>, s the sign of m . m_j.
+ *
+ * The height is measured along the mean of the two normals rather than along m alone: the chord
+ * q - p between two points of a sphere is orthogonal to the sum of their normals, and on any
+ * smooth surface the error is of third order in |q - p| (second order along m alone). So a
+ * curved surface is not shrunk (the paper's mean height of the neighbours lies inside a convex
+ * surface), while on a plane the two normals agree and h is the paper's.
  */
 void EdgeAwareHeightSums(const double p[3],
   const std::uint32_t* index,
@@ -630,8 +636,13 @@ void EdgeAwareHeightSums(const double p[3],
   {
     const NeighbourLanes q = LoadNeighbours(p, index, k, count, x, y, z, normals);
     const DoubleLanes distanceSquared = (q.Dx * q.Dx + q.Dy * q.Dy) + q.Dz * q.Dz;
-    const DoubleLanes h = (q.Dx * m[0] + q.Dy * m[1]) + q.Dz * m[2];
     const DoubleLanes cosine = (q.Nx * m[0] + q.Ny * m[1]) + q.Nz * m[2];
+    // The neighbour's normal turned to agree with m (the normals are not oriented).
+    const IntLanes opposite = LessThan(cosine, 0.0);
+    const DoubleLanes nx = Select(opposite, -q.Nx, q.Nx);
+    const DoubleLanes ny = Select(opposite, -q.Ny, q.Ny);
+    const DoubleLanes nz = Select(opposite, -q.Nz, q.Nz);
+    const DoubleLanes h = ((q.Dx * (nx + m[0]) + q.Dy * (ny + m[1])) + q.Dz * (nz + m[2])) * 0.5;
     const DoubleLanes w =
       ExpOfNonPositive((-distanceSquared * distanceScale - (h * h) * normalScale) +
                        AgreementExponent(cosine, agreementScale));
