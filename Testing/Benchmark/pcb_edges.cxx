@@ -130,7 +130,9 @@ Best SearchFilter(const Truth& truth, double s, double sigma, bool edgeAware)
   Best best;
   const bool hasEdges = truth.EdgePoints > 0;
   const std::vector<double>& input = truth.Cloud->Positions;
-  for (double rs : { 6.0, 8.5, 12.0, 17.0, 24.0 })
+  // r in steps of about 2^(1/4) from 12 s: the cheapest setting reaching a target is found
+  // within a factor 1.4 in cost (neighbours x iterations), not 2.
+  for (double rs : { 6.0, 8.5, 12.0, 14.0, 17.0, 20.0, 24.0 })
   {
     for (double rnSigma : { 2.2, 3.3, 5.0, 7.5, 11.0, 16.0 })
     {
