@@ -424,11 +424,16 @@ int main(int argc, char* argv[])
         Best timing;
         timing.RunBestEdge = cheapest->Run;
         timing.TimeBest();
+        char edge[16] = "–";
+        if (hasEdges)
+        {
+          std::snprintf(edge, sizeof edge, "%.2f", cheapest->Result.EdgeRms);
+        }
         char text[200];
         std::snprintf(text,
           sizeof text,
-          "%.2f / %.2f (%s), %.3f s%s",
-          cheapest->Result.EdgeRms,
+          "%s / %.2f (%s), %.3f s%s",
+          edge,
           cheapest->Result.Rms,
           cheapest->At.c_str(),
           timing.Time,
