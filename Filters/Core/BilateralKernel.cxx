@@ -29,6 +29,7 @@ namespace pcbilateral
     const KernelConstants& constants,                                                              \
     const double n[3],                                                                             \
     double* distanceWeight);                                                                       \
+  EdgeAwareKernel MakeEdgeAwareKernel();                                                           \
   }
 PCB_DECLARE_KERNEL_BUILD(generic)
 #if PCB_KERNEL_X86
@@ -162,6 +163,21 @@ void KernelExp(const double* x, double* result, std::size_t count)
 #endif
     default:
       return generic::ExpOfNonPositive(x, result, count);
+  }
+}
+
+EdgeAwareKernel GetEdgeAwareKernel()
+{
+  switch (GetKernelInstructionSet())
+  {
+#if PCB_KERNEL_X86
+    case KernelInstructionSet::Avx512:
+      return avx512::MakeEdgeAwareKernel();
+    case KernelInstructionSet::Avx2:
+      return avx2::MakeEdgeAwareKernel();
+#endif
+    default:
+      return generic::MakeEdgeAwareKernel();
   }
 }
 

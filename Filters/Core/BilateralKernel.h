@@ -116,6 +116,69 @@ bool SetKernelInstructionSet(KernelInstructionSet instructionSet);
 void KernelExp(const double* x, double* result, std::size_t count);
 
 /**
+ * The per-point arithmetic of the edge-aware mode (EdgeAwareNormals.h), built with the kernel
+ * for each instruction set: the same lanes, sum tree and exponential, so the same bits in every
+ * build. Step 1 packs the neighbours' offsets q - p in arrays with room for KernelLanes values
+ * more, for padding; steps 2 and 3 read them through their sorted indices. See
+ * BilateralKernelBody.h.
+ */
+struct EdgeAwareKernel
+{
+  /// Appends the neighbours among the sorted candidates [begin, end) to the `count` packed ones
+  /// (offsets and sorted indices; room for count + end - begin + KernelLanes); the new count.
+  std::size_t (*Select)(const double p[3],
+    const double* x,
+    const double* y,
+    const double* z,
+    std::uint32_t begin,
+    std::uint32_t end,
+    double radiusSquared,
+    double* dx,
+    double* dy,
+    double* dz,
+    std::uint32_t* index,
+    std::size_t count);
+  /// The paper's regression plane normal of `count` selected neighbours; false if none.
+  bool (*PlaneNormal)(double* dx,
+    double* dy,
+    double* dz,
+    std::size_t count,
+    double distanceScale,
+    double* distanceWeight,
+    double n[3]);
+  /// The bilateral sum of the neighbours' normals (step 2), over neighbours given by sorted
+  /// index in the sorted coordinates x, y, z and normals (3 per index).
+  void (*NormalSum)(const double p[3],
+    const std::uint32_t* index,
+    std::size_t count,
+    const double* x,
+    const double* y,
+    const double* z,
+    const double* normals,
+    const double own[3],
+    double distanceScale,
+    double agreementScale,
+    double sum[3]);
+  /// The sums of the weights and weighted heights of the displacement (step 3), likewise.
+  void (*HeightSums)(const double p[3],
+    const std::uint32_t* index,
+    std::size_t count,
+    const double* x,
+    const double* y,
+    const double* z,
+    const double* normals,
+    const double m[3],
+    double distanceScale,
+    double normalScale,
+    double agreementScale,
+    double& weightSum,
+    double& weightedHeightSum);
+};
+
+/// The edge-aware functions of the instruction set FilterPoint uses (GetKernelInstructionSet).
+EdgeAwareKernel GetEdgeAwareKernel();
+
+/**
  * The kernel's arithmetic alone, for the benchmark's floor: FilterPoint's two passes (the two
  * exponentials and the sums per neighbour) over `count` neighbours already selected and packed
  * (offsets q - p; count a multiple of KernelLanes), with the given normal, in the given build

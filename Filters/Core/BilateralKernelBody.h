@@ -232,6 +232,34 @@ inline DistanceMoments AccumulateDistanceMoments(const double* dx,
   return DistanceMoments{ weightSum, firstX, firstY, firstZ, xx, xy, xz, yy, yz, zz };
 }
 
+/**
+ * The normal of the weighted regression plane of pass 1's moments. Returns false (n untouched)
+ * when the weights sum to zero.
+ */
+inline bool RegressionNormal(const DistanceMoments& m, double n[3])
+{
+  const double totalWeight = SumLanes(m.WeightSum);
+  if (!(totalWeight > 0.0))
+  {
+    return false;
+  }
+  // Weighted covariance about the weighted mean; the offsets are small, so the one-pass form
+  // loses nothing that matters next to the noise it measures.
+  const double mean[3] = { SumLanes(m.FirstX) / totalWeight,
+    SumLanes(m.FirstY) / totalWeight,
+    SumLanes(m.FirstZ) / totalWeight };
+  const double covariance[6] = {
+    SumLanes(m.XX) / totalWeight - mean[0] * mean[0],
+    SumLanes(m.XY) / totalWeight - mean[0] * mean[1],
+    SumLanes(m.XZ) / totalWeight - mean[0] * mean[2],
+    SumLanes(m.YY) / totalWeight - mean[1] * mean[1],
+    SumLanes(m.YZ) / totalWeight - mean[1] * mean[2],
+    SumLanes(m.ZZ) / totalWeight - mean[2] * mean[2],
+  };
+  SmallestEigenvector(covariance, n);
+  return true;
+}
+
 /// Pass 2 over the same offsets: the sums of the bilateral weights and of the weighted heights
 /// h = <n, q - p>, one partial sum per lane.
 inline void AccumulateBilateralHeights(const double* dx,
@@ -288,30 +316,14 @@ void FilterPoint(const double p[3],
     dx[k] = dy[k] = dz[k] = 1e300;
   }
 
-  // Pass 1: distance weights and moments.
+  // Pass 1: distance weights and moments, and the regression plane's normal.
   const DistanceMoments m =
     AccumulateDistanceMoments(dx, dy, dz, padded, constants.DistanceScale, distanceWeight);
-  const double totalWeight = SumLanes(m.WeightSum);
-  if (!(totalWeight > 0.0))
+  double n[3];
+  if (!RegressionNormal(m, n))
   {
     return;
   }
-
-  // Weighted covariance about the weighted mean; the offsets are small, so the one-pass form
-  // loses nothing that matters next to the noise it measures.
-  const double mean[3] = { SumLanes(m.FirstX) / totalWeight,
-    SumLanes(m.FirstY) / totalWeight,
-    SumLanes(m.FirstZ) / totalWeight };
-  const double covariance[6] = {
-    SumLanes(m.XX) / totalWeight - mean[0] * mean[0],
-    SumLanes(m.XY) / totalWeight - mean[0] * mean[1],
-    SumLanes(m.XZ) / totalWeight - mean[0] * mean[2],
-    SumLanes(m.YY) / totalWeight - mean[1] * mean[1],
-    SumLanes(m.YZ) / totalWeight - mean[1] * mean[2],
-    SumLanes(m.ZZ) / totalWeight - mean[2] * mean[2],
-  };
-  double n[3];
-  SmallestEigenvector(covariance, n);
 
   // Pass 2: the bilateral average of the heights h = <n, q - p> over the same neighbours.
   DoubleLanes bilateralWeightSum, weightedHeightSum;
@@ -363,6 +375,293 @@ double ArithmeticFloor(const double* dx,
                           ((m.XX + m.XY) + (m.XZ + m.YY)) +
                           ((m.YZ + m.ZZ) + (bilateralWeightSum + weightedHeightSum));
   return SumLanes(all);
+}
+
+// The edge-aware mode's per-point arithmetic (EdgeAwareNormals.h), in this build: the same
+// lanes, fixed sum tree and exponential as the paper's kernel above, so the same bits in every
+// build. Its arrays of packed neighbours hold whole vectors: a count is padded up to a multiple
+// of Lanes with neighbours that add exact zeros to every sum (see PadNeighbours).
+
+/**
+ * Appends the candidates of sorted indices [begin, end) with |q - p|^2 < r^2 (the arrays x, y,
+ * z hold the sorted points) after the `count` neighbours already packed: their offsets q - p to
+ * dx, dy, dz and their indices to index, in candidate order. The arrays need room for
+ * count + (end - begin) + Lanes values. Returns the new count.
+ */
+std::size_t EdgeAwareSelect(const double p[3],
+  const double* x,
+  const double* y,
+  const double* z,
+  std::uint32_t begin,
+  std::uint32_t end,
+  double radiusSquared,
+  double* dx,
+  double* dy,
+  double* dz,
+  std::uint32_t* index,
+  std::size_t count)
+{
+#if defined(__AVX512F__)
+  // Eight candidates at a time, the neighbours and their indices packed with a compress each.
+  const __m512d px = _mm512_set1_pd(p[0]);
+  const __m512d py = _mm512_set1_pd(p[1]);
+  const __m512d pz = _mm512_set1_pd(p[2]);
+  const __m512d limit = _mm512_set1_pd(radiusSquared);
+  const __m256i laneIndex = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  for (std::uint32_t j = begin; j < end; j += 8)
+  {
+    const std::uint32_t left = end - j;
+    const __mmask8 valid = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
+    const __m512d ox = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, x + j), px);
+    const __m512d oy = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, y + j), py);
+    const __m512d oz = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, z + j), pz);
+    const __m512d d2 = _mm512_add_pd(
+      _mm512_add_pd(_mm512_mul_pd(ox, ox), _mm512_mul_pd(oy, oy)), _mm512_mul_pd(oz, oz));
+    const __mmask8 inside = _mm512_mask_cmp_pd_mask(valid, d2, limit, _CMP_LT_OQ);
+    const __m256i indices = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(j)), laneIndex);
+    _mm512_storeu_pd(dx + count, _mm512_maskz_compress_pd(inside, ox));
+    _mm512_storeu_pd(dy + count, _mm512_maskz_compress_pd(inside, oy));
+    _mm512_storeu_pd(dz + count, _mm512_maskz_compress_pd(inside, oz));
+    _mm256_storeu_si256(
+      reinterpret_cast<__m256i*>(index + count), _mm256_maskz_compress_epi32(inside, indices));
+    count += static_cast<std::size_t>(PopCount(inside));
+  }
+#else
+  // Without a branch per candidate (most are not neighbours): every candidate is written, and
+  // kept by advancing only for a neighbour.
+  const double px = p[0], py = p[1], pz = p[2];
+  for (std::uint32_t j = begin; j < end; ++j)
+  {
+    const double ox = x[j] - px;
+    const double oy = y[j] - py;
+    const double oz = z[j] - pz;
+    const double d2 = (ox * ox + oy * oy) + oz * oz;
+    dx[count] = ox;
+    dy[count] = oy;
+    dz[count] = oz;
+    index[count] = j;
+    count += d2 < radiusSquared ? 1 : 0;
+  }
+#endif
+  return count;
+}
+
+/**
+ * Pads `count` packed neighbours up to whole vectors with neighbours so far away that their
+ * squared distance overflows to infinity (weight exp(-inf) = 0, exact zeros in every sum, as in
+ * FilterPoint). Steps 2 and 3 pad the same way, with a zero normal (a finite agreement
+ * exponent). Returns the padded count.
+ */
+inline std::size_t PadNeighbours(double* dx, double* dy, double* dz, std::size_t count)
+{
+  const std::size_t padded = (count + Lanes - 1) / Lanes * Lanes;
+  for (std::size_t k = count; k < padded; ++k)
+  {
+    dx[k] = dy[k] = dz[k] = 1e300;
+  }
+  return padded;
+}
+
+/**
+ * Step 1 for a point whose `count` neighbours EdgeAwareSelect packed (room for Lanes more): the
+ * paper's regression plane normal, weighted by exp(-|q - p|^2 * distanceScale), with the
+ * kernel's own pass 1. Returns false (n untouched) when the weights sum to zero.
+ */
+bool EdgeAwarePlaneNormal(double* dx,
+  double* dy,
+  double* dz,
+  std::size_t count,
+  double distanceScale,
+  double* distanceWeight,
+  double n[3])
+{
+  const std::size_t padded = PadNeighbours(dx, dy, dz, count);
+  return RegressionNormal(
+    AccumulateDistanceMoments(dx, dy, dz, padded, distanceScale, distanceWeight), n);
+}
+
+/// |x|, by clearing the sign bit.
+inline DoubleLanes Abs(DoubleLanes x)
+{
+  const BitsLanes zero = {};
+  const BitsLanes magnitude = zero + ~(std::uint64_t(1) << 63);
+  return (DoubleLanes)((BitsLanes)x & magnitude);
+}
+
+/// The exponent of the agreement weight of two unit normals of cosine c: -((1 - |c|) s)^2, with
+/// s = 1 / (1 - cos theta).
+inline DoubleLanes AgreementExponent(DoubleLanes cosine, double agreementScale)
+{
+  const DoubleLanes gap = (1.0 - Abs(cosine)) * agreementScale;
+  return -(gap * gap);
+}
+
+/// Neighbours k to k + Lanes - 1 of a list of sorted indices, for steps 2 and 3.
+struct NeighbourLanes
+{
+  DoubleLanes Dx, Dy, Dz, Nx, Ny, Nz;
+};
+
+/**
+ * Loads neighbours k to k + Lanes - 1 of the `count` sorted indices `index`: their offsets q - p
+ * from the sorted coordinates x, y, z (computed as EdgeAwareSelect does: the same bits) and their
+ * normals (3 per sorted index). The lanes past `count` are padding, as in PadNeighbours.
+ */
+inline NeighbourLanes LoadNeighbours(const double p[3],
+  const std::uint32_t* index,
+  std::size_t k,
+  std::size_t count,
+  const double* x,
+  const double* y,
+  const double* z,
+  const double* normals)
+{
+  NeighbourLanes lanes;
+#if defined(__AVX512F__)
+  // Hardware gathers, no packed copy in memory.
+  const std::size_t left = count - k;
+  const __mmask8 valid = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
+  const __m256i j = _mm256_maskz_loadu_epi32(valid, index + k);
+  const __m256i j3 = _mm256_add_epi32(_mm256_add_epi32(j, j), j);
+  const __m512d far = _mm512_set1_pd(1e300);
+  const __m512d none = _mm512_setzero_pd();
+  const __m512d ox =
+    _mm512_sub_pd(_mm512_mask_i32gather_pd(none, valid, j, x, 8), _mm512_set1_pd(p[0]));
+  const __m512d oy =
+    _mm512_sub_pd(_mm512_mask_i32gather_pd(none, valid, j, y, 8), _mm512_set1_pd(p[1]));
+  const __m512d oz =
+    _mm512_sub_pd(_mm512_mask_i32gather_pd(none, valid, j, z, 8), _mm512_set1_pd(p[2]));
+  lanes.Dx = (DoubleLanes)_mm512_mask_blend_pd(valid, far, ox);
+  lanes.Dy = (DoubleLanes)_mm512_mask_blend_pd(valid, far, oy);
+  lanes.Dz = (DoubleLanes)_mm512_mask_blend_pd(valid, far, oz);
+  lanes.Nx = (DoubleLanes)_mm512_mask_i32gather_pd(none, valid, j3, normals, 8);
+  lanes.Ny = (DoubleLanes)_mm512_mask_i32gather_pd(none, valid, j3, normals + 1, 8);
+  lanes.Nz = (DoubleLanes)_mm512_mask_i32gather_pd(none, valid, j3, normals + 2, 8);
+#else
+  double values[6][Lanes];
+  const double px = p[0], py = p[1], pz = p[2];
+  for (std::size_t lane = 0; lane < Lanes; ++lane)
+  {
+    if (k + lane < count)
+    {
+      const std::size_t j = index[k + lane];
+      values[0][lane] = x[j] - px;
+      values[1][lane] = y[j] - py;
+      values[2][lane] = z[j] - pz;
+      values[3][lane] = normals[3 * j];
+      values[4][lane] = normals[3 * j + 1];
+      values[5][lane] = normals[3 * j + 2];
+    }
+    else
+    {
+      values[0][lane] = values[1][lane] = values[2][lane] = 1e300;
+      values[3][lane] = values[4][lane] = values[5][lane] = 0.0;
+    }
+  }
+  lanes.Dx = Load(values[0]);
+  lanes.Dy = Load(values[1]);
+  lanes.Dz = Load(values[2]);
+  lanes.Nx = Load(values[3]);
+  lanes.Ny = Load(values[4]);
+  lanes.Nz = Load(values[5]);
+#endif
+  return lanes;
+}
+
+/**
+ * Step 2 for sorted point p of normal `own` over its `count` neighbours (sorted indices
+ * `index`): the sum of exp(-|q - p|^2 * distanceScale) psi(own, n_j) sign(own . n_j) n_j.
+ */
+void EdgeAwareNormalSum(const double p[3],
+  const std::uint32_t* index,
+  std::size_t count,
+  const double* x,
+  const double* y,
+  const double* z,
+  const double* normals,
+  const double own[3],
+  double distanceScale,
+  double agreementScale,
+  double sum[3])
+{
+  const DoubleLanes zero = {};
+  DoubleLanes sumX = zero, sumY = zero, sumZ = zero;
+  for (std::size_t k = 0; k < count; k += Lanes)
+  {
+    const NeighbourLanes q = LoadNeighbours(p, index, k, count, x, y, z, normals);
+    const DoubleLanes distanceSquared = (q.Dx * q.Dx + q.Dy * q.Dy) + q.Dz * q.Dz;
+    const DoubleLanes cosine = (q.Nx * own[0] + q.Ny * own[1]) + q.Nz * own[2];
+    const DoubleLanes w = ExpOfNonPositive(
+      -distanceSquared * distanceScale + AgreementExponent(cosine, agreementScale));
+    // The fitted normals are not oriented: a neighbour's counts with the sign of the cosine.
+    const DoubleLanes signedWeight = Select(LessThan(cosine, 0.0), -w, w);
+    sumX += signedWeight * q.Nx;
+    sumY += signedWeight * q.Ny;
+    sumZ += signedWeight * q.Nz;
+  }
+  sum[0] = SumLanes(sumX);
+  sum[1] = SumLanes(sumY);
+  sum[2] = SumLanes(sumZ);
+}
+
+/**
+ * Step 3 for sorted point p of filtered normal m over its `count` neighbours (sorted indices
+ * `index`, filtered `normals`): the sums of the weights
+ * exp(-|q - p|^2 * distanceScale - h^2 * normalScale) psi(m, m_j) and of the weighted heights
+ * h = <(m + s m_j) / 2, q - p>, s the sign of m . m_j.
+ *
+ * The height is measured along the mean of the two normals rather than along m alone: the chord
+ * q - p between two points of a sphere is orthogonal to the sum of their normals, and on any
+ * smooth surface the error is of third order in |q - p| (second order along m alone). So a
+ * curved surface is not shrunk (the paper's mean height of the neighbours lies inside a convex
+ * surface), while on a plane the two normals agree and h is the paper's.
+ */
+void EdgeAwareHeightSums(const double p[3],
+  const std::uint32_t* index,
+  std::size_t count,
+  const double* x,
+  const double* y,
+  const double* z,
+  const double* normals,
+  const double m[3],
+  double distanceScale,
+  double normalScale,
+  double agreementScale,
+  double& weightSum,
+  double& weightedHeightSum)
+{
+  const DoubleLanes zero = {};
+  DoubleLanes weights = zero, heights = zero;
+  for (std::size_t k = 0; k < count; k += Lanes)
+  {
+    const NeighbourLanes q = LoadNeighbours(p, index, k, count, x, y, z, normals);
+    const DoubleLanes distanceSquared = (q.Dx * q.Dx + q.Dy * q.Dy) + q.Dz * q.Dz;
+    const DoubleLanes cosine = (q.Nx * m[0] + q.Ny * m[1]) + q.Nz * m[2];
+    // The neighbour's normal turned to agree with m (the normals are not oriented).
+    const IntLanes opposite = LessThan(cosine, 0.0);
+    const DoubleLanes nx = Select(opposite, -q.Nx, q.Nx);
+    const DoubleLanes ny = Select(opposite, -q.Ny, q.Ny);
+    const DoubleLanes nz = Select(opposite, -q.Nz, q.Nz);
+    const DoubleLanes h = ((q.Dx * (nx + m[0]) + q.Dy * (ny + m[1])) + q.Dz * (nz + m[2])) * 0.5;
+    const DoubleLanes w =
+      ExpOfNonPositive((-distanceSquared * distanceScale - (h * h) * normalScale) +
+                       AgreementExponent(cosine, agreementScale));
+    weights += w;
+    heights += w * h;
+  }
+  weightSum = SumLanes(weights);
+  weightedHeightSum = SumLanes(heights);
+}
+
+/// This build's edge-aware functions (declared in BilateralKernel.cxx).
+EdgeAwareKernel MakeEdgeAwareKernel()
+{
+  EdgeAwareKernel kernel;
+  kernel.Select = &EdgeAwareSelect;
+  kernel.PlaneNormal = &EdgeAwarePlaneNormal;
+  kernel.NormalSum = &EdgeAwareNormalSum;
+  kernel.HeightSums = &EdgeAwareHeightSums;
+  return kernel;
 }
 
 /// The exponential of this build, for the tests: out[i] = exp(in[i]) for in[i] <= 0.

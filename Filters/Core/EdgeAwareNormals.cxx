@@ -186,17 +186,19 @@ struct SortedGrid
   }
 };
 
-/// One thread's neighbours of the current point: sorted indices, offsets q - p, and the
-/// arguments and values of the exponentials.
+/// One thread's neighbours of the current point, for the kernel's edge-aware functions: sorted
+/// indices, and for step 1 the packed offsets q - p and distance weights.
 struct Neighbourhood
 {
   std::vector<std::uint32_t> Index;
-  std::vector<double> Dx, Dy, Dz, DistanceSquared, Argument, Weight;
+  std::vector<double> Dx, Dy, Dz, Weight;
   std::size_t Count = 0;
 
-  void Gather(const SortedGrid& grid, std::size_t i)
+  /// Scans the cells around sorted point i: the neighbours' indices and offsets, in an order
+  /// fixed by coordinates alone (see SortedGrid).
+  void Select(const EdgeAwareKernel& kernel, const SortedGrid& grid, std::size_t i)
   {
-    const double px = grid.X[i], py = grid.Y[i], pz = grid.Z[i];
+    const double p[3] = { grid.X[i], grid.Y[i], grid.Z[i] };
     const std::uint32_t* runs =
       &grid.CellRuns[2 * 9 * static_cast<std::size_t>(grid.CellOfPoint[i])];
     std::size_t count = 0;
@@ -204,67 +206,34 @@ struct Neighbourhood
     {
       const std::uint32_t begin = runs[2 * run];
       const std::uint32_t end = runs[2 * run + 1];
-      // Room for every candidate of the run: the loop below writes each one's index, and keeps
-      // it by advancing only for a neighbour (no branch: most candidates are not neighbours).
-      if (this->Index.size() < count + (end - begin))
-      {
-        this->Grow(2 * (count + (end - begin)));
-      }
-      std::uint32_t* index = this->Index.data();
-      const double* x = grid.X.data();
-      const double* y = grid.Y.data();
-      const double* z = grid.Z.data();
-      for (std::uint32_t j = begin; j < end; ++j)
-      {
-        // The same offsets and squared distance as the kernel's (SelectNeighbours).
-        const double ox = x[j] - px;
-        const double oy = y[j] - py;
-        const double oz = z[j] - pz;
-        const double d2 = (ox * ox + oy * oy) + oz * oz;
-        index[count] = j;
-        count += d2 < grid.RadiusSquared ? 1 : 0;
-      }
-    }
-    this->Offsets(grid, i, count);
-  }
-
-  /// The neighbours Gather found, from their sorted indices (kept by a NeighbourCache): the
-  /// same offsets, computed the same way, so the same bits.
-  void Load(const SortedGrid& grid, std::size_t i, const std::vector<std::uint32_t>& list)
-  {
-    if (this->Index.size() < list.size())
-    {
-      this->Grow(2 * list.size());
-    }
-    std::copy(list.begin(), list.end(), this->Index.begin());
-    this->Offsets(grid, i, list.size());
-  }
-
-  /// The offsets q - p and squared distances of the first `count` indices.
-  void Offsets(const SortedGrid& grid, std::size_t i, std::size_t count)
-  {
-    const double px = grid.X[i], py = grid.Y[i], pz = grid.Z[i];
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      const std::uint32_t j = this->Index[k];
-      const double ox = grid.X[j] - px;
-      const double oy = grid.Y[j] - py;
-      const double oz = grid.Z[j] - pz;
-      this->Dx[k] = ox;
-      this->Dy[k] = oy;
-      this->Dz[k] = oz;
-      this->DistanceSquared[k] = (ox * ox + oy * oy) + oz * oz;
+      // Room for every candidate of the run and padding: the kernel writes each one.
+      this->Reserve(count + (end - begin) + KernelLanes);
+      count = kernel.Select(p,
+        grid.X.data(),
+        grid.Y.data(),
+        grid.Z.data(),
+        begin,
+        end,
+        grid.RadiusSquared,
+        this->Dx.data(),
+        this->Dy.data(),
+        this->Dz.data(),
+        this->Index.data(),
+        count);
     }
     this->Count = count;
   }
 
-  void Exponentials() { KernelExp(this->Argument.data(), this->Weight.data(), this->Count); }
-
 private:
-  void Grow(std::size_t size)
+  void Reserve(std::size_t size)
   {
-    for (auto* values :
-      { &this->Dx, &this->Dy, &this->Dz, &this->DistanceSquared, &this->Argument, &this->Weight })
+    if (this->Index.size() >= size)
+    {
+      return;
+    }
+    // Grow geometrically, keeping what is packed: Select appends run after run.
+    size = std::max(size, 2 * this->Index.size());
+    for (auto* values : { &this->Dx, &this->Dy, &this->Dz, &this->Weight })
     {
       values->resize(size);
     }
@@ -295,16 +264,22 @@ public:
     }
   }
 
-  void Fetch(const SortedGrid& grid, std::size_t i, Neighbourhood& hood) const
+  /// The sorted indices of the neighbours of sorted point i (and their number): the list
+  /// kept, or the one found again in `hood`.
+  const std::uint32_t* Fetch(const EdgeAwareKernel& kernel,
+    const SortedGrid& grid,
+    std::size_t i,
+    Neighbourhood& hood,
+    std::size_t& count) const
   {
     if (this->Kept[i])
     {
-      hood.Load(grid, i, this->Lists[i]);
+      count = this->Lists[i].size();
+      return this->Lists[i].data();
     }
-    else
-    {
-      hood.Gather(grid, i);
-    }
+    hood.Select(kernel, grid, i);
+    count = hood.Count;
+    return hood.Index.data();
   }
 
   void Prepare() { this->Kept.assign(this->Lists.size(), 0); }
@@ -316,13 +291,6 @@ private:
   std::vector<std::uint8_t> Kept;
   std::atomic<std::uint64_t> Used{ 0 };
 };
-
-/// The agreement weight's exponent: -((1 - |c|) / (1 - cos theta))^2.
-inline double AgreementExponent(double cosine, double scale)
-{
-  const double gap = (1.0 - std::abs(cosine)) * scale;
-  return -(gap * gap);
-}
 
 } // namespace
 
@@ -340,6 +308,7 @@ bool RunEdgeAwareIteration(PointState& state,
   grid.Build(state, settings, threads);
   const std::size_t n = grid.Ids.size();
   const KernelConstants constants(settings.Radius, settings.NormalRadius);
+  const EdgeAwareKernel kernel = GetEdgeAwareKernel();
   const double agreementScale = 1.0 / (1.0 - std::cos(EdgeAwareNormalAngle * Pi / 180.0));
   std::vector<Neighbourhood> scratch(static_cast<std::size_t>(threads));
   std::vector<std::uint64_t> counts(static_cast<std::size_t>(threads), 0);
@@ -379,47 +348,20 @@ bool RunEdgeAwareIteration(PointState& state,
   forEachPoint(n,
     [&](std::size_t i, Neighbourhood& hood, std::uint64_t& visited)
     {
-      hood.Gather(grid, i);
+      hood.Select(kernel, grid, i);
       cache.Keep(i, hood);
       visited += hood.Count;
       if (hood.Count < MinimumNeighbourCount)
       {
         return;
       }
-      for (std::size_t k = 0; k < hood.Count; ++k)
-      {
-        hood.Argument[k] = -hood.DistanceSquared[k] * constants.DistanceScale;
-      }
-      hood.Exponentials();
-      double total = 0.0, first[3] = { 0.0, 0.0, 0.0 }, second[6] = { 0, 0, 0, 0, 0, 0 };
-      for (std::size_t k = 0; k < hood.Count; ++k)
-      {
-        const double w = hood.Weight[k];
-        const double o[3] = { hood.Dx[k], hood.Dy[k], hood.Dz[k] };
-        total += w;
-        for (int axis = 0; axis < 3; ++axis)
-        {
-          first[axis] += w * o[axis];
-        }
-        second[0] += w * o[0] * o[0];
-        second[1] += w * o[0] * o[1];
-        second[2] += w * o[0] * o[2];
-        second[3] += w * o[1] * o[1];
-        second[4] += w * o[1] * o[2];
-        second[5] += w * o[2] * o[2];
-      }
-      if (!(total > 0.0))
-      {
-        return;
-      }
-      const double mean[3] = { first[0] / total, first[1] / total, first[2] / total };
-      const double covariance[6] = { second[0] / total - mean[0] * mean[0],
-        second[1] / total - mean[0] * mean[1],
-        second[2] / total - mean[0] * mean[2],
-        second[3] / total - mean[1] * mean[1],
-        second[4] / total - mean[1] * mean[2],
-        second[5] / total - mean[2] * mean[2] };
-      SmallestEigenvector(covariance, &normals[3 * i]);
+      kernel.PlaneNormal(hood.Dx.data(),
+        hood.Dy.data(),
+        hood.Dz.data(),
+        hood.Count,
+        constants.DistanceScale,
+        hood.Weight.data(),
+        &normals[3 * i]);
     });
 
   // 2. Bilateral filtering of the normals, from one array into the other.
@@ -436,27 +378,22 @@ bool RunEdgeAwareIteration(PointState& state,
         {
           return;
         }
-        cache.Fetch(grid, i, hood);
-        visited += hood.Count;
-        for (std::size_t k = 0; k < hood.Count; ++k)
-        {
-          const double* other = &normals[3 * hood.Index[k]];
-          const double cosine = (own[0] * other[0] + own[1] * other[1]) + own[2] * other[2];
-          hood.Argument[k] = -hood.DistanceSquared[k] * constants.DistanceScale +
-                             AgreementExponent(cosine, agreementScale);
-        }
-        hood.Exponentials();
-        double sum[3] = { 0.0, 0.0, 0.0 };
-        for (std::size_t k = 0; k < hood.Count; ++k)
-        {
-          const double* other = &normals[3 * hood.Index[k]];
-          const double cosine = (own[0] * other[0] + own[1] * other[1]) + own[2] * other[2];
-          const double w = cosine < 0.0 ? -hood.Weight[k] : hood.Weight[k];
-          for (int axis = 0; axis < 3; ++axis)
-          {
-            sum[axis] += w * other[axis];
-          }
-        }
+        std::size_t count;
+        const std::uint32_t* neighbours = cache.Fetch(kernel, grid, i, hood, count);
+        visited += count;
+        const double p[3] = { grid.X[i], grid.Y[i], grid.Z[i] };
+        double sum[3];
+        kernel.NormalSum(p,
+          neighbours,
+          count,
+          grid.X.data(),
+          grid.Y.data(),
+          grid.Z.data(),
+          normals.data(),
+          own,
+          constants.DistanceScale,
+          agreementScale,
+          sum);
         const double length = std::sqrt((sum[0] * sum[0] + sum[1] * sum[1]) + sum[2] * sum[2]);
         if (!(length > 0.0))
         {
@@ -506,26 +443,23 @@ bool RunEdgeAwareIteration(PointState& state,
         isolated[i] = 1; // fewer than MinimumNeighbourCount neighbours
         return;
       }
-      cache.Fetch(grid, i, hood);
-      visited += hood.Count;
-      for (std::size_t k = 0; k < hood.Count; ++k)
-      {
-        const double h = (hood.Dx[k] * m[0] + hood.Dy[k] * m[1]) + hood.Dz[k] * m[2];
-        double argument =
-          -hood.DistanceSquared[k] * constants.DistanceScale - (h * h) * constants.NormalScale;
-        const double* other = &normals[3 * hood.Index[k]];
-        argument +=
-          AgreementExponent((m[0] * other[0] + m[1] * other[1]) + m[2] * other[2], agreementScale);
-        hood.Argument[k] = argument;
-      }
-      hood.Exponentials();
-      double total = 0.0, weighted = 0.0;
-      for (std::size_t k = 0; k < hood.Count; ++k)
-      {
-        const double h = (hood.Dx[k] * m[0] + hood.Dy[k] * m[1]) + hood.Dz[k] * m[2];
-        total += hood.Weight[k];
-        weighted += hood.Weight[k] * h;
-      }
+      std::size_t count;
+      const std::uint32_t* neighbours = cache.Fetch(kernel, grid, i, hood, count);
+      visited += count;
+      double total, weighted;
+      kernel.HeightSums(p,
+        neighbours,
+        count,
+        grid.X.data(),
+        grid.Y.data(),
+        grid.Z.data(),
+        normals.data(),
+        m,
+        constants.DistanceScale,
+        constants.NormalScale,
+        agreementScale,
+        total,
+        weighted);
       if (!(total > 0.0))
       {
         isolated[i] = 1;

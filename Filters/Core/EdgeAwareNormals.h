@@ -16,17 +16,22 @@
 //     psi = exp(-((1 - |n_i . n_j|) / (1 - cos theta))^2), theta = EdgeAwareNormalAngle: the
 //     neighbours across an edge, whose normals disagree, hardly count, so the normal of a point
 //     near an edge turns toward its own side's;
-//  3. the paper's displacement along the filtered normal m_i: heights h_j = <m_i, q_j - p_i>,
-//     weights exp(-|q - p|^2 / (2 sd^2)) exp(-h^2 / (2 sn^2)) psi(m_i, m_j): the agreement of the
+//  3. the paper's displacement along the filtered normal m_i, with heights measured along the
+//     mean of the two filtered normals, h_j = <(m_i + s_ij m_j) / 2, q_j - p_i>, and weights
+//     exp(-|q - p|^2 / (2 sd^2)) exp(-h^2 / (2 sn^2)) psi(m_i, m_j): the agreement of the
 //     filtered normals also leaves out the other side of an edge, which the height weight alone
-//     cannot when the noise is as thick as the feature.
+//     cannot when the noise is as thick as the feature; the mean normal keeps curved surfaces
+//     from shrinking (the chord between two points of a sphere is orthogonal to the sum of their
+//     normals; on a plane h is the paper's <m_i, q_j - p_i>).
 //
 // Each step reads the neighbours' results of the step before, so a point's result depends on
 // the points within EdgeAwareReachInRadii radii of it: that is the ghost margin of a
 // distributed run. Neighbours are visited in an order fixed by their coordinates alone (a grid
 // of cell size r anchored at the whole cloud's lower corner, then coordinates within a cell),
 // so the bits depend neither on the number of threads nor on how the cloud is split or
-// numbered; the exponentials are the kernel's own (KernelExp), the same bits in every build.
+// numbered. The per-point arithmetic of the three steps is the kernel's (EdgeAwareKernel in
+// BilateralKernel.h): vectorised like the paper's kernel, with its exponential and its partial
+// sums per lane added in a fixed tree, so the same bits in every build.
 #ifndef pcbilateral_EdgeAwareNormals_h
 #define pcbilateral_EdgeAwareNormals_h
 

@@ -1,8 +1,9 @@
 // The edge-aware mode (BilateralParameters::EdgeAware, EdgeAwareNormals.h):
 //   Quality      on a generated noisy sharp edge (noise 0.5% of the diagonal), it brings the
 //                points near the edge closer to the true surface than the paper's filter with
-//                the same r, rn and N, by a margin, and does not worsen the overall error, nor
-//                the error on a sphere (no edges);
+//                the same r, rn and N, by a margin, and does not worsen the overall error; on a
+//                sphere (no edges) it does not shrink the surface, as the paper's filter does,
+//                and its error is lower by a margin;
 //   Determinism  the same bits for 1, 2 and 4 threads and every kernel build, pinned by a hash;
 //                the paper's mode is untouched (TestOutputBits pins it);
 //   Inputs       NaN points pass through and are never neighbours, isolated points stay or are
@@ -107,24 +108,49 @@ void Quality()
     paper.EdgeRms);
   PCB_CHECK(aware.Rms < paper.Rms, "RMS %g, not below the paper's %g", aware.Rms, paper.Rms);
 
+  // On a sphere (radius 0.5 about the origin) the paper's mean height shrinks the surface; the
+  // edge-aware mode measures heights along the mean of two normals and does not.
   Sphere sphere;
   const NoisyCloud round = MakeNoisyCloud(sphere, 20000, 0.005, false, 0.0, 16);
-  const Errors paperRound =
-    Measure(sphere, round, Run(round.Positions, Parameters(round.Positions, false)).Positions);
-  const Errors awareRound =
-    Measure(sphere, round, Run(round.Positions, Parameters(round.Positions, true)).Positions);
-  std::printf(
-    "sphere, 0.5%% noise: RMS paper %.3g, edge-aware %.3g\n", paperRound.Rms, awareRound.Rms);
-  PCB_CHECK(awareRound.Rms <= 1.05 * paperRound.Rms,
-    "sphere RMS %g, worse than the paper's %g",
+  const std::vector<double> paperSphere =
+    Run(round.Positions, Parameters(round.Positions, false)).Positions;
+  const std::vector<double> awareSphere =
+    Run(round.Positions, Parameters(round.Positions, true)).Positions;
+  const Errors paperRound = Measure(sphere, round, paperSphere);
+  const Errors awareRound = Measure(sphere, round, awareSphere);
+  auto meanRadialOffset = [](const std::vector<double>& positions)
+  {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < positions.size(); i += 3)
+    {
+      sum += std::sqrt(positions[i] * positions[i] + positions[i + 1] * positions[i + 1] +
+                       positions[i + 2] * positions[i + 2]) -
+             0.5;
+    }
+    return sum / static_cast<double>(positions.size() / 3);
+  };
+  const double paperShrink = meanRadialOffset(paperSphere);
+  const double awareShrink = meanRadialOffset(awareSphere);
+  std::printf("sphere, 0.5%% noise: RMS paper %.3g, edge-aware %.3g; mean radial offset %.3g, "
+              "%.3g\n",
+    paperRound.Rms,
+    awareRound.Rms,
+    paperShrink,
+    awareShrink);
+  PCB_CHECK(awareRound.Rms < 0.8 * paperRound.Rms,
+    "sphere RMS %g, not 20%% below the paper's %g",
     awareRound.Rms,
     paperRound.Rms);
+  PCB_CHECK(std::abs(awareShrink) < 0.2 * std::abs(paperShrink),
+    "the sphere shrinks by %g, the paper's filter by %g",
+    -awareShrink,
+    -paperShrink);
 }
 
 void Determinism()
 {
   // Set when the edge-aware numbers change on purpose.
-  constexpr std::uint64_t Expected = 0x543f8930c4a0835cULL;
+  constexpr std::uint64_t Expected = 0x0184c5767e9ce9c0ULL;
   const std::unique_ptr<Shape> cube = Cube();
   const NoisyCloud cloud = MakeNoisyCloud(*cube, 12000, 0.005, false, 0.0, 17);
   // Fixed parameters (about 12 spacings and 5 sigma here), so that the pinned bits are the
