@@ -17,6 +17,10 @@
 #include <system_error>
 #include <type_traits>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #if defined(__unix__) || defined(__APPLE__)
 #include <fcntl.h>
 #include <sys/mman.h>
@@ -273,6 +277,68 @@ void GatherBytes(const std::uint8_t* from,
         std::memcpy(to + i * bytes, from + i * stride, bytes);
       }
   }
+}
+
+#if defined(PCB_KERNEL_X86) && defined(__GNUC__) && !defined(__clang__)
+// The same IEEE operations, vectorised where the machine has AVX2 or AVX-512 (floor needs
+// SSE4.1's rounding instruction to vectorise): the same integers on every machine. GCC
+// vectorises the loop only when it may ignore floating-point exception flags, which nothing
+// here reads (the values are the same).
+#define PCB_LAS_VECTOR_CLONES                                                                      \
+  __attribute__((target_clones("avx512f", "avx2", "default"), optimize("no-trapping-math")))
+#elif defined(PCB_KERNEL_X86) && defined(__clang__)
+#define PCB_LAS_VECTOR_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define PCB_LAS_VECTOR_CLONES
+#endif
+
+/// The coordinates of n points (interleaved x y z) as the records' integers, floor((value -
+/// offset) / scale + 0.5), into stored (interleaved too); their extremes widen low and high.
+/// Returns false when one does not fit 32 bits or is not finite (it is stored as 0). The
+/// interleaved values are taken 24 at a time (8 points), with the scales and offsets repeated
+/// to match, so that the loop vectorises without regrouping the coordinates by axis.
+PCB_LAS_VECTOR_CLONES
+bool QuantizeCoordinates(const double* __restrict xyz,
+  std::size_t n,
+  const double scale[3],
+  const double offset[3],
+  std::int32_t* __restrict stored,
+  std::int32_t low[3],
+  std::int32_t high[3])
+{
+  constexpr std::size_t Period = 24;
+  double scales[Period], offsets[Period];
+  std::int32_t lowest[Period], highest[Period];
+  for (std::size_t k = 0; k < Period; ++k)
+  {
+    scales[k] = scale[k % 3];
+    offsets[k] = offset[k % 3];
+    lowest[k] = low[k % 3];
+    highest[k] = high[k % 3];
+  }
+  std::int32_t outOfRange = 0;
+  const std::size_t total = 3 * n;
+  for (std::size_t start = 0; start < total; start += Period)
+  {
+    const std::size_t length = std::min(Period, total - start);
+    for (std::size_t k = 0; k < length; ++k)
+    {
+      const double q = std::floor((xyz[start + k] - offsets[k]) / scales[k] + 0.5);
+      // Also false for NaN; no branch, so that the loop vectorises.
+      const std::int32_t fits = (q >= -2147483648.0) & (q <= 2147483647.0);
+      outOfRange |= fits ^ 1;
+      const std::int32_t value = static_cast<std::int32_t>(fits ? q : 0.0);
+      stored[start + k] = value;
+      lowest[k] = value < lowest[k] ? value : lowest[k];
+      highest[k] = value > highest[k] ? value : highest[k];
+    }
+  }
+  for (std::size_t k = 0; k < Period; ++k)
+  {
+    low[k % 3] = std::min(low[k % 3], lowest[k]);
+    high[k % 3] = std::max(high[k % 3], highest[k]);
+  }
+  return outOfRange == 0;
 }
 
 void ScatterBytes(const std::uint8_t* from,
@@ -1293,10 +1359,15 @@ std::string WriteLAS(const std::string& path,
       static_cast<unsigned>(dimension.BitShift) });
   }
   const std::size_t stride = h.RecordLength;
-  constexpr std::size_t BlocksAtOnce = 128; // about 1M points, tens of MB, per write
+  // 32k points, about 1 MB, per write: the chunk stays in the cache between its encoding and
+  // its writing, and the first write starts early (with 1M points, 34 MB of fresh memory per
+  // chunk, page faults cost more than the encoding).
+  constexpr std::size_t BlocksAtOnce = 4;
   const std::size_t blockCount = (count + PointsPerBlock - 1) / PointsPerBlock;
   // Two chunks: one is written (by another thread) while the next is encoded.
-  std::vector<std::uint8_t> chunks[2];
+  // Not zero-filled: every block is cleared before it is encoded.
+  const std::size_t chunkBytes = std::min(blockCount, BlocksAtOnce) * PointsPerBlock * stride;
+  std::unique_ptr<std::uint8_t[]> chunks[2];
   std::future<bool> writing;
   auto finishWriting = [&]() { return !writing.valid() || writing.get(); };
   struct BlockSummary
@@ -1306,17 +1377,29 @@ std::string WriteLAS(const std::string& path,
     bool OutOfRange;
   };
   std::vector<BlockSummary> summaries(blockCount);
+  // One thread fewer than the cores encode, the last one writes: with as many encoding threads
+  // as cores, the one that shares its core with the writing holds the others up at the end of
+  // every chunk (measured on 2 cores: 0.19-0.21 s for 10M points of format 3, against 0.16 s
+  // with one encoding thread).
+#ifdef _OPENMP
+  const int encoders = std::max(1, omp_get_max_threads() - 1);
+#else
+  const int encoders = 1;
+#endif
   for (std::size_t firstBlock = 0; firstBlock < blockCount && ok; firstBlock += BlocksAtOnce)
   {
-    std::vector<std::uint8_t>& chunk = chunks[(firstBlock / BlocksAtOnce) % 2];
-    chunk.resize(std::min(blockCount, BlocksAtOnce) * PointsPerBlock * stride);
+    std::unique_ptr<std::uint8_t[]>& chunk = chunks[(firstBlock / BlocksAtOnce) % 2];
+    if (!chunk)
+    {
+      chunk.reset(new std::uint8_t[chunkBytes]);
+    }
     const auto blocks = static_cast<std::int64_t>(std::min(BlocksAtOnce, blockCount - firstBlock));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(encoders)
     for (std::int64_t b = 0; b < blocks; ++b)
     {
       const std::size_t first = (firstBlock + static_cast<std::size_t>(b)) * PointsPerBlock;
       const std::size_t n = std::min(PointsPerBlock, count - first);
-      std::uint8_t* block = chunk.data() + static_cast<std::size_t>(b) * PointsPerBlock * stride;
+      std::uint8_t* block = chunk.get() + static_cast<std::size_t>(b) * PointsPerBlock * stride;
       std::memset(block, 0, n * stride);
       BlockSummary& summary = summaries[firstBlock + static_cast<std::size_t>(b)];
       summary = BlockSummary{ { std::numeric_limits<double>::infinity(),
@@ -1334,21 +1417,9 @@ std::string WriteLAS(const std::string& path,
       std::int32_t low[3] = { INT32_MAX, INT32_MAX, INT32_MAX };
       std::int32_t high[3] = { INT32_MIN, INT32_MIN, INT32_MIN };
       bool outOfRange = false;
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        const double* p = positions + 3 * (first + i);
-        for (int axis = 0; axis < 3; ++axis)
-        {
-          const double q = std::floor((p[axis] - offset[axis]) / scale[axis] + 0.5);
-          // Also false for NaN.
-          const bool fits = q >= -2147483648.0 && q <= 2147483647.0;
-          outOfRange = outOfRange || !fits;
-          const auto stored = fits ? static_cast<std::int32_t>(q) : 0;
-          Store<std::int32_t>(block + i * stride + 4 * axis, stored);
-          low[axis] = std::min(low[axis], stored);
-          high[axis] = std::max(high[axis], stored);
-        }
-      }
+      std::int32_t stored[3 * PointsPerBlock];
+      outOfRange = !QuantizeCoordinates(positions + 3 * first, n, scale, offset, stored, low, high);
+      Scatter<12>(reinterpret_cast<const std::uint8_t*>(stored), block, stride, n);
       summary.OutOfRange = outOfRange;
       for (int axis = 0; axis < 3 && n > 0; ++axis)
       {
@@ -1377,10 +1448,27 @@ std::string WriteLAS(const std::string& path,
           ScatterBytes(from, to, stride, bytes, n);
         }
       }
+      // Eight points at a time: eight bytes of each field's column in one 64-bit word, masked
+      // and shifted in place (a field's bits stay within its byte), then one byte per record.
       for (const PackedByte& packed : packedBytes)
       {
         std::uint8_t* to = block + packed.ByteOffset;
-        for (std::size_t i = 0; i < n; ++i)
+        std::size_t i = 0;
+        for (; i + 8 <= n; i += 8)
+        {
+          std::uint64_t values = 0;
+          for (const PackedField& field : packed.Fields)
+          {
+            values |=
+              (Load<std::uint64_t>(field.Column + first + i) & (field.Mask * 0x0101010101010101ull))
+              << field.Shift;
+          }
+          for (std::size_t k = 0; k < 8; ++k)
+          {
+            to[(i + k) * stride] = static_cast<std::uint8_t>(values >> (8 * k));
+          }
+        }
+        for (; i < n; ++i)
         {
           unsigned value = 0;
           for (const PackedField& field : packed.Fields)
@@ -1417,7 +1505,7 @@ std::string WriteLAS(const std::string& path,
       (std::min(count, first + static_cast<std::size_t>(blocks) * PointsPerBlock) - first) * stride;
     ok = finishWriting();
     writing = std::async(std::launch::async,
-      [&chunk, bytes, file]() { return std::fwrite(chunk.data(), 1, bytes, file) == bytes; });
+      [&chunk, bytes, file]() { return std::fwrite(chunk.get(), 1, bytes, file) == bytes; });
   }
   ok = finishWriting() && ok;
 
