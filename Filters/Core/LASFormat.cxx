@@ -279,14 +279,15 @@ void GatherBytes(const std::uint8_t* from,
   }
 }
 
-#if defined(PCB_KERNEL_X86) && defined(__GNUC__) && !defined(__clang__)
+#if defined(PCB_KERNEL_X86) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
 // The same IEEE operations, vectorised where the machine has AVX2 or AVX-512 (floor needs
-// SSE4.1's rounding instruction to vectorise): the same integers on every machine. GCC
+// SSE4.1's rounding instruction to vectorise): the same integers on every machine. The clones
+// are picked at load time through the dynamic linker's indirect functions (Linux). GCC
 // vectorises the loop only when it may ignore floating-point exception flags, which nothing
 // here reads (the values are the same).
 #define PCB_LAS_VECTOR_CLONES                                                                      \
   __attribute__((target_clones("avx512f", "avx2", "default"), optimize("no-trapping-math")))
-#elif defined(PCB_KERNEL_X86) && defined(__clang__)
+#elif defined(PCB_KERNEL_X86) && defined(__linux__) && defined(__clang__)
 #define PCB_LAS_VECTOR_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define PCB_LAS_VECTOR_CLONES
