@@ -132,30 +132,36 @@ inline DoubleLanes ExpOfNonPositive(DoubleLanes x)
 }
 
 /**
- * The candidates with |q - p|^2 < r^2, in candidate order: their offsets q - p, packed at the
- * front of the output arrays. Output arrays hold count + Lanes values.
- * Returns the number of neighbours.
+ * Packs the candidates [begin, end) of x, y, z with |q - p|^2 < r^2, in candidate order, after
+ * the `count` neighbours already packed: their offsets q - p to dx, dy, dz and, when
+ * WithIndices, their candidate indices to index. The arrays need room for
+ * count + (end - begin) + Lanes values. Returns the new count. Shared by the paper's kernel
+ * (FilterPoint, without indices) and the edge-aware mode's step 1 (with them), so that both
+ * compute their offsets and distances the same way.
  */
-inline std::size_t SelectNeighbours(const double p[3],
+template<bool WithIndices>
+inline std::size_t PackNeighbours(const double p[3],
   const double* x,
   const double* y,
   const double* z,
-  std::size_t count,
+  std::size_t begin,
+  std::size_t end,
   double radiusSquared,
   double* dx,
   double* dy,
-  double* dz)
+  double* dz,
+  std::uint32_t* index,
+  std::size_t count)
 {
-  std::size_t neighbours = 0;
 #if defined(__AVX512F__)
-  // Eight candidates at a time, the neighbours among them packed with one compress each.
+  // Eight candidates at a time, the neighbours (and their indices) packed with a compress each.
   const __m512d px = _mm512_set1_pd(p[0]);
   const __m512d py = _mm512_set1_pd(p[1]);
   const __m512d pz = _mm512_set1_pd(p[2]);
   const __m512d limit = _mm512_set1_pd(radiusSquared);
-  for (std::size_t j = 0; j < count; j += 8)
+  for (std::size_t j = begin; j < end; j += 8)
   {
-    const std::size_t left = count - j;
+    const std::size_t left = end - j;
     const __mmask8 valid = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
     const __m512d ox = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, x + j), px);
     const __m512d oy = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, y + j), py);
@@ -163,28 +169,40 @@ inline std::size_t SelectNeighbours(const double p[3],
     const __m512d d2 = _mm512_add_pd(
       _mm512_add_pd(_mm512_mul_pd(ox, ox), _mm512_mul_pd(oy, oy)), _mm512_mul_pd(oz, oz));
     const __mmask8 inside = _mm512_mask_cmp_pd_mask(valid, d2, limit, _CMP_LT_OQ);
-    _mm512_storeu_pd(dx + neighbours, _mm512_maskz_compress_pd(inside, ox));
-    _mm512_storeu_pd(dy + neighbours, _mm512_maskz_compress_pd(inside, oy));
-    _mm512_storeu_pd(dz + neighbours, _mm512_maskz_compress_pd(inside, oz));
-    neighbours += static_cast<std::size_t>(PopCount(inside));
+    _mm512_storeu_pd(dx + count, _mm512_maskz_compress_pd(inside, ox));
+    _mm512_storeu_pd(dy + count, _mm512_maskz_compress_pd(inside, oy));
+    _mm512_storeu_pd(dz + count, _mm512_maskz_compress_pd(inside, oz));
+    if constexpr (WithIndices)
+    {
+      const __m256i indices = _mm256_add_epi32(
+        _mm256_set1_epi32(static_cast<int>(j)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+      _mm256_storeu_si256(
+        reinterpret_cast<__m256i*>(index + count), _mm256_maskz_compress_epi32(inside, indices));
+    }
+    count += static_cast<std::size_t>(PopCount(inside));
   }
 #else
   // Without a branch per candidate: most candidates are not neighbours, and a branch on that
-  // is mispredicted often.
+  // is mispredicted often. Every candidate is written, and kept by advancing only for a
+  // neighbour.
   const double px = p[0], py = p[1], pz = p[2];
-  for (std::size_t j = 0; j < count; ++j)
+  for (std::size_t j = begin; j < end; ++j)
   {
     const double ox = x[j] - px;
     const double oy = y[j] - py;
     const double oz = z[j] - pz;
     const double d2 = (ox * ox + oy * oy) + oz * oz;
-    dx[neighbours] = ox;
-    dy[neighbours] = oy;
-    dz[neighbours] = oz;
-    neighbours += d2 < radiusSquared ? 1 : 0;
+    dx[count] = ox;
+    dy[count] = oy;
+    dz[count] = oz;
+    if constexpr (WithIndices)
+    {
+      index[count] = static_cast<std::uint32_t>(j);
+    }
+    count += d2 < radiusSquared ? 1 : 0;
   }
 #endif
-  return neighbours;
+  return count;
 }
 
 /// The weighted sums of pass 1 (see FilterPoint), one partial sum per lane.
@@ -213,7 +231,7 @@ inline DistanceMoments AccumulateDistanceMoments(const double* dx,
     const DoubleLanes ox = Load(dx + k);
     const DoubleLanes oy = Load(dy + k);
     const DoubleLanes oz = Load(dz + k);
-    // The squared distance again, as SelectNeighbours computed it: cheaper than packing it.
+    // The squared distance again, as PackNeighbours computed it: cheaper than packing it.
     const DoubleLanes distanceSquared = (ox * ox + oy * oy) + oz * oz;
     const DoubleLanes w = ExpOfNonPositive(-distanceSquared * distanceScale);
     Store(distanceWeight + k, w);
@@ -301,7 +319,7 @@ void FilterPoint(const double p[3],
   double* dz = scratch.Dz;
   double* distanceWeight = scratch.DistanceWeight;
   const std::size_t neighbours =
-    SelectNeighbours(p, x, y, z, count, constants.RadiusSquared, dx, dy, dz);
+    PackNeighbours<false>(p, x, y, z, 0, count, constants.RadiusSquared, dx, dy, dz, nullptr, 0);
   result.NeighbourCount = static_cast<std::uint32_t>(neighbours);
   if (neighbours < MinimumNeighbourCount)
   {
@@ -382,12 +400,8 @@ double ArithmeticFloor(const double* dx,
 // build. Its arrays of packed neighbours hold whole vectors: a count is padded up to a multiple
 // of Lanes with neighbours that add exact zeros to every sum (see PadNeighbours).
 
-/**
- * Appends the candidates of sorted indices [begin, end) with |q - p|^2 < r^2 (the arrays x, y,
- * z hold the sorted points) after the `count` neighbours already packed: their offsets q - p to
- * dx, dy, dz and their indices to index, in candidate order. The arrays need room for
- * count + (end - begin) + Lanes values. Returns the new count.
- */
+/// Step 1's selection (EdgeAwareKernel::Select): the neighbours among the sorted points
+/// [begin, end), appended with their sorted indices after the `count` already packed.
 std::size_t EdgeAwareSelect(const double p[3],
   const double* x,
   const double* y,
@@ -401,49 +415,7 @@ std::size_t EdgeAwareSelect(const double p[3],
   std::uint32_t* index,
   std::size_t count)
 {
-#if defined(__AVX512F__)
-  // Eight candidates at a time, the neighbours and their indices packed with a compress each.
-  const __m512d px = _mm512_set1_pd(p[0]);
-  const __m512d py = _mm512_set1_pd(p[1]);
-  const __m512d pz = _mm512_set1_pd(p[2]);
-  const __m512d limit = _mm512_set1_pd(radiusSquared);
-  const __m256i laneIndex = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  for (std::uint32_t j = begin; j < end; j += 8)
-  {
-    const std::uint32_t left = end - j;
-    const __mmask8 valid = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
-    const __m512d ox = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, x + j), px);
-    const __m512d oy = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, y + j), py);
-    const __m512d oz = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, z + j), pz);
-    const __m512d d2 = _mm512_add_pd(
-      _mm512_add_pd(_mm512_mul_pd(ox, ox), _mm512_mul_pd(oy, oy)), _mm512_mul_pd(oz, oz));
-    const __mmask8 inside = _mm512_mask_cmp_pd_mask(valid, d2, limit, _CMP_LT_OQ);
-    const __m256i indices = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(j)), laneIndex);
-    _mm512_storeu_pd(dx + count, _mm512_maskz_compress_pd(inside, ox));
-    _mm512_storeu_pd(dy + count, _mm512_maskz_compress_pd(inside, oy));
-    _mm512_storeu_pd(dz + count, _mm512_maskz_compress_pd(inside, oz));
-    _mm256_storeu_si256(
-      reinterpret_cast<__m256i*>(index + count), _mm256_maskz_compress_epi32(inside, indices));
-    count += static_cast<std::size_t>(PopCount(inside));
-  }
-#else
-  // Without a branch per candidate (most are not neighbours): every candidate is written, and
-  // kept by advancing only for a neighbour.
-  const double px = p[0], py = p[1], pz = p[2];
-  for (std::uint32_t j = begin; j < end; ++j)
-  {
-    const double ox = x[j] - px;
-    const double oy = y[j] - py;
-    const double oz = z[j] - pz;
-    const double d2 = (ox * ox + oy * oy) + oz * oz;
-    dx[count] = ox;
-    dy[count] = oy;
-    dz[count] = oz;
-    index[count] = j;
-    count += d2 < radiusSquared ? 1 : 0;
-  }
-#endif
-  return count;
+  return PackNeighbours<true>(p, x, y, z, begin, end, radiusSquared, dx, dy, dz, index, count);
 }
 
 /**
@@ -504,7 +476,7 @@ struct NeighbourLanes
 
 /**
  * Loads neighbours k to k + Lanes - 1 of the `count` sorted indices `index`: their offsets q - p
- * from the sorted coordinates x, y, z (computed as EdgeAwareSelect does: the same bits) and their
+ * from the sorted coordinates x, y, z (computed as PackNeighbours does: the same bits) and their
  * normals (3 per sorted index). The lanes past `count` are padding, as in PadNeighbours.
  */
 inline NeighbourLanes LoadNeighbours(const double p[3],
