@@ -106,36 +106,44 @@ void AddWavePacket(std::vector<LASDimension>& dimensions, std::size_t at)
   Add(dimensions, "WaveformXYZt", LASValueType::Float32, at + 17, 0, 0, 3);
 }
 
-bool FitsIntegerType(double value, LASValueType type)
+/// Dispatches on the stored integer type of a scaled field (8 to 32 bits).
+template<typename Function>
+void WithRawType(LASValueType type, Function function)
 {
-  double low = 0, high = 0;
   switch (type)
   {
     case LASValueType::UInt8:
-      high = 255;
-      break;
+      return function(std::uint8_t());
     case LASValueType::Int8:
-      low = -128;
-      high = 127;
-      break;
+      return function(std::int8_t());
     case LASValueType::UInt16:
-      high = 65535;
-      break;
+      return function(std::uint16_t());
     case LASValueType::Int16:
-      low = -32768;
-      high = 32767;
-      break;
+      return function(std::int16_t());
     case LASValueType::UInt32:
-      high = 4294967295.0;
-      break;
-    case LASValueType::Int32:
-      low = -2147483648.0;
-      high = 2147483647.0;
-      break;
+      return function(std::uint32_t());
     default:
-      return false;
+      return function(std::int32_t());
   }
-  return value >= low && value <= high && value == std::floor(value);
+}
+
+/// Calls function(Raw(), Value()) with the stored integer type and the decoded column's type
+/// (float or double) of a scaled field.
+template<typename Function>
+void WithScaledTypes(const LASDimension& dimension, Function function)
+{
+  WithRawType(dimension.Type,
+    [&](auto raw)
+    {
+      if (dimension.ColumnType == LASValueType::Float32)
+      {
+        function(raw, float());
+      }
+      else
+      {
+        function(raw, double());
+      }
+    });
 }
 
 /// The scale, offset and no-data value of an extra-bytes descriptor (`options` bits 0, 3 and
@@ -170,13 +178,18 @@ void ApplyExtraBytesScaling(const std::uint8_t* descriptor, int options, LASDime
     {
       return;
     }
-    const bool isSigned = dimension.Type == LASValueType::Int8 ||
-                          dimension.Type == LASValueType::Int16 ||
-                          dimension.Type == LASValueType::Int32;
-    noData[c] = isSigned ? static_cast<double>(Load<std::int64_t>(descriptor + 40 + 8 * c))
-                         : static_cast<double>(Load<std::uint64_t>(descriptor + 40 + 8 * c));
-    // A no-data value the type cannot hold marks nothing.
-    hasNoData = hasNoData && FitsIntegerType(noData[c], dimension.Type);
+    WithRawType(dimension.Type,
+      [&](auto raw)
+      {
+        using Raw = decltype(raw);
+        const std::uint8_t* stored = descriptor + 40 + 8 * c;
+        noData[c] = std::is_signed_v<Raw> ? static_cast<double>(Load<std::int64_t>(stored))
+                                          : static_cast<double>(Load<std::uint64_t>(stored));
+        // A no-data value the type cannot hold marks nothing.
+        hasNoData = hasNoData &&
+                    noData[c] >= static_cast<double>(std::numeric_limits<Raw>::lowest()) &&
+                    noData[c] <= static_cast<double>(std::numeric_limits<Raw>::max());
+      });
   }
   dimension.Scaled = true;
   dimension.ColumnType = LASValueType::Float64;
@@ -769,8 +782,9 @@ double ScaledValue(Raw raw, const LASDimension& dimension, int component)
   return static_cast<double>(raw) * dimension.Scale[component] + dimension.Offset[component];
 }
 
+/// A scaled field's stored integers (Raw) decoded into its column (Value).
 template<typename Raw, typename Value>
-void DecodeScaledAs(const std::uint8_t* from,
+void DecodeScaled(const std::uint8_t* from,
   std::size_t stride,
   const LASDimension& dimension,
   std::uint8_t* to,
@@ -785,23 +799,6 @@ void DecodeScaledAs(const std::uint8_t* from,
         ScaledValue(Load<Raw>(from + i * stride + c * sizeof(Raw)), dimension, c));
       Store<Value>(to + (i * components + c) * sizeof(Value), value);
     }
-  }
-}
-
-template<typename Raw>
-void DecodeScaled(const std::uint8_t* from,
-  std::size_t stride,
-  const LASDimension& dimension,
-  std::uint8_t* to,
-  std::size_t count)
-{
-  if (dimension.ColumnType == LASValueType::Float32)
-  {
-    DecodeScaledAs<Raw, float>(from, stride, dimension, to, count);
-  }
-  else
-  {
-    DecodeScaledAs<Raw, double>(from, stride, dimension, to, count);
   }
 }
 
@@ -820,8 +817,9 @@ Raw ScaledRaw(double value, const LASDimension& dimension, int component)
       static_cast<double>(std::numeric_limits<Raw>::max())));
 }
 
+/// A scaled field's column (Value) encoded into its stored integers (Raw).
 template<typename Raw, typename Value>
-void EncodeScaledAs(const std::uint8_t* from,
+void EncodeScaled(const std::uint8_t* from,
   const LASDimension& dimension,
   std::uint8_t* to,
   std::size_t stride,
@@ -838,54 +836,54 @@ void EncodeScaledAs(const std::uint8_t* from,
   }
 }
 
-template<typename Raw>
-void EncodeScaled(const std::uint8_t* from,
-  const LASDimension& dimension,
-  std::uint8_t* to,
-  std::size_t stride,
-  std::size_t count)
-{
-  if (dimension.ColumnType == LASValueType::Float32)
-  {
-    EncodeScaledAs<Raw, float>(from, dimension, to, stride, count);
-  }
-  else
-  {
-    EncodeScaledAs<Raw, double>(from, dimension, to, stride, count);
-  }
-}
-
-/// Dispatches on the stored integer type of a scaled field (8 to 32 bits).
-template<typename Function>
-void WithRawType(LASValueType type, Function function)
-{
-  switch (type)
-  {
-    case LASValueType::UInt8:
-      return function(std::uint8_t());
-    case LASValueType::Int8:
-      return function(std::int8_t());
-    case LASValueType::UInt16:
-      return function(std::uint16_t());
-    case LASValueType::Int16:
-      return function(std::int16_t());
-    case LASValueType::UInt32:
-      return function(std::uint32_t());
-    default:
-      return function(std::int32_t());
-  }
-}
-
 /// Points decoded at once by a thread: their records stay in its cache for all the passes.
 constexpr std::size_t PointsPerDecodedBlock = 4096;
 
-/// The fields packed in bits of one byte, decoded together: one pass reads the byte once and
-/// writes every field of it.
+/// A byte's value in each byte of a 64-bit word: eight points' bit fields are decoded and
+/// encoded together, the eight bytes of a word (the host is little-endian, as checked when the
+/// header is parsed; a field's mask keeps its bits within its byte).
+constexpr std::uint64_t EveryByte = 0x0101010101010101ull;
+
+/// A field packed in bits of a byte of the record.
+struct BitField
+{
+  std::size_t Dimension;
+  unsigned Mask;
+  unsigned Shift;
+};
+
+/// The bit fields of one byte of the record, decoded or encoded together: one pass over the
+/// records reads or writes that byte once for all of them.
 struct BitFieldByte
 {
   std::size_t ByteOffset = 0;
-  std::vector<std::size_t> Dimensions;
+  std::vector<BitField> Fields;
 };
+
+/// The bit fields of the dimensions that have a column, by byte.
+std::vector<BitFieldByte> GroupBitFields(const LASFileInfo& info, const void* const* columns)
+{
+  std::vector<BitFieldByte> bytes;
+  for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+  {
+    const LASDimension& dimension = info.Dimensions[d];
+    if (!columns[d] || dimension.BitCount == 0)
+    {
+      continue;
+    }
+    auto byte = std::find_if(bytes.begin(),
+      bytes.end(),
+      [&](const BitFieldByte& b) { return b.ByteOffset == dimension.ByteOffset; });
+    if (byte == bytes.end())
+    {
+      bytes.push_back(BitFieldByte{ dimension.ByteOffset, {} });
+      byte = bytes.end() - 1;
+    }
+    byte->Fields.push_back(
+      BitField{ d, (1u << dimension.BitCount) - 1u, static_cast<unsigned>(dimension.BitShift) });
+  }
+  return bytes;
+}
 
 /// Decodes blocks of point records into the columns, one pass per field, except the fields
 /// packed in bits of one byte: one pass reads the byte once and writes each of its fields.
@@ -896,24 +894,8 @@ public:
     : Info(info)
     , Positions(positions)
     , Columns(columns)
+    , BitFields(GroupBitFields(info, columns))
   {
-    for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
-    {
-      const LASDimension& dimension = info.Dimensions[d];
-      if (!columns[d] || dimension.BitCount == 0)
-      {
-        continue;
-      }
-      auto byte = std::find_if(this->BitFields.begin(),
-        this->BitFields.end(),
-        [&](const BitFieldByte& b) { return b.ByteOffset == dimension.ByteOffset; });
-      if (byte == this->BitFields.end())
-      {
-        this->BitFields.push_back(BitFieldByte{ dimension.ByteOffset, {} });
-        byte = this->BitFields.end() - 1;
-      }
-      byte->Dimensions.push_back(d);
-    }
   }
 
   /// Decodes the `count` records at `block`, the points from `first` on.
@@ -942,8 +924,9 @@ public:
       std::uint8_t* to = this->Column(d, first);
       if (dimension.Scaled)
       {
-        WithRawType(dimension.Type,
-          [&](auto raw) { DecodeScaled<decltype(raw)>(from, stride, dimension, to, count); });
+        WithScaledTypes(dimension,
+          [&](auto raw, auto value)
+          { DecodeScaled<decltype(raw), decltype(value)>(from, stride, dimension, to, count); });
       }
       else
       {
@@ -973,19 +956,17 @@ private:
     std::uint8_t* to[MostFields];
     unsigned shift[MostFields];
     unsigned mask[MostFields];
-    const std::size_t fields = std::min(byte.Dimensions.size(), MostFields);
+    const std::size_t fields = std::min(byte.Fields.size(), MostFields); // bits of one byte
     for (std::size_t f = 0; f < fields; ++f)
     {
-      const LASDimension& dimension = this->Info.Dimensions[byte.Dimensions[f]];
-      to[f] = this->Column(byte.Dimensions[f], first);
-      shift[f] = static_cast<unsigned>(dimension.BitShift);
-      mask[f] = (1u << dimension.BitCount) - 1u;
+      to[f] = this->Column(byte.Fields[f].Dimension, first);
+      shift[f] = byte.Fields[f].Shift;
+      mask[f] = byte.Fields[f].Mask;
     }
     // Eight points at a time, as the eight bytes of a 64-bit word (the host is little-endian,
     // as checked when the header was parsed): shifting the word moves each point's bits within
     // its byte, as long as a field does not go beyond its byte, which the mask makes sure of.
     // One store writes a field of eight points.
-    constexpr std::uint64_t EveryByte = 0x0101010101010101ull;
     std::size_t i = 0;
     for (; i + 8 <= count; i += 8)
     {
@@ -1180,19 +1161,6 @@ std::vector<std::uint8_t> EncodeHeader(const LASFileInfo& info,
   return out;
 }
 
-struct PackedField
-{
-  const std::uint8_t* Column;
-  unsigned Mask;
-  unsigned Shift;
-};
-
-struct PackedByte
-{
-  std::size_t ByteOffset;
-  std::vector<PackedField> Fields;
-};
-
 void AppendRecord(std::vector<std::uint8_t>& out, const LASRecord& record, bool extended)
 {
   const std::size_t headerSize = extended ? EVLRHeaderSize : VLRHeaderSize;
@@ -1339,26 +1307,9 @@ std::string WriteLAS(const std::string& path,
   }
   // The fields packed in bits of a byte, by byte: each byte is made in one pass over the
   // points rather than one pass per field.
-  std::vector<PackedByte> packedBytes;
-  for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
-  {
-    const LASDimension& dimension = info.Dimensions[d];
-    if (dimension.BitCount == 0 || !columns[d])
-    {
-      continue;
-    }
-    auto byte = std::find_if(packedBytes.begin(),
-      packedBytes.end(),
-      [&](const PackedByte& packed) { return packed.ByteOffset == dimension.ByteOffset; });
-    if (byte == packedBytes.end())
-    {
-      packedBytes.push_back(PackedByte{ dimension.ByteOffset, {} });
-      byte = packedBytes.end() - 1;
-    }
-    byte->Fields.push_back(PackedField{ static_cast<const std::uint8_t*>(columns[d]),
-      (1u << dimension.BitCount) - 1u,
-      static_cast<unsigned>(dimension.BitShift) });
-  }
+  const std::vector<BitFieldByte> bitFieldBytes = GroupBitFields(info, columns);
+  auto bitColumn = [columns](const BitField& field)
+  { return static_cast<const std::uint8_t*>(columns[field.Dimension]); };
   const std::size_t stride = h.RecordLength;
   // 32k points, about 1 MB, per write: the chunk stays in the cache between its encoding and
   // its writing, and the first write starts early (with 1M points, 34 MB of fresh memory per
@@ -1411,21 +1362,18 @@ std::string WriteLAS(const std::string& path,
                                 -std::numeric_limits<double>::infinity() },
         {},
         false };
-      // The extremes of the stored integers, in locals the loop keeps in registers; the
-      // bounds are computed from them once.
-      const double scale[3] = { h.Scale[0], h.Scale[1], h.Scale[2] };
-      const double offset[3] = { h.Offset[0], h.Offset[1], h.Offset[2] };
+      // The stored integers of the coordinates and their extremes, from which the bounds are
+      // computed once.
       std::int32_t low[3] = { INT32_MAX, INT32_MAX, INT32_MAX };
       std::int32_t high[3] = { INT32_MIN, INT32_MIN, INT32_MIN };
-      bool outOfRange = false;
       std::int32_t stored[3 * PointsPerBlock];
-      outOfRange = !QuantizeCoordinates(positions + 3 * first, n, scale, offset, stored, low, high);
+      summary.OutOfRange =
+        !QuantizeCoordinates(positions + 3 * first, n, h.Scale, h.Offset, stored, low, high);
       Scatter<12>(reinterpret_cast<const std::uint8_t*>(stored), block, stride, n);
-      summary.OutOfRange = outOfRange;
       for (int axis = 0; axis < 3 && n > 0; ++axis)
       {
-        const double a = low[axis] * scale[axis] + offset[axis];
-        const double z = high[axis] * scale[axis] + offset[axis];
+        const double a = low[axis] * h.Scale[axis] + h.Offset[axis];
+        const double z = high[axis] * h.Scale[axis] + h.Offset[axis];
         summary.Bounds[axis] = std::min(a, z); // a negative scale swaps them
         summary.Bounds[3 + axis] = std::max(a, z);
       }
@@ -1441,8 +1389,9 @@ std::string WriteLAS(const std::string& path,
         std::uint8_t* to = block + dimension.ByteOffset;
         if (dimension.Scaled)
         {
-          WithRawType(dimension.Type,
-            [&](auto raw) { EncodeScaled<decltype(raw)>(from, dimension, to, stride, n); });
+          WithScaledTypes(dimension,
+            [&](auto raw, auto value)
+            { EncodeScaled<decltype(raw), decltype(value)>(from, dimension, to, stride, n); });
         }
         else if (dimension.BitCount == 0)
         {
@@ -1451,18 +1400,17 @@ std::string WriteLAS(const std::string& path,
       }
       // Eight points at a time: eight bytes of each field's column in one 64-bit word, masked
       // and shifted in place (a field's bits stay within its byte), then one byte per record.
-      for (const PackedByte& packed : packedBytes)
+      for (const BitFieldByte& packed : bitFieldBytes)
       {
         std::uint8_t* to = block + packed.ByteOffset;
         std::size_t i = 0;
         for (; i + 8 <= n; i += 8)
         {
           std::uint64_t values = 0;
-          for (const PackedField& field : packed.Fields)
+          for (const BitField& field : packed.Fields)
           {
-            values |=
-              (Load<std::uint64_t>(field.Column + first + i) & (field.Mask * 0x0101010101010101ull))
-              << field.Shift;
+            values |= (Load<std::uint64_t>(bitColumn(field) + first + i) & (field.Mask * EveryByte))
+                      << field.Shift;
           }
           for (std::size_t k = 0; k < 8; ++k)
           {
@@ -1472,9 +1420,9 @@ std::string WriteLAS(const std::string& path,
         for (; i < n; ++i)
         {
           unsigned value = 0;
-          for (const PackedField& field : packed.Fields)
+          for (const BitField& field : packed.Fields)
           {
-            value |= (field.Column[first + i] & field.Mask) << field.Shift;
+            value |= (bitColumn(field)[first + i] & field.Mask) << field.Shift;
           }
           to[i * stride] = static_cast<std::uint8_t>(value);
         }
