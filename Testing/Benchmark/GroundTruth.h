@@ -3,10 +3,10 @@
 #ifndef pcbilateral_benchmark_GroundTruth_h
 #define pcbilateral_benchmark_GroundTruth_h
 
+#include "BenchmarkTiming.h"
 #include "BilateralFilter.h"
 #include "SampleShapes.h"
 
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -20,11 +20,6 @@ struct Quality
   double Rms = 0.0;
   double EdgeRms = 0.0;
 };
-
-inline double Seconds(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 inline pcbilateral::PointCloudView View(const std::vector<double>& positions)
 {

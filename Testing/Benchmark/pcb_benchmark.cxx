@@ -27,6 +27,7 @@
 //   pcb_benchmark --end-to-end [--runs N] PROGRAM ARGUMENTS...
 //       times a whole program run (reading, filtering and writing), e.g. pcbilateral or the
 //       authors' program on the same file, and reports its peak resident memory.
+#include "BenchmarkTiming.h"
 #include "BilateralFilter.h"
 #include "BilateralKernel.h"
 #include "LASFormat.h"
@@ -49,6 +50,8 @@
 namespace
 {
 using namespace pcbilateral_samples;
+using pcbilateral_benchmark::CpuSeconds;
+using pcbilateral_benchmark::Seconds;
 
 enum class Surface
 {
@@ -142,24 +145,10 @@ std::vector<double> Generate(const Workload& workload)
   return xyz;
 }
 
-double Seconds(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 double Median(std::vector<double> values)
 {
   std::sort(values.begin(), values.end());
   return values[values.size() / 2];
-}
-
-/// User and system time of this process so far, all threads.
-double CpuSeconds()
-{
-  struct rusage usage;
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
-         1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
 /// What a child process reports back through a pipe.

@@ -27,8 +27,6 @@
 #include <string>
 #include <vector>
 
-#include <sys/resource.h>
-
 #ifdef PCB_HAVE_CGAL
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/bilateral_smooth_point_set.h>
@@ -41,15 +39,6 @@ namespace
 {
 using namespace pcbilateral_samples;
 using namespace pcbilateral_benchmark;
-
-/// User and system time of this process so far.
-double ProcessorSeconds()
-{
-  struct rusage usage;
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
 
 /// The best of a method over its grid: each setting is a function giving the positions after
 /// 1, 2, ... steps of it (a chain), so that every number of iterations is measured on the way.
@@ -97,9 +86,9 @@ struct Best
     this->Time = 1e300;
     for (int k = 0; k < 5; ++k)
     {
-      const double start = ProcessorSeconds();
+      const double start = CpuSeconds();
       this->RunBestEdge();
-      this->Time = std::min(this->Time, ProcessorSeconds() - start);
+      this->Time = std::min(this->Time, CpuSeconds() - start);
     }
   }
 };

@@ -266,22 +266,19 @@ int main(int argc, char* argv[])
       automatic.NormalRadius,
       automatic.NumberOfIterations);
 
-    // The grid, in the measured units: r geometric from min(3 s, 4 sigma) to max(36 s,
-    // 20 sigma), rn from 1.5 to 7.5 sigma, N from 1 to 4. The 1M-point cases, where the wide
-    // grid would take hours, search around the automatic radius (0.5 to 2 times) instead.
+    // The grid (none with --no-grid), in the measured units: r geometric from min(3 s, 4 sigma)
+    // to max(36 s, 20 sigma), rn from 1.5 to 7.5 sigma, N from 1 to 4. The 1M-point cases,
+    // where the wide grid would take hours, search around the automatic radius (0.5 to 2 times)
+    // instead.
     std::vector<double> radii, normalRadii;
-    if (!grid)
-    {
-      // radii stays empty: no grid point is run.
-    }
-    else if (c.Points >= 1000000)
+    if (grid && c.Points >= 1000000)
     {
       for (double k : { 0.5, 0.7, 1.0, 1.4, 2.0 })
       {
         radii.push_back(k * automatic.Radius);
       }
     }
-    else
+    else if (grid)
     {
       const double ratio = c.Big ? 1.7 : 1.45;
       for (double r = std::min(3 * s, 4 * sigma); r <= std::max(36 * s, 20 * sigma) * 1.01;
