@@ -210,191 +210,6 @@ bool Write(vtkPolyData* cloud, const std::string& path)
   return writer->GetErrorMessage()[0] == '\0';
 }
 
-void TestEveryPointFormat()
-{
-  const vtkIdType count = 20000; // more than two blocks of the parallel coder
-  for (int format = 0; format <= 10; ++format)
-  {
-    const std::string name = "format" + std::to_string(format);
-    // First an empty file of the format, for the reader to tell its arrays.
-    vtkSmartPointer<vtkPolyData> empty = MakeCloud(format, 0);
-    if (!Write(empty, name + "-empty.las"))
-    {
-      continue;
-    }
-    vtkSmartPointer<vtkPolyData> model = Read(name + "-empty.las");
-    vtkSmartPointer<vtkPolyData> cloud = MakeCloud(format, count);
-    FillArraysLike(model, cloud);
-    if (!Write(cloud, name + ".las"))
-    {
-      continue;
-    }
-    vtkSmartPointer<vtkPolyData> read = Read(name + ".las");
-    PCB_CHECK(read->GetNumberOfPoints() == count,
-      "%s: %lld points",
-      name.c_str(),
-      static_cast<long long>(read->GetNumberOfPoints()));
-    PCB_CHECK(read->GetNumberOfVerts() == count, "%s: one vertex per point", name.c_str());
-    PCB_CHECK(read->GetPoints()->GetDataType() == VTK_DOUBLE, "%s: double points", name.c_str());
-    if (read->GetNumberOfPoints() != count)
-    {
-      continue;
-    }
-    double worst = 0;
-    for (vtkIdType i = 0; i < count; ++i)
-    {
-      double a[3], b[3];
-      cloud->GetPoint(i, a);
-      read->GetPoint(i, b);
-      for (int k = 0; k < 3; ++k)
-      {
-        worst = std::max(worst, std::abs(a[k] - b[k]));
-      }
-    }
-    PCB_CHECK(worst < 1e-9, "%s: points moved by %g", name.c_str(), worst);
-    for (int a = 0; a < cloud->GetPointData()->GetNumberOfArrays(); ++a)
-    {
-      vtkDataArray* written = cloud->GetPointData()->GetArray(a);
-      vtkDataArray* back = read->GetPointData()->GetArray(written->GetName());
-      PCB_CHECK(back != nullptr, "%s: no array %s", name.c_str(), written->GetName());
-      if (!back)
-      {
-        continue;
-      }
-      PCB_CHECK(back->GetDataType() == written->GetDataType() &&
-                  back->GetNumberOfComponents() == written->GetNumberOfComponents(),
-        "%s: %s changed type",
-        name.c_str(),
-        written->GetName());
-      bool same = true;
-      for (vtkIdType i = 0; i < count && same; ++i)
-      {
-        for (int c = 0; c < written->GetNumberOfComponents(); ++c)
-        {
-          same = same && written->GetComponent(i, c) == back->GetComponent(i, c);
-        }
-      }
-      PCB_CHECK(same, "%s: the values of %s changed", name.c_str(), written->GetName());
-    }
-    // Read, then written again without a change: the same point records, byte for byte.
-    if (Write(read, name + "-again.las"))
-    {
-      const std::vector<char> first = PointRecords(FileBytes(name + ".las"));
-      const std::vector<char> second = PointRecords(FileBytes(name + "-again.las"));
-      PCB_CHECK(!first.empty() && first == second, "%s: the point records differ", name.c_str());
-      PCB_CHECK(FileBytes(name + ".las")[104] == format,
-        "%s: written as format %d",
-        name.c_str(),
-        FileBytes(name + ".las")[104]);
-    }
-  }
-}
-
-void TestDefaultHeader()
-{
-  // Float points from elsewhere, with GPS times and 8-bit colours: LAS 1.2 format 3, colours
-  // scaled to 16 bits, the precision of the points kept.
-  auto cloud = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToFloat();
-  vtkNew<vtkDoubleArray> times;
-  times->SetName("GpsTime");
-  vtkNew<vtkUnsignedCharArray> colours;
-  colours->SetName("RGB");
-  colours->SetNumberOfComponents(3);
-  for (int i = 0; i < 100; ++i)
-  {
-    points->InsertNextPoint(0.01f * i, 1.0f - 0.01f * i, 0.5f);
-    times->InsertNextValue(1e5 + i);
-    colours->InsertNextTuple3(i, 2 * i, 255);
-  }
-  cloud->SetPoints(points);
-  cloud->GetPointData()->AddArray(times);
-  cloud->GetPointData()->AddArray(colours);
-  if (!Write(cloud, "default.las"))
-  {
-    return;
-  }
-  const std::vector<char> bytes = FileBytes("default.las");
-  PCB_CHECK(bytes[24] == 1 && bytes[25] == 2 && bytes[104] == 3,
-    "LAS %d.%d format %d",
-    bytes[24],
-    bytes[25],
-    bytes[104]);
-  vtkSmartPointer<vtkPolyData> read = Read("default.las");
-  PCB_CHECK(read->GetNumberOfPoints() == 100,
-    "%lld points",
-    static_cast<long long>(read->GetNumberOfPoints()));
-  double worst = 0;
-  for (vtkIdType i = 0; i < read->GetNumberOfPoints(); ++i)
-  {
-    double a[3], b[3];
-    cloud->GetPoint(i, a);
-    read->GetPoint(i, b);
-    for (int k = 0; k < 3; ++k)
-    {
-      worst = std::max(worst, std::abs(a[k] - b[k]));
-    }
-  }
-  PCB_CHECK(worst < 1e-8, "points moved by %g", worst);
-  auto* rgb = vtkUnsignedShortArray::SafeDownCast(read->GetPointData()->GetArray("RGB"));
-  PCB_CHECK(rgb && rgb->GetComponent(10, 1) == 20 * 257 && rgb->GetComponent(10, 2) == 65535,
-    "8-bit colours scaled to 16 bits");
-  vtkDataArray* display = read->GetPointData()->GetArray("Colors");
-  PCB_CHECK(
-    display && display->GetDataType() == VTK_UNSIGNED_CHAR && display->GetComponent(10, 1) == 20,
-    "8-bit display colours");
-  PCB_CHECK(read->GetPointData()->GetArray("GpsTime")->GetComponent(7, 0) == 1e5 + 7, "GPS time");
-}
-
-void TestExtraBytes()
-{
-  // A record of format 0 with 12 extra bytes: a described float "Height", a described
-  // unsigned short "Label", and 6 bytes no descriptor names.
-  vtkSmartPointer<vtkPolyData> cloud = MakeCloud(0, 10);
-  vtkFieldData* fieldData = cloud->GetFieldData();
-  fieldData->RemoveArray("LAS Point Record Length");
-  AddFieldValues(fieldData, "LAS Point Record Length", VTK_UNSIGNED_SHORT, { 20 + 12 });
-  std::vector<unsigned char> vlr(54 + 2 * 192, 0);
-  std::memcpy(vlr.data() + 2, "LASF_Spec", 9);
-  vlr[18] = 4;
-  const std::uint16_t length = 2 * 192;
-  std::memcpy(vlr.data() + 20, &length, 2);
-  vlr[54 + 2] = 9; // float
-  std::memcpy(vlr.data() + 54 + 4, "Height", 6);
-  vlr[54 + 192 + 2] = 3; // unsigned short
-  std::memcpy(vlr.data() + 54 + 192 + 4, "Label", 5);
-  vtkNew<vtkUnsignedCharArray> vlrs;
-  vlrs->SetName("LAS VLRs");
-  for (unsigned char byte : vlr)
-  {
-    vlrs->InsertNextValue(byte);
-  }
-  fieldData->AddArray(vlrs);
-  vtkNew<vtkFloatArray> height;
-  height->SetName("Height");
-  vtkNew<vtkUnsignedShortArray> label;
-  label->SetName("Label");
-  for (int i = 0; i < 10; ++i)
-  {
-    height->InsertNextValue(0.5f * i);
-    label->InsertNextValue(static_cast<unsigned short>(1000 + i));
-  }
-  cloud->GetPointData()->AddArray(height);
-  cloud->GetPointData()->AddArray(label);
-  if (!Write(cloud, "extra.las"))
-  {
-    return;
-  }
-  vtkSmartPointer<vtkPolyData> read = Read("extra.las");
-  vtkDataArray* h = read->GetPointData()->GetArray("Height");
-  vtkDataArray* l = read->GetPointData()->GetArray("Label");
-  vtkDataArray* rest = read->GetPointData()->GetArray("ExtraBytes");
-  PCB_CHECK(h && h->GetDataType() == VTK_FLOAT && h->GetComponent(3, 0) == 1.5, "Height");
-  PCB_CHECK(l && l->GetDataType() == VTK_UNSIGNED_SHORT && l->GetComponent(9, 0) == 1009, "Label");
-  PCB_CHECK(rest && rest->GetNumberOfComponents() == 6, "the undescribed bytes");
-}
-
 template<typename T>
 void Put(std::vector<char>& bytes, std::size_t offset, T value)
 {
@@ -484,6 +299,181 @@ void CheckRecordsWrittenBack(const std::string& path, vtkPolyData* read, const s
     PCB_CHECK(
       !first.empty() && first == second, "%s: the point records written back differ", path.c_str());
   }
+}
+
+void TestEveryPointFormat()
+{
+  const vtkIdType count = 20000; // more than two blocks of the parallel coder
+  for (int format = 0; format <= 10; ++format)
+  {
+    const std::string name = "format" + std::to_string(format);
+    // First an empty file of the format, for the reader to tell its arrays.
+    vtkSmartPointer<vtkPolyData> empty = MakeCloud(format, 0);
+    if (!Write(empty, name + "-empty.las"))
+    {
+      continue;
+    }
+    vtkSmartPointer<vtkPolyData> model = Read(name + "-empty.las");
+    vtkSmartPointer<vtkPolyData> cloud = MakeCloud(format, count);
+    FillArraysLike(model, cloud);
+    if (!Write(cloud, name + ".las"))
+    {
+      continue;
+    }
+    vtkSmartPointer<vtkPolyData> read = Read(name + ".las");
+    PCB_CHECK(read->GetNumberOfPoints() == count,
+      "%s: %lld points",
+      name.c_str(),
+      static_cast<long long>(read->GetNumberOfPoints()));
+    PCB_CHECK(read->GetNumberOfVerts() == count, "%s: one vertex per point", name.c_str());
+    PCB_CHECK(read->GetPoints()->GetDataType() == VTK_DOUBLE, "%s: double points", name.c_str());
+    if (read->GetNumberOfPoints() != count)
+    {
+      continue;
+    }
+    double worst = 0;
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      double a[3], b[3];
+      cloud->GetPoint(i, a);
+      read->GetPoint(i, b);
+      for (int k = 0; k < 3; ++k)
+      {
+        worst = std::max(worst, std::abs(a[k] - b[k]));
+      }
+    }
+    PCB_CHECK(worst < 1e-9, "%s: points moved by %g", name.c_str(), worst);
+    for (int a = 0; a < cloud->GetPointData()->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* written = cloud->GetPointData()->GetArray(a);
+      vtkDataArray* back = read->GetPointData()->GetArray(written->GetName());
+      PCB_CHECK(back != nullptr, "%s: no array %s", name.c_str(), written->GetName());
+      if (!back)
+      {
+        continue;
+      }
+      PCB_CHECK(back->GetDataType() == written->GetDataType() &&
+                  back->GetNumberOfComponents() == written->GetNumberOfComponents(),
+        "%s: %s changed type",
+        name.c_str(),
+        written->GetName());
+      bool same = true;
+      for (vtkIdType i = 0; i < count && same; ++i)
+      {
+        for (int c = 0; c < written->GetNumberOfComponents(); ++c)
+        {
+          same = same && written->GetComponent(i, c) == back->GetComponent(i, c);
+        }
+      }
+      PCB_CHECK(same, "%s: the values of %s changed", name.c_str(), written->GetName());
+    }
+    // Read, then written again without a change: the same point records, byte for byte.
+    CheckRecordsWrittenBack(name + ".las", read, name + "-again.las");
+    PCB_CHECK(FileBytes(name + ".las")[104] == format,
+      "%s: written as format %d",
+      name.c_str(),
+      FileBytes(name + ".las")[104]);
+  }
+}
+
+void TestDefaultHeader()
+{
+  // Float points from elsewhere, with GPS times and 8-bit colours: LAS 1.2 format 3, colours
+  // scaled to 16 bits, the precision of the points kept.
+  auto cloud = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToFloat();
+  vtkNew<vtkDoubleArray> times;
+  times->SetName("GpsTime");
+  vtkNew<vtkUnsignedCharArray> colours;
+  colours->SetName("RGB");
+  colours->SetNumberOfComponents(3);
+  for (int i = 0; i < 100; ++i)
+  {
+    points->InsertNextPoint(0.01f * i, 1.0f - 0.01f * i, 0.5f);
+    times->InsertNextValue(1e5 + i);
+    colours->InsertNextTuple3(i, 2 * i, 255);
+  }
+  cloud->SetPoints(points);
+  cloud->GetPointData()->AddArray(times);
+  cloud->GetPointData()->AddArray(colours);
+  if (!Write(cloud, "default.las"))
+  {
+    return;
+  }
+  const std::vector<char> bytes = FileBytes("default.las");
+  PCB_CHECK(bytes[24] == 1 && bytes[25] == 2 && bytes[104] == 3,
+    "LAS %d.%d format %d",
+    bytes[24],
+    bytes[25],
+    bytes[104]);
+  vtkSmartPointer<vtkPolyData> read = Read("default.las");
+  PCB_CHECK(read->GetNumberOfPoints() == 100,
+    "%lld points",
+    static_cast<long long>(read->GetNumberOfPoints()));
+  double worst = 0;
+  for (vtkIdType i = 0; i < read->GetNumberOfPoints(); ++i)
+  {
+    double a[3], b[3];
+    cloud->GetPoint(i, a);
+    read->GetPoint(i, b);
+    for (int k = 0; k < 3; ++k)
+    {
+      worst = std::max(worst, std::abs(a[k] - b[k]));
+    }
+  }
+  PCB_CHECK(worst < 1e-8, "points moved by %g", worst);
+  auto* rgb = vtkUnsignedShortArray::SafeDownCast(read->GetPointData()->GetArray("RGB"));
+  PCB_CHECK(rgb && rgb->GetComponent(10, 1) == 20 * 257 && rgb->GetComponent(10, 2) == 65535,
+    "8-bit colours scaled to 16 bits");
+  vtkDataArray* display = read->GetPointData()->GetArray("Colors");
+  PCB_CHECK(
+    display && display->GetDataType() == VTK_UNSIGNED_CHAR && display->GetComponent(10, 1) == 20,
+    "8-bit display colours");
+  PCB_CHECK(read->GetPointData()->GetArray("GpsTime")->GetComponent(7, 0) == 1e5 + 7, "GPS time");
+}
+
+void TestExtraBytes()
+{
+  // A record of format 0 with 12 extra bytes: a described float "Height", a described
+  // unsigned short "Label", and 6 bytes no descriptor names.
+  vtkSmartPointer<vtkPolyData> cloud = MakeCloud(0, 10);
+  vtkFieldData* fieldData = cloud->GetFieldData();
+  fieldData->RemoveArray("LAS Point Record Length");
+  AddFieldValues(fieldData, "LAS Point Record Length", VTK_UNSIGNED_SHORT, { 20 + 12 });
+  const std::vector<char> vlr = ExtraBytesVLR({
+    Descriptor(9, 0, "Height", { 1.0 }, { 0.0 }), // float
+    Descriptor(3, 0, "Label", { 1.0 }, { 0.0 }),  // unsigned short
+  });
+  vtkNew<vtkUnsignedCharArray> vlrs;
+  vlrs->SetName("LAS VLRs");
+  for (char byte : vlr)
+  {
+    vlrs->InsertNextValue(static_cast<unsigned char>(byte));
+  }
+  fieldData->AddArray(vlrs);
+  vtkNew<vtkFloatArray> height;
+  height->SetName("Height");
+  vtkNew<vtkUnsignedShortArray> label;
+  label->SetName("Label");
+  for (int i = 0; i < 10; ++i)
+  {
+    height->InsertNextValue(0.5f * i);
+    label->InsertNextValue(static_cast<unsigned short>(1000 + i));
+  }
+  cloud->GetPointData()->AddArray(height);
+  cloud->GetPointData()->AddArray(label);
+  if (!Write(cloud, "extra.las"))
+  {
+    return;
+  }
+  vtkSmartPointer<vtkPolyData> read = Read("extra.las");
+  vtkDataArray* h = read->GetPointData()->GetArray("Height");
+  vtkDataArray* l = read->GetPointData()->GetArray("Label");
+  vtkDataArray* rest = read->GetPointData()->GetArray("ExtraBytes");
+  PCB_CHECK(h && h->GetDataType() == VTK_FLOAT && h->GetComponent(3, 0) == 1.5, "Height");
+  PCB_CHECK(l && l->GetDataType() == VTK_UNSIGNED_SHORT && l->GetComponent(9, 0) == 1009, "Label");
+  PCB_CHECK(rest && rest->GetNumberOfComponents() == 6, "the undescribed bytes");
 }
 
 void TestScaledExtraBytes()
@@ -661,10 +651,7 @@ void TestDamagedFiles()
   const std::vector<char> whole = FileBytes("whole.las");
   auto damaged = [&](const char* name, std::vector<char> bytes, const char* expected)
   {
-    {
-      std::ofstream out(name, std::ios::binary);
-      out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    }
+    WriteBytes(name, bytes);
     std::string error;
     vtkSmartPointer<vtkPolyData> read = Read(name, &error);
     PCB_CHECK(error.find(expected) != std::string::npos && error.find(name) != std::string::npos &&
