@@ -149,8 +149,9 @@ void Quality()
 
 void Determinism()
 {
-  // Set when the edge-aware numbers change on purpose.
-  constexpr std::uint64_t Expected = 0x0184c5767e9ce9c0ULL;
+  // Set when the edge-aware numbers change on purpose (last: the eigensolver without acos and
+  // cos, issue 16's re-baselining).
+  constexpr std::uint64_t Expected = 0x46f6ab3a9335f6f7ULL;
   const std::unique_ptr<Shape> cube = Cube();
   const NoisyCloud cloud = MakeNoisyCloud(*cube, 12000, 0.005, false, 0.0, 17);
   // Fixed parameters (about 12 spacings and 5 sigma here), so that the pinned bits are the
