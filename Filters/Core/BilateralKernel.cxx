@@ -13,15 +13,19 @@ namespace pcbilateral
 #define PCB_DECLARE_KERNEL_BUILD(variant)                                                          \
   namespace variant                                                                                \
   {                                                                                                \
-  void FilterPoint(const double p[3],                                                              \
+  void FilterPoints(const double (*points)[3],                                                     \
+    std::size_t pointCount,                                                                        \
     const double* x,                                                                               \
     const double* y,                                                                               \
     const double* z,                                                                               \
     std::size_t count,                                                                             \
     const KernelConstants& constants,                                                              \
-    KernelScratch& scratch,                                                                        \
-    FilteredPoint& result);                                                                        \
+    const KernelScratch* scratch,                                                                  \
+    FilteredPoint* results);                                                                       \
   void ExpOfNonPositive(const double* in, double* out, std::size_t count);                         \
+  void SmallestEigenvectorsOfMatrices(const double* matrices,                                      \
+    double* eigenvectors,                                                                          \
+    std::size_t count);                                                                            \
   double ArithmeticFloor(const double* dx,                                                         \
     const double* dy,                                                                              \
     const double* dz,                                                                              \
@@ -88,22 +92,25 @@ void CandidateNeighbours::Append(const double* x,
   this->Count = size;
 }
 
-KernelScratch CandidateNeighbours::Scratch()
+void CandidateNeighbours::Scratch(KernelScratch* scratch, std::size_t points)
 {
+  const std::size_t arrays = 4 * points;
   const std::size_t stride = this->Size() + KernelLanes;
-  if (this->ScratchStorage.size() < 4 * stride)
+  if (this->ScratchStorage.size() < arrays * stride)
   {
     // Grow geometrically: candidate counts vary from leaf to leaf.
-    this->ScratchStorage.resize(std::max(4 * stride, 2 * this->ScratchStorage.size()));
+    this->ScratchStorage.resize(std::max(arrays * stride, 2 * this->ScratchStorage.size()));
   }
-  const std::size_t capacity = this->ScratchStorage.size() / 4;
+  const std::size_t capacity = this->ScratchStorage.size() / arrays;
   double* storage = this->ScratchStorage.data();
-  KernelScratch scratch;
-  scratch.Dx = storage;
-  scratch.Dy = storage + capacity;
-  scratch.Dz = storage + 2 * capacity;
-  scratch.DistanceWeight = storage + 3 * capacity;
-  return scratch;
+  for (std::size_t point = 0; point < points; ++point)
+  {
+    double* own = storage + 4 * point * capacity;
+    scratch[point].Dx = own;
+    scratch[point].Dy = own + capacity;
+    scratch[point].Dz = own + 2 * capacity;
+    scratch[point].DistanceWeight = own + 3 * capacity;
+  }
 }
 
 const char* GetName(KernelInstructionSet instructionSet)
@@ -163,6 +170,21 @@ void KernelExp(const double* x, double* result, std::size_t count)
 #endif
     default:
       return generic::ExpOfNonPositive(x, result, count);
+  }
+}
+
+void KernelSmallestEigenvectors(const double* matrices, double* eigenvectors, std::size_t count)
+{
+  switch (GetKernelInstructionSet())
+  {
+#if PCB_KERNEL_X86
+    case KernelInstructionSet::Avx512:
+      return avx512::SmallestEigenvectorsOfMatrices(matrices, eigenvectors, count);
+    case KernelInstructionSet::Avx2:
+      return avx2::SmallestEigenvectorsOfMatrices(matrices, eigenvectors, count);
+#endif
+    default:
+      return generic::SmallestEigenvectorsOfMatrices(matrices, eigenvectors, count);
   }
 }
 
@@ -322,8 +344,7 @@ void SmallestEigenvector(const double covariance[6], double eigenvector[3])
   // line): the smallest is then known only to about the square root of the rounding error, and
   // so is the plane of its eigenvectors, while the largest is simple and well conditioned. Any
   // unit vector orthogonal to the largest's eigenvector is then the answer.
-  constexpr double MeetingRoots = 1e-6;
-  if (e < MeetingRoots)
+  if (e < MeetingEigenvalueRoots)
   {
     // The largest root, near 1 (f'(1) = 9: two steps from 1 suffice).
     double t = 1.0;
@@ -355,29 +376,44 @@ void SmallestEigenvector(const double covariance[6], double eigenvector[3])
   }
 }
 
-FilteredPoint FilterPoint(const double p[3],
+void FilterPoints(const double (*points)[3],
+  std::size_t count,
   CandidateNeighbours& candidates,
-  const KernelConstants& constants)
+  const KernelConstants& constants,
+  FilteredPoint* results)
 {
-  FilteredPoint result;
-  KernelScratch scratch = candidates.Scratch();
+  KernelScratch scratch[KernelLanes];
+  candidates.Scratch(scratch, count);
   const double* x = candidates.X.data();
   const double* y = candidates.Y.data();
   const double* z = candidates.Z.data();
-  const std::size_t count = candidates.Size();
+  const std::size_t candidateCount = candidates.Size();
+  for (std::size_t point = 0; point < count; ++point)
+  {
+    results[point] = FilteredPoint();
+  }
   switch (GetKernelInstructionSet())
   {
 #if PCB_KERNEL_X86
     case KernelInstructionSet::Avx512:
-      avx512::FilterPoint(p, x, y, z, count, constants, scratch, result);
+      avx512::FilterPoints(points, count, x, y, z, candidateCount, constants, scratch, results);
       break;
     case KernelInstructionSet::Avx2:
-      avx2::FilterPoint(p, x, y, z, count, constants, scratch, result);
+      avx2::FilterPoints(points, count, x, y, z, candidateCount, constants, scratch, results);
       break;
 #endif
     default:
-      generic::FilterPoint(p, x, y, z, count, constants, scratch, result);
+      generic::FilterPoints(points, count, x, y, z, candidateCount, constants, scratch, results);
   }
+}
+
+FilteredPoint FilterPoint(const double p[3],
+  CandidateNeighbours& candidates,
+  const KernelConstants& constants)
+{
+  const double points[1][3] = { { p[0], p[1], p[2] } };
+  FilteredPoint result;
+  FilterPoints(points, 1, candidates, constants, &result);
   return result;
 }
 

@@ -63,8 +63,9 @@ struct CandidateNeighbours
   std::size_t Size() const { return this->Count; }
   void Clear() { this->Count = 0; }
   void Append(const double* x, const double* y, const double* z, std::size_t count);
-  /// The kernel's scratch, with room for the current candidates.
-  KernelScratch Scratch();
+  /// The kernel's scratch for `points` points filtered together (at most KernelLanes), each
+  /// with room for the current candidates.
+  void Scratch(KernelScratch* scratch, std::size_t points);
 
 private:
   std::size_t Count = 0;
@@ -95,6 +96,18 @@ struct FilteredPoint
 FilteredPoint FilterPoint(const double p[3],
   CandidateNeighbours& candidates,
   const KernelConstants& constants);
+
+/**
+ * FilterPoint for `count` points (at most KernelLanes) against the same candidates, with the
+ * same results bit for bit: their eigenvectors are computed side by side, one per lane, which
+ * costs about what one does alone (the 3x3 solve is a chain of dependent divisions and square
+ * roots, as long as the two passes of a point with 40 neighbours).
+ */
+void FilterPoints(const double (*points)[3],
+  std::size_t count,
+  CandidateNeighbours& candidates,
+  const KernelConstants& constants,
+  FilteredPoint* results);
 
 /// The instruction sets the kernel is built for. Every one computes the same bits.
 enum class KernelInstructionSet
@@ -197,6 +210,15 @@ double KernelArithmetic(KernelInstructionSet instructionSet,
 /// Eigenvector of the smallest eigenvalue of a symmetric 3x3 matrix given by its upper
 /// triangle (xx, xy, xz, yy, yz, zz), as a unit vector.
 void SmallestEigenvector(const double covariance[6], double eigenvector[3]);
+
+/// The eigensolver of FilterPoints, several matrices side by side (6 entries each, as
+/// SmallestEigenvector takes them; 3 per eigenvector), in the kernel's current build: the same
+/// bits as SmallestEigenvector on each. For tests.
+void KernelSmallestEigenvectors(const double* matrices, double* eigenvectors, std::size_t count);
+
+/// SmallestEigenvector's threshold on e, the distance of the smallest root of its cubic from
+/// -1/2 (BilateralKernel.cxx): below it the two smallest eigenvalues are taken to meet.
+constexpr double MeetingEigenvalueRoots = 1e-6;
 
 } // namespace pcbilateral
 

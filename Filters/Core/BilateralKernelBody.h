@@ -24,6 +24,8 @@
 
 #if defined(__AVX512F__) || defined(__AVX2__)
 #include <immintrin.h>
+#elif defined(__SSE2__)
+#include <emmintrin.h>
 #endif
 
 namespace pcbilateral
@@ -251,10 +253,11 @@ inline DistanceMoments AccumulateDistanceMoments(const double* dx,
 }
 
 /**
- * The normal of the weighted regression plane of pass 1's moments. Returns false (n untouched)
- * when the weights sum to zero.
+ * The weighted covariance (xx, xy, xz, yy, yz, zz) of pass 1's moments, whose smallest
+ * eigenvector is the regression plane's normal. Returns false (covariance untouched) when the
+ * weights sum to zero.
  */
-inline bool RegressionNormal(const DistanceMoments& m, double n[3])
+inline bool RegressionCovariance(const DistanceMoments& m, double covariance[6])
 {
   const double totalWeight = SumLanes(m.WeightSum);
   if (!(totalWeight > 0.0))
@@ -266,16 +269,181 @@ inline bool RegressionNormal(const DistanceMoments& m, double n[3])
   const double mean[3] = { SumLanes(m.FirstX) / totalWeight,
     SumLanes(m.FirstY) / totalWeight,
     SumLanes(m.FirstZ) / totalWeight };
-  const double covariance[6] = {
-    SumLanes(m.XX) / totalWeight - mean[0] * mean[0],
-    SumLanes(m.XY) / totalWeight - mean[0] * mean[1],
-    SumLanes(m.XZ) / totalWeight - mean[0] * mean[2],
-    SumLanes(m.YY) / totalWeight - mean[1] * mean[1],
-    SumLanes(m.YZ) / totalWeight - mean[1] * mean[2],
-    SumLanes(m.ZZ) / totalWeight - mean[2] * mean[2],
-  };
+  covariance[0] = SumLanes(m.XX) / totalWeight - mean[0] * mean[0];
+  covariance[1] = SumLanes(m.XY) / totalWeight - mean[0] * mean[1];
+  covariance[2] = SumLanes(m.XZ) / totalWeight - mean[0] * mean[2];
+  covariance[3] = SumLanes(m.YY) / totalWeight - mean[1] * mean[1];
+  covariance[4] = SumLanes(m.YZ) / totalWeight - mean[1] * mean[2];
+  covariance[5] = SumLanes(m.ZZ) / totalWeight - mean[2] * mean[2];
+  return true;
+}
+
+/**
+ * The normal of the weighted regression plane of pass 1's moments. Returns false (n untouched)
+ * when the weights sum to zero.
+ */
+inline bool RegressionNormal(const DistanceMoments& m, double n[3])
+{
+  double covariance[6];
+  if (!RegressionCovariance(m, covariance))
+  {
+    return false;
+  }
   SmallestEigenvector(covariance, n);
   return true;
+}
+
+/// |x|, by clearing the sign bit.
+inline DoubleLanes Abs(DoubleLanes x)
+{
+  const BitsLanes zero = {};
+  const BitsLanes magnitude = zero + ~(std::uint64_t(1) << 63);
+  return (DoubleLanes)((BitsLanes)x & magnitude);
+}
+
+/// Lane-wise square root, rounded as IEEE 754 requires (the scalar std::sqrt's bits).
+inline DoubleLanes Sqrt(DoubleLanes x)
+{
+#if defined(__AVX512F__)
+  __m512d lanes;
+  std::memcpy(&lanes, &x, sizeof(lanes));
+  lanes = _mm512_sqrt_pd(lanes);
+  std::memcpy(&x, &lanes, sizeof(x));
+#elif defined(__AVX2__)
+  __m256d halves[2];
+  std::memcpy(halves, &x, sizeof(halves));
+  halves[0] = _mm256_sqrt_pd(halves[0]);
+  halves[1] = _mm256_sqrt_pd(halves[1]);
+  std::memcpy(&x, halves, sizeof(x));
+#elif defined(__SSE2__)
+  __m128d quarters[4];
+  std::memcpy(quarters, &x, sizeof(quarters));
+  for (__m128d& quarter : quarters)
+  {
+    quarter = _mm_sqrt_pd(quarter);
+  }
+  std::memcpy(&x, quarters, sizeof(x));
+#else
+  for (std::size_t lane = 0; lane < Lanes; ++lane)
+  {
+    x[lane] = std::sqrt(x[lane]);
+  }
+#endif
+  return x;
+}
+
+/// All ones in the lanes where a < b (false for NaN), zero elsewhere.
+inline IntLanes Less(DoubleLanes a, DoubleLanes b)
+{
+  return (IntLanes)(a < b);
+}
+
+/**
+ * SmallestEigenvector (BilateralKernel.cxx) for Lanes matrices at once, one per lane: the same
+ * operations in the same order, so the same bits. Entries are by lane (covariance[k][lane]).
+ * Returns the lanes whose matrix takes one of the scalar function's other paths (no spread, a
+ * NaN or infinity, two smallest eigenvalues that meet, parallel rows): their vectors here are
+ * meaningless, and the caller solves them with the scalar function.
+ */
+inline IntLanes SmallestEigenvectors(const double (*covariance)[Lanes],
+  double (*eigenvector)[Lanes])
+{
+  const DoubleLanes zero = {};
+  const DoubleLanes c0 = Load(covariance[0]), c1 = Load(covariance[1]), c2 = Load(covariance[2]);
+  const DoubleLanes c3 = Load(covariance[3]), c4 = Load(covariance[4]), c5 = Load(covariance[5]);
+  const DoubleLanes shift = (c0 + c3 + c5) / 3.0;
+  DoubleLanes b[6] = { c0 - shift, c1, c2, c3 - shift, c4, c5 - shift };
+  DoubleLanes scale = zero;
+  for (const DoubleLanes entry : b)
+  {
+    const DoubleLanes magnitude = Abs(entry);
+    scale = Select(Less(scale, magnitude), magnitude, scale); // std::max(scale, magnitude)
+  }
+  IntLanes scalar = ~(Less(zero, scale) & Less(scale, zero + HUGE_VAL));
+  const DoubleLanes inverseScale = 1.0 / scale;
+  for (DoubleLanes& entry : b)
+  {
+    entry *= inverseScale;
+  }
+  const DoubleLanes b00 = b[0], b01 = b[1], b02 = b[2], b11 = b[3], b12 = b[4], b22 = b[5];
+  const DoubleLanes p =
+    Sqrt((b00 * b00 + b11 * b11 + b22 * b22 + 2.0 * (b01 * b01 + b02 * b02 + b12 * b12)) / 6.0);
+  const DoubleLanes determinant =
+    b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) + b02 * (b01 * b12 - b11 * b02);
+  const DoubleLanes ratio = determinant / (2.0 * p * p * p);
+  const DoubleLanes atLeastMinusOne = Select(Less(zero - 1.0, ratio), ratio, zero - 1.0);
+  const DoubleLanes cosine = Select(Less(atLeastMinusOne, zero + 1.0), atLeastMinusOne, zero + 1.0);
+  const DoubleLanes gap = 1.0 - cosine;
+  const DoubleLanes s = Sqrt(0.5 * gap);
+  DoubleLanes e = s * (0.57725885 + s * (-0.10911916 + s * (0.04309189 - 0.01129872 * s)));
+  const IntLanes positive = Less(zero, e);
+  DoubleLanes stepped = e;
+  for (int step = 0; step < 2; ++step)
+  {
+    stepped -=
+      ((6.0 + 4.0 * stepped) * (stepped * stepped) - gap) / (12.0 * stepped * (1.0 + stepped));
+  }
+  e = Select(positive, stepped, e);
+  scalar |= Less(e, zero + MeetingEigenvalueRoots);
+  const DoubleLanes smallest = -p * (1.0 + 2.0 * e);
+
+  // EigenvectorFromRows: the first largest of the rows' three cross products.
+  const DoubleLanes rows[3][3] = {
+    { b00 - smallest, b01, b02 }, { b01, b11 - smallest, b12 }, { b02, b12, b22 - smallest }
+  };
+  const int pairs[3][2] = { { 0, 1 }, { 0, 2 }, { 1, 2 } };
+  DoubleLanes best[3] = { zero, zero, zero };
+  DoubleLanes bestNorm = zero;
+  for (const auto& pair : pairs)
+  {
+    const DoubleLanes* u = rows[pair[0]];
+    const DoubleLanes* v = rows[pair[1]];
+    const DoubleLanes cross[3] = {
+      u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]
+    };
+    const DoubleLanes norm = cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2];
+    const IntLanes larger = Less(bestNorm, norm);
+    bestNorm = Select(larger, norm, bestNorm);
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      best[axis] = Select(larger, cross[axis], best[axis]);
+    }
+  }
+  scalar |= ~Less(zero, bestNorm);
+  const DoubleLanes length = Sqrt(bestNorm);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    Store(eigenvector[axis], best[axis] / length);
+  }
+  return scalar;
+}
+
+/**
+ * The smallest eigenvectors of Lanes matrices given by lane (covariance[k][lane]): the lanes
+ * side by side (SmallestEigenvectors), and those it flags through the scalar solver, so that
+ * every lane gets SmallestEigenvector's bits.
+ */
+inline void SolveNormals(const double (*covariance)[Lanes], double (*normal)[Lanes])
+{
+  const IntLanes scalar = SmallestEigenvectors(covariance, normal);
+  for (std::size_t lane = 0; lane < Lanes; ++lane)
+  {
+    if (scalar[lane])
+    {
+      const double matrix[6] = { covariance[0][lane],
+        covariance[1][lane],
+        covariance[2][lane],
+        covariance[3][lane],
+        covariance[4][lane],
+        covariance[5][lane] };
+      double n[3];
+      SmallestEigenvector(matrix, n);
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        normal[axis][lane] = n[axis];
+      }
+    }
+  }
 }
 
 /// Pass 2 over the same offsets: the sums of the bilateral weights and of the weighted heights
@@ -302,68 +470,101 @@ inline void AccumulateBilateralHeights(const double* dx,
   }
 }
 
-/// Algorithm 1 for the point p (see FilterPoint in BilateralKernel.h), the entry point of this
-/// build (declared in BilateralKernel.cxx). `result` arrives zeroed: the point does not move
-/// unless this says so.
-void FilterPoint(const double p[3],
+/// Algorithm 1 for `pointCount` points (at most Lanes) against the same candidates (see
+/// FilterPoints in BilateralKernel.h), the entry point of this build (declared in
+/// BilateralKernel.cxx): pass 1 for each point, their eigenvectors side by side, pass 2 for each.
+/// `results` arrive zeroed: a point does not move unless this says so.
+void FilterPoints(const double (*points)[3],
+  std::size_t pointCount,
   const double* x,
   const double* y,
   const double* z,
   std::size_t count,
   const KernelConstants& constants,
-  KernelScratch& scratch,
-  FilteredPoint& result)
+  const KernelScratch* scratch,
+  FilteredPoint* results)
 {
-  double* dx = scratch.Dx;
-  double* dy = scratch.Dy;
-  double* dz = scratch.Dz;
-  double* distanceWeight = scratch.DistanceWeight;
-  const std::size_t neighbours =
-    PackNeighbours<false>(p, x, y, z, 0, count, constants.RadiusSquared, dx, dy, dz, nullptr, 0);
-  result.NeighbourCount = static_cast<std::uint32_t>(neighbours);
-  if (neighbours < MinimumNeighbourCount)
+  // Pass 1 for each point: its neighbours, their distance weights and the covariance of the
+  // weighted regression plane, by lane. Lanes without a plane keep a zero matrix, which the
+  // eigensolver below flags (no spread) and which is never read.
+  std::size_t padded[Lanes] = {};
+  bool planed[Lanes] = {};
+  double covariance[6][Lanes] = {};
+  for (std::size_t point = 0; point < pointCount; ++point)
   {
-    return;
-  }
-  // Pad to whole vectors with neighbours so far away that their squared distance overflows to
-  // infinity: their weights are exp(-inf) = 0, and they add exact zeros to every sum (the
-  // offsets are finite, so no 0 x inf).
-  const std::size_t padded = (neighbours + Lanes - 1) / Lanes * Lanes;
-  for (std::size_t k = neighbours; k < padded; ++k)
-  {
-    dx[k] = dy[k] = dz[k] = 1e300;
+    const KernelScratch& own = scratch[point];
+    const std::size_t neighbours = PackNeighbours<false>(points[point],
+      x,
+      y,
+      z,
+      0,
+      count,
+      constants.RadiusSquared,
+      own.Dx,
+      own.Dy,
+      own.Dz,
+      nullptr,
+      0);
+    results[point].NeighbourCount = static_cast<std::uint32_t>(neighbours);
+    if (neighbours < MinimumNeighbourCount)
+    {
+      continue;
+    }
+    // Pad to whole vectors with neighbours so far away that their squared distance overflows
+    // to infinity: their weights are exp(-inf) = 0, and they add exact zeros to every sum (the
+    // offsets are finite, so no 0 x inf).
+    padded[point] = (neighbours + Lanes - 1) / Lanes * Lanes;
+    for (std::size_t k = neighbours; k < padded[point]; ++k)
+    {
+      own.Dx[k] = own.Dy[k] = own.Dz[k] = 1e300;
+    }
+    double planeCovariance[6];
+    planed[point] = RegressionCovariance(
+      AccumulateDistanceMoments(
+        own.Dx, own.Dy, own.Dz, padded[point], constants.DistanceScale, own.DistanceWeight),
+      planeCovariance);
+    for (int entry = 0; entry < 6 && planed[point]; ++entry)
+    {
+      covariance[entry][point] = planeCovariance[entry];
+    }
   }
 
-  // Pass 1: distance weights and moments, and the regression plane's normal.
-  const DistanceMoments m =
-    AccumulateDistanceMoments(dx, dy, dz, padded, constants.DistanceScale, distanceWeight);
-  double n[3];
-  if (!RegressionNormal(m, n))
-  {
-    return;
-  }
+  // The regression planes' normals, one point per lane.
+  double normals[3][Lanes];
+  SolveNormals(covariance, normals);
 
-  // Pass 2: the bilateral average of the heights h = <n, q - p> over the same neighbours.
-  DoubleLanes bilateralWeightSum, weightedHeightSum;
-  AccumulateBilateralHeights(dx,
-    dy,
-    dz,
-    distanceWeight,
-    padded,
-    n,
-    constants.NormalScale,
-    bilateralWeightSum,
-    weightedHeightSum);
-  const double totalBilateralWeight = SumLanes(bilateralWeightSum);
-  if (!(totalBilateralWeight > 0.0))
+  // Pass 2 for each point: the bilateral average of the heights h = <n, q - p> over the same
+  // neighbours.
+  for (std::size_t point = 0; point < pointCount; ++point)
   {
-    return;
+    if (!planed[point])
+    {
+      continue;
+    }
+    const double n[3] = { normals[0][point], normals[1][point], normals[2][point] };
+    const KernelScratch& own = scratch[point];
+    DoubleLanes bilateralWeightSum, weightedHeightSum;
+    AccumulateBilateralHeights(own.Dx,
+      own.Dy,
+      own.Dz,
+      own.DistanceWeight,
+      padded[point],
+      n,
+      constants.NormalScale,
+      bilateralWeightSum,
+      weightedHeightSum);
+    const double totalBilateralWeight = SumLanes(bilateralWeightSum);
+    if (!(totalBilateralWeight > 0.0))
+    {
+      continue;
+    }
+    FilteredPoint& result = results[point];
+    result.Displacement = SumLanes(weightedHeightSum) / totalBilateralWeight;
+    result.Normal[0] = n[0];
+    result.Normal[1] = n[1];
+    result.Normal[2] = n[2];
+    result.Filtered = true;
   }
-  result.Displacement = SumLanes(weightedHeightSum) / totalBilateralWeight;
-  result.Normal[0] = n[0];
-  result.Normal[1] = n[1];
-  result.Normal[2] = n[2];
-  result.Filtered = true;
 }
 
 /// The kernel's arithmetic alone (see KernelArithmetic in BilateralKernel.h): both passes over
@@ -450,14 +651,6 @@ bool EdgeAwarePlaneNormal(double* dx,
   const std::size_t padded = PadNeighbours(dx, dy, dz, count);
   return RegressionNormal(
     AccumulateDistanceMoments(dx, dy, dz, padded, distanceScale, distanceWeight), n);
-}
-
-/// |x|, by clearing the sign bit.
-inline DoubleLanes Abs(DoubleLanes x)
-{
-  const BitsLanes zero = {};
-  const BitsLanes magnitude = zero + ~(std::uint64_t(1) << 63);
-  return (DoubleLanes)((BitsLanes)x & magnitude);
 }
 
 /// The exponent of the agreement weight of two unit normals of cosine c: -((1 - |c|) s)^2, with
@@ -634,6 +827,33 @@ EdgeAwareKernel MakeEdgeAwareKernel()
   kernel.NormalSum = &EdgeAwareNormalSum;
   kernel.HeightSums = &EdgeAwareHeightSums;
   return kernel;
+}
+
+/// The eigensolver of FilterPoints in this build, for the tests: `count` matrices (6 entries
+/// each, as SmallestEigenvector takes them) solved Lanes at a time.
+void SmallestEigenvectorsOfMatrices(const double* matrices, double* eigenvectors, std::size_t count)
+{
+  for (std::size_t first = 0; first < count; first += Lanes)
+  {
+    double covariance[6][Lanes] = {};
+    double normal[3][Lanes];
+    const std::size_t lanes = count - first < Lanes ? count - first : Lanes;
+    for (std::size_t lane = 0; lane < lanes; ++lane)
+    {
+      for (int entry = 0; entry < 6; ++entry)
+      {
+        covariance[entry][lane] = matrices[6 * (first + lane) + entry];
+      }
+    }
+    SolveNormals(covariance, normal);
+    for (std::size_t lane = 0; lane < lanes; ++lane)
+    {
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        eigenvectors[3 * (first + lane) + axis] = normal[axis][lane];
+      }
+    }
+  }
 }
 
 /// The exponential of this build, for the tests: out[i] = exp(in[i]) for in[i] <= 0.

@@ -167,7 +167,9 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
     std::uint32_t begin, end;
     this->Octree.GetLeafRange(cell, localLeaf, begin, end);
     this->GatherCandidates(neighbours, localLeaf, scratch.Candidates);
-    for (std::uint32_t i = begin; i < end; ++i)
+    // The leaf's points KernelLanes at a time: they share the candidates, and the kernel
+    // solves their eigenvectors side by side.
+    for (std::uint32_t next = begin; next < end;)
     {
       if (this->Aborted.load(std::memory_order_relaxed))
       {
@@ -178,9 +180,31 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
         this->Aborted.store(true, std::memory_order_relaxed);
         return;
       }
+      std::uint32_t batch[KernelLanes];
+      double points[KernelLanes][3];
+      std::size_t batchSize = 0;
+      const std::uint32_t batchBegin = next;
+      for (; next < end && batchSize < KernelLanes; ++next)
+      {
+        if (ids[next] >= state.FirstGhost)
+        {
+          // Ghosts are neighbours only: they stay where they are.
+          movedX[next] = x[next];
+          movedY[next] = y[next];
+          movedZ[next] = z[next];
+          place(next, ProcessingOctree::CentreSlot, localLeaf);
+          continue;
+        }
+        batch[batchSize] = next;
+        points[batchSize][0] = x[next];
+        points[batchSize][1] = y[next];
+        points[batchSize][2] = z[next];
+        ++batchSize;
+      }
       // Progress within the leaf: with a radius as large as the cloud, one leaf may hold every
       // point.
-      if (++scratch.PointsSinceReport >= PointsPerReport ||
+      scratch.PointsSinceReport += next - batchBegin;
+      if (scratch.PointsSinceReport >= PointsPerReport ||
           scratch.EvaluationsSinceReport >= EvaluationsPerReport)
       {
         this->PointsDone.fetch_add(scratch.PointsSinceReport, std::memory_order_relaxed);
@@ -191,73 +215,71 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
           this->ReportPoints(this->PointsDone.load(std::memory_order_relaxed));
         }
       }
-      const std::uint32_t id = ids[i];
-      const double p[3] = { x[i], y[i], z[i] };
-      if (id >= state.FirstGhost)
+      FilteredPoint filteredPoints[KernelLanes];
+      FilterPoints(points, batchSize, scratch.Candidates, this->Constants, filteredPoints);
+      scratch.EvaluationsSinceReport += batchSize * scratch.Candidates.Size();
+      for (std::size_t k = 0; k < batchSize; ++k)
       {
-        movedX[i] = p[0];
-        movedY[i] = p[1];
-        movedZ[i] = p[2];
-        place(i, ProcessingOctree::CentreSlot, localLeaf);
-        continue;
-      }
-      const FilteredPoint filtered = FilterPoint(p, scratch.Candidates, this->Constants);
-      scratch.NeighbourEvaluations += filtered.NeighbourCount;
-      scratch.EvaluationsSinceReport += scratch.Candidates.Size();
-      const double moved[3] = { p[0] + filtered.Displacement * filtered.Normal[0],
-        p[1] + filtered.Displacement * filtered.Normal[1],
-        p[2] + filtered.Displacement * filtered.Normal[2] };
-      if (keepNormals)
-      {
-        // The orientation of n does not change p + d n: only the reported normal flips.
-        double* normal = state.Normals.data() + 3 * static_cast<std::size_t>(id);
-        double sign = 1.0;
-        if (orient)
+        const std::uint32_t i = batch[k];
+        const std::uint32_t id = ids[i];
+        const double* p = points[k];
+        const FilteredPoint& filtered = filteredPoints[k];
+        scratch.NeighbourEvaluations += filtered.NeighbourCount;
+        const double moved[3] = { p[0] + filtered.Displacement * filtered.Normal[0],
+          p[1] + filtered.Displacement * filtered.Normal[1],
+          p[2] + filtered.Displacement * filtered.Normal[2] };
+        if (keepNormals)
         {
-          const double* reference = state.OrientationNormals + 3 * static_cast<std::size_t>(id);
-          const double agreement = filtered.Normal[0] * reference[0] +
-                                   filtered.Normal[1] * reference[1] +
-                                   filtered.Normal[2] * reference[2];
-          sign = agreement < 0.0 ? -1.0 : 1.0;
+          // The orientation of n does not change p + d n: only the reported normal flips.
+          double* normal = state.Normals.data() + 3 * static_cast<std::size_t>(id);
+          double sign = 1.0;
+          if (orient)
+          {
+            const double* reference = state.OrientationNormals + 3 * static_cast<std::size_t>(id);
+            const double agreement = filtered.Normal[0] * reference[0] +
+                                     filtered.Normal[1] * reference[1] +
+                                     filtered.Normal[2] * reference[2];
+            sign = agreement < 0.0 ? -1.0 : 1.0;
+          }
+          for (int axis = 0; axis < 3; ++axis)
+          {
+            normal[axis] = sign * filtered.Normal[axis];
+          }
         }
-        for (int axis = 0; axis < 3; ++axis)
+        if (!filtered.Filtered && this->RemoveIsolatedPoints)
         {
-          normal[axis] = sign * filtered.Normal[axis];
+          state.Removed[id] = 1;
+          if (state.Positions.empty())
+          {
+            scratch.Stopped.push_back(StoppedPoint{ id, { p[0], p[1], p[2] } });
+          }
+          else
+          {
+            std::copy(p, p + 3, state.Positions.data() + 3 * static_cast<std::size_t>(id));
+          }
+          continue;
         }
-      }
-      if (!filtered.Filtered && this->RemoveIsolatedPoints)
-      {
-        state.Removed[id] = 1;
-        if (state.Positions.empty())
+        movedX[i] = moved[0];
+        movedY[i] = moved[1];
+        movedZ[i] = moved[2];
+
+        const LatticeCoord leaf = this->Octree.LeafOf(moved);
+        const LatticeCoord destination = ProcessingOctree::CellOfLeaf(leaf);
+        const std::int64_t dx = destination.X - cellCoord.X;
+        const std::int64_t dy = destination.Y - cellCoord.Y;
+        const std::int64_t dz = destination.Z - cellCoord.Z;
+        const bool near = std::abs(dx) <= 1 && std::abs(dy) <= 1 && std::abs(dz) <= 1;
+        const int slot = near ? ProcessingOctree::NeighbourSlot(
+                                  static_cast<int>(dx), static_cast<int>(dy), static_cast<int>(dz))
+                              : -1;
+        if (near && neighbours[slot] != ProcessingOctree::NoCell)
         {
-          scratch.Stopped.push_back(StoppedPoint{ id, { p[0], p[1], p[2] } });
+          place(i, slot, ProcessingOctree::LocalLeafIndex(leaf));
         }
         else
         {
-          std::copy(p, p + 3, state.Positions.data() + 3 * static_cast<std::size_t>(id));
+          scratch.Deferred.push_back(i);
         }
-        continue;
-      }
-      movedX[i] = moved[0];
-      movedY[i] = moved[1];
-      movedZ[i] = moved[2];
-
-      const LatticeCoord leaf = this->Octree.LeafOf(moved);
-      const LatticeCoord destination = ProcessingOctree::CellOfLeaf(leaf);
-      const std::int64_t dx = destination.X - cellCoord.X;
-      const std::int64_t dy = destination.Y - cellCoord.Y;
-      const std::int64_t dz = destination.Z - cellCoord.Z;
-      const bool near = std::abs(dx) <= 1 && std::abs(dy) <= 1 && std::abs(dz) <= 1;
-      const int slot = near ? ProcessingOctree::NeighbourSlot(
-                                static_cast<int>(dx), static_cast<int>(dy), static_cast<int>(dz))
-                            : -1;
-      if (near && neighbours[slot] != ProcessingOctree::NoCell)
-      {
-        place(i, slot, ProcessingOctree::LocalLeafIndex(leaf));
-      }
-      else
-      {
-        scratch.Deferred.push_back(i);
       }
     }
   }

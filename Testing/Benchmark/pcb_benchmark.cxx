@@ -277,9 +277,10 @@ struct FloorMeasurement
  * passes, KernelArithmetic) on `neighbours` packed, pre-selected offsets that stay in the L1
  * cache, in ns per neighbour evaluation on one thread. No selection, candidate gathering,
  * eigensolver, octree or memory traffic: what no formulation of these sums with this
- * exponential can go below on this machine. Beside it, the whole kernel (FilterPoint) on
- * candidates spread uniformly in the cube circumscribing the ball (52% of them neighbours),
- * also in the L1 cache: the floor plus selection, padding and the eigensolver.
+ * exponential can go below on this machine. Beside it, the whole kernel (FilterPoints, 8 points
+ * at a time as the filter runs it) on candidates spread uniformly in the cube circumscribing
+ * the ball (52% of them neighbours), in the cache: the floor plus selection, padding and the
+ * eigensolver.
  */
 FloorMeasurement Floor(pcbilateral::KernelInstructionSet build, std::size_t neighbours)
 {
@@ -332,14 +333,27 @@ FloorMeasurement Floor(pcbilateral::KernelInstructionSet build, std::size_t neig
     cz[k] = 0.1 * random.Uniform(-radius, radius);
   }
   candidates.Append(cx.data(), cy.data(), cz.data(), candidateCount);
-  const double p[3] = { 0.0, 0.0, 0.0 };
+  // As the filter runs it: the points of a leaf KernelLanes at a time against the same
+  // candidates (here points near the centre, so that each has about as many neighbours).
+  double points[pcbilateral::KernelLanes][3];
+  for (std::size_t k = 0; k < pcbilateral::KernelLanes; ++k)
+  {
+    points[k][0] = 0.01 * radius * static_cast<double>(k);
+    points[k][1] = -0.01 * radius * static_cast<double>(k);
+    points[k][2] = 0.0;
+  }
   const pcbilateral::KernelInstructionSet previous = pcbilateral::GetKernelInstructionSet();
   pcbilateral::SetKernelInstructionSet(build);
   std::uint64_t found = 0, calls = 0;
   const double kernelCall = FastestNanoseconds(
     [&]
     {
-      found += pcbilateral::FilterPoint(p, candidates, constants).NeighbourCount;
+      pcbilateral::FilteredPoint results[pcbilateral::KernelLanes];
+      pcbilateral::FilterPoints(points, pcbilateral::KernelLanes, candidates, constants, results);
+      for (const pcbilateral::FilteredPoint& result : results)
+      {
+        found += result.NeighbourCount;
+      }
       ++calls;
     });
   pcbilateral::SetKernelInstructionSet(previous);

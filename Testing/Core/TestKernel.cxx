@@ -4,7 +4,11 @@
 //   planes, noisy patches, edges, lines, repeated points and exact planes;
 // - FilterPoint against a plain transcription of Algorithm 1 (sequential sums, std::exp,
 //   Eigen), within 1e-12 of the radius;
-// - every instruction-set build of the kernel gives the same bits.
+// - every instruction-set build of the kernel gives the same bits;
+// - the eigensolver of FilterPoints (8 matrices side by side) gives the scalar solver's bits on
+//   every kind of matrix, those it hands to the scalar solver included;
+// - FilterPoints (up to 8 points at once) gives each point the bits it gets alone, on clouds
+//   that take every path (planes, points on a line, repeated points, too few neighbours).
 #include "BilateralKernel.h"
 #include "CoreTesting.h"
 
@@ -345,6 +349,196 @@ void TestFilterPoint()
     compared,
     AvailableInstructionSets().size());
 }
+/// KernelSmallestEigenvectors against SmallestEigenvector, bit for bit, in every build.
+void TestSmallestEigenvectors()
+{
+  std::mt19937_64 random(5);
+  std::normal_distribution<double> gaussian(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  std::vector<double> matrices;
+  for (int trial = 0; trial < 20000; ++trial)
+  {
+    const double units = std::pow(10.0, 6.0 * uniform(random));
+    const double thickness = std::pow(10.0, -1.0 - 8.0 * (uniform(random) + 1.0) / 2.0);
+    double m[6];
+    switch (trial % 8)
+    {
+      case 0: // a rotated plane of some thickness
+      case 1:
+      {
+        const Eigen::Matrix3d frame =
+          Eigen::Quaterniond(gaussian(random), gaussian(random), gaussian(random), gaussian(random))
+            .normalized()
+            .toRotationMatrix();
+        const Eigen::Vector3d spread(1.0, 0.3 + 0.7 * std::abs(uniform(random)), thickness);
+        const Eigen::Matrix3d c = units * frame * spread.asDiagonal() * frame.transpose();
+        const double entries[6] = { c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2), c(2, 2) };
+        std::copy(entries, entries + 6, m);
+        break;
+      }
+      case 2: // a line, (a, b, c)(a, b, c)^T plus a little
+      {
+        const double a = uniform(random), b = uniform(random), c = uniform(random);
+        const double entries[6] = { a * a, a * b, a * c, b * b, b * c, c * c };
+        for (int k = 0; k < 6; ++k)
+        {
+          m[k] = units * entries[k] + (k == 0 || k == 3 || k == 5 ? thickness * units : 0.0);
+        }
+        break;
+      }
+      case 3: // zero, isotropic, diagonal
+      {
+        const double entries[4][6] = {
+          { 0, 0, 0, 0, 0, 0 }, { 2, 0, 0, 2, 0, 2 }, { 1, 0, 0, 2, 0, 3 }, { 3, 0, 0, 1, 0, 1 }
+        };
+        for (int k = 0; k < 6; ++k)
+        {
+          m[k] = units * entries[(trial / 8) % 4][k];
+        }
+        break;
+      }
+      case 4: // not finite
+      {
+        for (int k = 0; k < 6; ++k)
+        {
+          m[k] = uniform(random);
+        }
+        m[(trial / 8) % 6] = (trial / 48) % 2 ? NAN : HUGE_VAL;
+        break;
+      }
+      default: // any symmetric matrix
+        for (int k = 0; k < 6; ++k)
+        {
+          m[k] = units * uniform(random);
+        }
+    }
+    matrices.insert(matrices.end(), m, m + 6);
+  }
+  const std::size_t count = matrices.size() / 6;
+  std::vector<double> expected(3 * count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    SmallestEigenvector(matrices.data() + 6 * i, expected.data() + 3 * i);
+  }
+  for (const auto set : AvailableInstructionSets())
+  {
+    SetKernelInstructionSet(set);
+    std::vector<double> found(3 * count);
+    KernelSmallestEigenvectors(matrices.data(), found.data(), count);
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      if (std::memcmp(found.data() + 3 * i, expected.data() + 3 * i, 3 * sizeof(double)) != 0)
+      {
+        if (differing++ == 0)
+        {
+          PCB_CHECK(false,
+            "%s: matrix %zu (kind %zu): (%.17g, %.17g, %.17g), the scalar solver (%.17g, %.17g, "
+            "%.17g)",
+            GetName(set),
+            i,
+            i % 8,
+            found[3 * i],
+            found[3 * i + 1],
+            found[3 * i + 2],
+            expected[3 * i],
+            expected[3 * i + 1],
+            expected[3 * i + 2]);
+        }
+      }
+    }
+    PCB_CHECK(differing == 0, "%s: %zu of %zu matrices differ", GetName(set), differing, count);
+  }
+  std::printf("eigensolver side by side: %zu matrices, bit for bit with the scalar one\n", count);
+}
+
+/// FilterPoints on batches of 1 to 8 points against each point alone, bit for bit, on clouds
+/// that take every path of the eigensolver.
+void TestFilterPoints()
+{
+  std::mt19937_64 random(4);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  std::normal_distribution<double> gaussian(0.0, 1.0);
+  const double radius = 0.1;
+  const KernelConstants constants(radius, 0.03);
+  int batches = 0;
+  for (int trial = 0; trial < 600; ++trial)
+  {
+    const int shape = trial % 6;
+    const std::size_t count = 1 + static_cast<std::size_t>(trial % 97);
+    const double origin[3] = { 6.5e5 + uniform(random), 4.1e6 + uniform(random), 250.0 };
+    CandidateNeighbours candidates;
+    for (std::size_t j = 0; j < count; ++j)
+    {
+      const double u = radius * uniform(random), v = radius * uniform(random);
+      double q[3] = { origin[0] + u, origin[1] + v, origin[2] + 0.01 * gaussian(random) };
+      if (shape == 1) // an exact, axis-aligned plane
+      {
+        q[2] = origin[2];
+      }
+      if (shape == 2) // points on a line: the two smallest eigenvalues meet
+      {
+        q[0] = origin[0] + u;
+        q[1] = origin[1] + 2.0 * u;
+        q[2] = origin[2] + 3.0 * u;
+      }
+      if (shape == 3) // one point repeated: no spread at all
+      {
+        q[0] = origin[0];
+        q[1] = origin[1];
+        q[2] = origin[2];
+      }
+      if (shape == 4) // an edge
+      {
+        q[2] += 0.5 * std::abs(u);
+      }
+      candidates.Append(q, q + 1, q + 2, 1);
+    }
+    const std::size_t batch = 1 + static_cast<std::size_t>(trial % KernelLanes);
+    double points[KernelLanes][3];
+    for (std::size_t k = 0; k < batch; ++k)
+    {
+      // Candidates, and points away from all of them (too few neighbours) in the last shape.
+      const std::size_t j = (k * 7919) % count;
+      const double away = shape == 5 && k % 2 ? 10.0 * radius : 0.0;
+      points[k][0] = candidates.X[j] + away;
+      points[k][1] = candidates.Y[j];
+      points[k][2] = candidates.Z[j];
+    }
+    for (const auto set : AvailableInstructionSets())
+    {
+      SetKernelInstructionSet(set);
+      FilteredPoint together[KernelLanes];
+      FilterPoints(points, batch, candidates, constants, together);
+      for (std::size_t k = 0; k < batch; ++k)
+      {
+        const FilteredPoint alone = FilterPoint(points[k], candidates, constants);
+        PCB_CHECK(
+          alone.NeighbourCount == together[k].NeighbourCount &&
+            alone.Filtered == together[k].Filtered &&
+            std::memcmp(&alone.Displacement, &together[k].Displacement, sizeof(double)) == 0 &&
+            std::memcmp(alone.Normal, together[k].Normal, sizeof(alone.Normal)) == 0,
+          "%s, trial %d (shape %d), point %zu of %zu: FilterPoints differs from FilterPoint "
+          "(normal %.17g %.17g %.17g against %.17g %.17g %.17g)",
+          GetName(set),
+          trial,
+          shape,
+          k,
+          batch,
+          together[k].Normal[0],
+          together[k].Normal[1],
+          together[k].Normal[2],
+          alone.Normal[0],
+          alone.Normal[1],
+          alone.Normal[2]);
+      }
+    }
+    ++batches;
+  }
+  std::printf("FilterPoints: %d batches of 1 to %zu points, bit for bit with FilterPoint\n",
+    batches,
+    KernelLanes);
+}
 } // namespace
 
 int main()
@@ -354,6 +548,8 @@ int main()
   TestExp();
   TestEigenvector();
   TestFilterPoint();
+  TestSmallestEigenvectors();
+  TestFilterPoints();
   SetKernelInstructionSet(best);
   return PCB_TEST_RESULT();
 }
