@@ -23,6 +23,13 @@ namespace pcbilateral
     const KernelScratch* scratch,                                                                  \
     FilteredPoint* results);                                                                       \
   void ExpOfNonPositive(const double* in, double* out, std::size_t count);                         \
+  std::size_t KeepNearBox(double* x,                                                               \
+    double* y,                                                                                     \
+    double* z,                                                                                     \
+    std::size_t count,                                                                             \
+    const double low[3],                                                                           \
+    const double high[3],                                                                          \
+    double reachSquared);                                                                          \
   void SmallestEigenvectorsOfMatrices(const double* matrices,                                      \
     double* eigenvectors,                                                                          \
     std::size_t count);                                                                            \
@@ -90,6 +97,28 @@ void CandidateNeighbours::Append(const double* x,
   std::memcpy(this->Y.data() + this->Count, y, count * sizeof(double));
   std::memcpy(this->Z.data() + this->Count, z, count * sizeof(double));
   this->Count = size;
+}
+
+void CandidateNeighbours::KeepNearBox(const double low[3],
+  const double high[3],
+  double reachSquared)
+{
+  double* x = this->X.data();
+  double* y = this->Y.data();
+  double* z = this->Z.data();
+  switch (GetKernelInstructionSet())
+  {
+#if PCB_KERNEL_X86
+    case KernelInstructionSet::Avx512:
+      this->Count = avx512::KeepNearBox(x, y, z, this->Count, low, high, reachSquared);
+      break;
+    case KernelInstructionSet::Avx2:
+      this->Count = avx2::KeepNearBox(x, y, z, this->Count, low, high, reachSquared);
+      break;
+#endif
+    default:
+      this->Count = generic::KeepNearBox(x, y, z, this->Count, low, high, reachSquared);
+  }
 }
 
 void CandidateNeighbours::Scratch(KernelScratch* scratch, std::size_t points)

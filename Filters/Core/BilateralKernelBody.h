@@ -207,6 +207,70 @@ inline std::size_t PackNeighbours(const double p[3],
   return count;
 }
 
+/**
+ * Keeps, in order, the points [0, count) of x, y, z whose squared distance to the box
+ * [low, high] is below reachSquared, moved to the front of the arrays. Returns their number.
+ * (A point is written at or before its own place after it was read, so in place is safe.)
+ */
+std::size_t KeepNearBox(double* x,
+  double* y,
+  double* z,
+  std::size_t count,
+  const double low[3],
+  const double high[3],
+  double reachSquared)
+{
+  std::size_t kept = 0;
+#if defined(__AVX512F__)
+  const __m512d zero = _mm512_setzero_pd();
+  const __m512d lowX = _mm512_set1_pd(low[0]), highX = _mm512_set1_pd(high[0]);
+  const __m512d lowY = _mm512_set1_pd(low[1]), highY = _mm512_set1_pd(high[1]);
+  const __m512d lowZ = _mm512_set1_pd(low[2]), highZ = _mm512_set1_pd(high[2]);
+  const __m512d limit = _mm512_set1_pd(reachSquared);
+  for (std::size_t j = 0; j < count; j += 8)
+  {
+    const std::size_t left = count - j;
+    const __mmask8 valid = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
+    const __m512d qx = _mm512_maskz_loadu_pd(valid, x + j);
+    const __m512d qy = _mm512_maskz_loadu_pd(valid, y + j);
+    const __m512d qz = _mm512_maskz_loadu_pd(valid, z + j);
+    const __m512d gx =
+      _mm512_max_pd(_mm512_max_pd(_mm512_sub_pd(lowX, qx), _mm512_sub_pd(qx, highX)), zero);
+    const __m512d gy =
+      _mm512_max_pd(_mm512_max_pd(_mm512_sub_pd(lowY, qy), _mm512_sub_pd(qy, highY)), zero);
+    const __m512d gz =
+      _mm512_max_pd(_mm512_max_pd(_mm512_sub_pd(lowZ, qz), _mm512_sub_pd(qz, highZ)), zero);
+    const __m512d d2 = _mm512_add_pd(
+      _mm512_add_pd(_mm512_mul_pd(gx, gx), _mm512_mul_pd(gy, gy)), _mm512_mul_pd(gz, gz));
+    const __mmask8 near = _mm512_mask_cmp_pd_mask(valid, d2, limit, _CMP_LT_OQ);
+    _mm512_mask_storeu_pd(
+      x + kept, 0xFF >> (8 - PopCount(near)), _mm512_maskz_compress_pd(near, qx));
+    _mm512_mask_storeu_pd(
+      y + kept, 0xFF >> (8 - PopCount(near)), _mm512_maskz_compress_pd(near, qy));
+    _mm512_mask_storeu_pd(
+      z + kept, 0xFF >> (8 - PopCount(near)), _mm512_maskz_compress_pd(near, qz));
+    kept += static_cast<std::size_t>(PopCount(near));
+  }
+#else
+  for (std::size_t j = 0; j < count; ++j)
+  {
+    const double q[3] = { x[j], y[j], z[j] };
+    double d2 = 0.0;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      const double below = low[axis] - q[axis], above = q[axis] - high[axis];
+      const double gap = below > above ? below : above;
+      d2 += gap > 0.0 ? gap * gap : 0.0;
+    }
+    x[kept] = q[0];
+    y[kept] = q[1];
+    z[kept] = q[2];
+    kept += d2 < reachSquared ? 1 : 0;
+  }
+#endif
+  return kept;
+}
+
 /// The weighted sums of pass 1 (see FilterPoint), one partial sum per lane.
 struct DistanceMoments
 {

@@ -117,6 +117,9 @@ private:
   /// The runs of leaf l of a cell are LeafRuns[RunsBegin[l]] to LeafRuns[RunsBegin[l + 1] - 1].
   std::array<std::uint32_t, ProcessingOctree::LeavesPerCell + 1> RunsBegin{};
   std::vector<ThreadScratch> Scratch;
+  /// The squared reach around a leaf's box within which its points' neighbours lie: r, and a
+  /// margin for the rounding of the point-to-leaf assignment and of the box's corners.
+  double LeafBoxReachSquared;
   std::atomic<bool> Aborted{ false };
   std::atomic<std::size_t> PointsDone{ 0 };
   std::size_t PointsProcessed = 0;

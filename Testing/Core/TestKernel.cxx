@@ -7,6 +7,7 @@
 // - every instruction-set build of the kernel gives the same bits;
 // - the eigensolver of FilterPoints (8 matrices side by side) gives the scalar solver's bits on
 //   every kind of matrix, those it hands to the scalar solver included;
+// - KeepNearBox keeps exactly the candidates near a box, in order, in every build;
 // - FilterPoints (up to 8 points at once) gives each point the bits it gets alone, on clouds
 //   that take every path (planes, points on a line, repeated points, too few neighbours).
 #include "BilateralKernel.h"
@@ -452,6 +453,74 @@ void TestSmallestEigenvectors()
   std::printf("eigensolver side by side: %zu matrices, bit for bit with the scalar one\n", count);
 }
 
+/// CandidateNeighbours::KeepNearBox against a plain loop, in every build: the same candidates
+/// in the same order, at georeferenced coordinates, points on the box's faces and at the reach.
+void TestKeepNearBox()
+{
+  std::mt19937_64 random(6);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  const double low[3] = { 6.5e5, 4.1e6, 250.0 }, high[3] = { 6.5e5 + 2.0, 4.1e6 + 2.0, 252.0 };
+  const double reach = 3.0;
+  int kept = 0, dropped = 0;
+  for (int trial = 0; trial < 300; ++trial)
+  {
+    const std::size_t count = static_cast<std::size_t>(trial % 131);
+    std::vector<double> x(count), y(count), z(count);
+    for (std::size_t j = 0; j < count; ++j)
+    {
+      double* q[3] = { &x[j], &y[j], &z[j] };
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        *q[axis] = 0.5 * (low[axis] + high[axis]) + 5.0 * uniform(random);
+      }
+      if (j % 5 == 0) // on a face, or exactly at the reach beyond it
+      {
+        x[j] = j % 10 ? high[0] : high[0] + reach;
+        y[j] = low[1];
+        z[j] = low[2];
+      }
+    }
+    std::vector<std::size_t> expected;
+    for (std::size_t j = 0; j < count; ++j)
+    {
+      const double q[3] = { x[j], y[j], z[j] };
+      double d2 = 0.0;
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        const double gap = std::max(std::max(low[axis] - q[axis], q[axis] - high[axis]), 0.0);
+        d2 += gap * gap;
+      }
+      if (d2 < reach * reach)
+      {
+        expected.push_back(j);
+      }
+    }
+    kept += static_cast<int>(expected.size());
+    dropped += static_cast<int>(count - expected.size());
+    for (const auto set : AvailableInstructionSets())
+    {
+      SetKernelInstructionSet(set);
+      CandidateNeighbours candidates;
+      candidates.Append(x.data(), y.data(), z.data(), count);
+      candidates.KeepNearBox(low, high, reach * reach);
+      bool same = candidates.Size() == expected.size();
+      for (std::size_t k = 0; same && k < expected.size(); ++k)
+      {
+        same = candidates.X[k] == x[expected[k]] && candidates.Y[k] == y[expected[k]] &&
+               candidates.Z[k] == z[expected[k]];
+      }
+      PCB_CHECK(same,
+        "%s, trial %d: kept %zu candidates, expected %zu in order",
+        GetName(set),
+        trial,
+        candidates.Size(),
+        expected.size());
+    }
+  }
+  PCB_CHECK(kept > 1000 && dropped > 1000, "kept %d, dropped %d: not a test", kept, dropped);
+  std::printf("KeepNearBox: %d kept and %d dropped as a plain loop does\n", kept, dropped);
+}
+
 /// FilterPoints on batches of 1 to 8 points against each point alone, bit for bit, on clouds
 /// that take every path of the eigensolver.
 void TestFilterPoints()
@@ -549,6 +618,7 @@ int main()
   TestEigenvector();
   TestFilterPoint();
   TestSmallestEigenvectors();
+  TestKeepNearBox();
   TestFilterPoints();
   SetKernelInstructionSet(best);
   return PCB_TEST_RESULT();
