@@ -23,13 +23,16 @@ namespace pcbilateral
     const KernelScratch* scratch,                                                                  \
     FilteredPoint* results);                                                                       \
   void ExpOfNonPositive(const double* in, double* out, std::size_t count);                         \
-  std::size_t KeepNearBox(double* x,                                                               \
-    double* y,                                                                                     \
-    double* z,                                                                                     \
+  std::size_t CopyNearBox(const double* sx,                                                        \
+    const double* sy,                                                                              \
+    const double* sz,                                                                              \
     std::size_t count,                                                                             \
     const double low[3],                                                                           \
     const double high[3],                                                                          \
-    double reachSquared);                                                                          \
+    double reachSquared,                                                                           \
+    double* x,                                                                                     \
+    double* y,                                                                                     \
+    double* z);                                                                                    \
   void SmallestEigenvectorsOfMatrices(const double* matrices,                                      \
     double* eigenvectors,                                                                          \
     std::size_t count);                                                                            \
@@ -84,7 +87,15 @@ void CandidateNeighbours::Append(const double* x,
   const double* z,
   std::size_t count)
 {
-  const std::size_t size = this->Count + count;
+  this->Reserve(this->Count + count);
+  std::memcpy(this->X.data() + this->Count, x, count * sizeof(double));
+  std::memcpy(this->Y.data() + this->Count, y, count * sizeof(double));
+  std::memcpy(this->Z.data() + this->Count, z, count * sizeof(double));
+  this->Count += count;
+}
+
+void CandidateNeighbours::Reserve(std::size_t size)
+{
   if (this->X.size() < size)
   {
     // Grow geometrically: candidate counts vary from block to block.
@@ -93,36 +104,43 @@ void CandidateNeighbours::Append(const double* x,
     this->Y.resize(capacity);
     this->Z.resize(capacity);
   }
-  std::memcpy(this->X.data() + this->Count, x, count * sizeof(double));
-  std::memcpy(this->Y.data() + this->Count, y, count * sizeof(double));
-  std::memcpy(this->Z.data() + this->Count, z, count * sizeof(double));
-  this->Count = size;
 }
 
-void CandidateNeighbours::KeepNearBox(const double low[3],
+void CandidateNeighbours::AppendNearBox(const double* x,
+  const double* y,
+  const double* z,
+  std::size_t count,
+  const double low[3],
   const double high[3],
   double reachSquared)
 {
-  double* x = this->X.data();
-  double* y = this->Y.data();
-  double* z = this->Z.data();
+  this->Reserve(this->Count + count);
+  double* to[3] = {
+    this->X.data() + this->Count, this->Y.data() + this->Count, this->Z.data() + this->Count
+  };
+  std::size_t kept;
   switch (GetKernelInstructionSet())
   {
 #if PCB_KERNEL_X86
     case KernelInstructionSet::Avx512:
-      this->Count = avx512::KeepNearBox(x, y, z, this->Count, low, high, reachSquared);
+      kept = avx512::CopyNearBox(x, y, z, count, low, high, reachSquared, to[0], to[1], to[2]);
       break;
     case KernelInstructionSet::Avx2:
-      this->Count = avx2::KeepNearBox(x, y, z, this->Count, low, high, reachSquared);
+      kept = avx2::CopyNearBox(x, y, z, count, low, high, reachSquared, to[0], to[1], to[2]);
       break;
 #endif
     default:
-      this->Count = generic::KeepNearBox(x, y, z, this->Count, low, high, reachSquared);
+      kept = generic::CopyNearBox(x, y, z, count, low, high, reachSquared, to[0], to[1], to[2]);
   }
+  this->Count += kept;
 }
 
 void CandidateNeighbours::Scratch(KernelScratch* scratch, std::size_t points)
 {
+  if (points == 0)
+  {
+    return;
+  }
   const std::size_t arrays = 4 * points;
   const std::size_t stride = this->Size() + KernelLanes;
   if (this->ScratchStorage.size() < arrays * stride)
@@ -411,6 +429,10 @@ void FilterPoints(const double (*points)[3],
   const KernelConstants& constants,
   FilteredPoint* results)
 {
+  if (count == 0)
+  {
+    return;
+  }
   KernelScratch scratch[KernelLanes];
   candidates.Scratch(scratch, count);
   const double* x = candidates.X.data();

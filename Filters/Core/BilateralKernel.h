@@ -63,15 +63,23 @@ struct CandidateNeighbours
   std::size_t Size() const { return this->Count; }
   void Clear() { this->Count = 0; }
   void Append(const double* x, const double* y, const double* z, std::size_t count);
-  /// Drops, keeping the others in order, the candidates whose squared distance to the box
-  /// [low, high] is reachSquared or more: with the box of the points to filter and a reach a
-  /// little over r, those that cannot be a neighbour of any of them.
-  void KeepNearBox(const double low[3], const double high[3], double reachSquared);
+  /// Appends, in order, those of the `count` points whose squared distance to the box
+  /// [low, high] is below reachSquared: with the box of the points to filter and a reach a
+  /// little over r, the points that can be a neighbour of one of them.
+  void AppendNearBox(const double* x,
+    const double* y,
+    const double* z,
+    std::size_t count,
+    const double low[3],
+    const double high[3],
+    double reachSquared);
   /// The kernel's scratch for `points` points filtered together (at most KernelLanes), each
   /// with room for the current candidates.
   void Scratch(KernelScratch* scratch, std::size_t points);
 
 private:
+  /// Room for `size` candidates in X, Y and Z.
+  void Reserve(std::size_t size);
   std::size_t Count = 0;
   std::vector<double> ScratchStorage;
 };

@@ -208,17 +208,20 @@ inline std::size_t PackNeighbours(const double p[3],
 }
 
 /**
- * Keeps, in order, the points [0, count) of x, y, z whose squared distance to the box
- * [low, high] is below reachSquared, moved to the front of the arrays. Returns their number.
- * (A point is written at or before its own place after it was read, so in place is safe.)
+ * Copies, in order, the points [0, count) of sx, sy, sz whose squared distance to the box
+ * [low, high] is below reachSquared to x, y, z (which may be the same arrays: a point is
+ * written at or before its own place, after it was read). Returns their number.
  */
-std::size_t KeepNearBox(double* x,
-  double* y,
-  double* z,
+std::size_t CopyNearBox(const double* sx,
+  const double* sy,
+  const double* sz,
   std::size_t count,
   const double low[3],
   const double high[3],
-  double reachSquared)
+  double reachSquared,
+  double* x,
+  double* y,
+  double* z)
 {
   std::size_t kept = 0;
 #if defined(__AVX512F__)
@@ -231,9 +234,9 @@ std::size_t KeepNearBox(double* x,
   {
     const std::size_t left = count - j;
     const __mmask8 valid = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
-    const __m512d qx = _mm512_maskz_loadu_pd(valid, x + j);
-    const __m512d qy = _mm512_maskz_loadu_pd(valid, y + j);
-    const __m512d qz = _mm512_maskz_loadu_pd(valid, z + j);
+    const __m512d qx = _mm512_maskz_loadu_pd(valid, sx + j);
+    const __m512d qy = _mm512_maskz_loadu_pd(valid, sy + j);
+    const __m512d qz = _mm512_maskz_loadu_pd(valid, sz + j);
     const __m512d gx =
       _mm512_max_pd(_mm512_max_pd(_mm512_sub_pd(lowX, qx), _mm512_sub_pd(qx, highX)), zero);
     const __m512d gy =
@@ -243,18 +246,17 @@ std::size_t KeepNearBox(double* x,
     const __m512d d2 = _mm512_add_pd(
       _mm512_add_pd(_mm512_mul_pd(gx, gx), _mm512_mul_pd(gy, gy)), _mm512_mul_pd(gz, gz));
     const __mmask8 near = _mm512_mask_cmp_pd_mask(valid, d2, limit, _CMP_LT_OQ);
-    _mm512_mask_storeu_pd(
-      x + kept, 0xFF >> (8 - PopCount(near)), _mm512_maskz_compress_pd(near, qx));
-    _mm512_mask_storeu_pd(
-      y + kept, 0xFF >> (8 - PopCount(near)), _mm512_maskz_compress_pd(near, qy));
-    _mm512_mask_storeu_pd(
-      z + kept, 0xFF >> (8 - PopCount(near)), _mm512_maskz_compress_pd(near, qz));
-    kept += static_cast<std::size_t>(PopCount(near));
+    const int found = PopCount(near);
+    const __mmask8 stored = static_cast<__mmask8>(0xFFu >> (8 - found));
+    _mm512_mask_storeu_pd(x + kept, stored, _mm512_maskz_compress_pd(near, qx));
+    _mm512_mask_storeu_pd(y + kept, stored, _mm512_maskz_compress_pd(near, qy));
+    _mm512_mask_storeu_pd(z + kept, stored, _mm512_maskz_compress_pd(near, qz));
+    kept += static_cast<std::size_t>(found);
   }
 #else
   for (std::size_t j = 0; j < count; ++j)
   {
-    const double q[3] = { x[j], y[j], z[j] };
+    const double q[3] = { sx[j], sy[j], sz[j] };
     double d2 = 0.0;
     for (int axis = 0; axis < 3; ++axis)
     {
@@ -262,6 +264,7 @@ std::size_t KeepNearBox(double* x,
       const double gap = below > above ? below : above;
       d2 += gap > 0.0 ? gap * gap : 0.0;
     }
+    // Written whatever the test says, kept by advancing: no branch to mispredict.
     x[kept] = q[0];
     y[kept] = q[1];
     z[kept] = q[2];

@@ -113,10 +113,29 @@ CellColoringScheduler::CellColoringScheduler(ProcessingOctree& octree,
     static_cast<std::uint32_t>(this->LeafRuns.size());
 }
 
-void CellColoringScheduler::GatherCandidates(const std::int32_t* neighbours,
+void CellColoringScheduler::GatherCandidates(std::size_t cell,
+  const std::int32_t* neighbours,
   int localLeaf,
   CandidateNeighbours& candidates) const
 {
+  // Of the leaves' points, only those near this leaf's box can be neighbours of its points
+  // (about half of them on a surface with tens of neighbours per point): left out here once
+  // rather than tested again for each point. The order of the others, and so every sum, is as
+  // if all were gathered.
+  const LatticeCoord& cellCoord = this->Octree.GetCellCoord(cell);
+  const int leafIndex[3] = { localLeaf % ProcessingOctree::LeavesPerAxis,
+    (localLeaf / ProcessingOctree::LeavesPerAxis) % ProcessingOctree::LeavesPerAxis,
+    localLeaf / (ProcessingOctree::LeavesPerAxis * ProcessingOctree::LeavesPerAxis) };
+  const std::int64_t cellIndex[3] = { cellCoord.X, cellCoord.Y, cellCoord.Z };
+  double boxLow[3], boxHigh[3];
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const double leaf =
+      static_cast<double>(ProcessingOctree::LeavesPerAxis * cellIndex[axis] + leafIndex[axis]);
+    const double origin = this->Octree.GetRootOrigin()[axis];
+    boxLow[axis] = origin + leaf * this->Octree.GetLeafSize();
+    boxHigh[axis] = origin + (leaf + 1.0) * this->Octree.GetLeafSize();
+  }
   const double* x = this->Octree.GetX();
   const double* y = this->Octree.GetY();
   const double* z = this->Octree.GetZ();
@@ -135,7 +154,8 @@ void CellColoringScheduler::GatherCandidates(const std::int32_t* neighbours,
     this->Octree.GetLeavesRange(cell, leaves.FirstLeaf, leaves.LastLeaf, begin, end);
     if (end > begin)
     {
-      candidates.Append(x + begin, y + begin, z + begin, end - begin);
+      candidates.AppendNearBox(
+        x + begin, y + begin, z + begin, end - begin, boxLow, boxHigh, this->LeafBoxReachSquared);
     }
   }
 }
@@ -175,25 +195,7 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
     const int localLeaf = CountTrailingZeros(leaves);
     std::uint32_t begin, end;
     this->Octree.GetLeafRange(cell, localLeaf, begin, end);
-    this->GatherCandidates(neighbours, localLeaf, scratch.Candidates);
-    // Of the gathered leaves' points, only those near this leaf's box can be neighbours of its
-    // points (about half of them on a surface with tens of neighbours per point): dropped once
-    // here rather than tested again for each point. The order of the others, and so every sum,
-    // is unchanged.
-    const int leafIndex[3] = { localLeaf % ProcessingOctree::LeavesPerAxis,
-      (localLeaf / ProcessingOctree::LeavesPerAxis) % ProcessingOctree::LeavesPerAxis,
-      localLeaf / (ProcessingOctree::LeavesPerAxis * ProcessingOctree::LeavesPerAxis) };
-    const std::int64_t cellIndex[3] = { cellCoord.X, cellCoord.Y, cellCoord.Z };
-    double boxLow[3], boxHigh[3];
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      const double leaf =
-        static_cast<double>(ProcessingOctree::LeavesPerAxis * cellIndex[axis] + leafIndex[axis]);
-      boxLow[axis] = this->Octree.GetRootOrigin()[axis] + leaf * this->Octree.GetLeafSize();
-      boxHigh[axis] =
-        this->Octree.GetRootOrigin()[axis] + (leaf + 1.0) * this->Octree.GetLeafSize();
-    }
-    scratch.Candidates.KeepNearBox(boxLow, boxHigh, this->LeafBoxReachSquared);
+    this->GatherCandidates(cell, neighbours, localLeaf, scratch.Candidates);
     // The leaf's points KernelLanes at a time: they share the candidates, and the kernel
     // solves their eigenvectors side by side.
     for (std::uint32_t next = begin; next < end;)
@@ -350,7 +352,7 @@ double CellColoringScheduler::EstimateNeighboursPerPoint(std::size_t samples)
     }
     std::int32_t around[27];
     this->Octree.GetNeighbourCells(cell, around);
-    this->GatherCandidates(around, localLeaf, candidates);
+    this->GatherCandidates(cell, around, localLeaf, candidates);
     const double p[3] = {
       this->Octree.GetX()[index], this->Octree.GetY()[index], this->Octree.GetZ()[index]
     };

@@ -94,8 +94,9 @@ private:
   /// Calling thread only: asks ShouldAbort and reports progress.
   void PollObserver();
   /// The points of the leaves within reach of a leaf of a cell (given the cell's 27
-  /// neighbours, GetNeighbourCells), in an order fixed by geometry.
-  void GatherCandidates(const std::int32_t* neighbours,
+  /// neighbours, GetNeighbourCells) that are near the leaf's box, in an order fixed by geometry.
+  void GatherCandidates(std::size_t cell,
+    const std::int32_t* neighbours,
     int localLeaf,
     CandidateNeighbours& candidates) const;
 

@@ -7,7 +7,7 @@
 // - every instruction-set build of the kernel gives the same bits;
 // - the eigensolver of FilterPoints (8 matrices side by side) gives the scalar solver's bits on
 //   every kind of matrix, those it hands to the scalar solver included;
-// - KeepNearBox keeps exactly the candidates near a box, in order, in every build;
+// - AppendNearBox keeps exactly the candidates near a box, in order, in every build;
 // - FilterPoints (up to 8 points at once) gives each point the bits it gets alone, on clouds
 //   that take every path (planes, points on a line, repeated points, too few neighbours).
 #include "BilateralKernel.h"
@@ -453,9 +453,9 @@ void TestSmallestEigenvectors()
   std::printf("eigensolver side by side: %zu matrices, bit for bit with the scalar one\n", count);
 }
 
-/// CandidateNeighbours::KeepNearBox against a plain loop, in every build: the same candidates
+/// CandidateNeighbours::AppendNearBox against a plain loop, in every build: the same candidates
 /// in the same order, at georeferenced coordinates, points on the box's faces and at the reach.
-void TestKeepNearBox()
+void TestAppendNearBox()
 {
   std::mt19937_64 random(6);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
@@ -500,9 +500,12 @@ void TestKeepNearBox()
     for (const auto set : AvailableInstructionSets())
     {
       SetKernelInstructionSet(set);
+      // In two parts, as runs of leaves are gathered.
       CandidateNeighbours candidates;
-      candidates.Append(x.data(), y.data(), z.data(), count);
-      candidates.KeepNearBox(low, high, reach * reach);
+      const std::size_t part = count / 3;
+      candidates.AppendNearBox(x.data(), y.data(), z.data(), part, low, high, reach * reach);
+      candidates.AppendNearBox(
+        x.data() + part, y.data() + part, z.data() + part, count - part, low, high, reach * reach);
       bool same = candidates.Size() == expected.size();
       for (std::size_t k = 0; same && k < expected.size(); ++k)
       {
@@ -518,7 +521,7 @@ void TestKeepNearBox()
     }
   }
   PCB_CHECK(kept > 1000 && dropped > 1000, "kept %d, dropped %d: not a test", kept, dropped);
-  std::printf("KeepNearBox: %d kept and %d dropped as a plain loop does\n", kept, dropped);
+  std::printf("AppendNearBox: %d kept and %d dropped as a plain loop does\n", kept, dropped);
 }
 
 /// FilterPoints on batches of 1 to 8 points against each point alone, bit for bit, on clouds
@@ -618,7 +621,7 @@ int main()
   TestEigenvector();
   TestFilterPoint();
   TestSmallestEigenvectors();
-  TestKeepNearBox();
+  TestAppendNearBox();
   TestFilterPoints();
   SetKernelInstructionSet(best);
   return PCB_TEST_RESULT();
