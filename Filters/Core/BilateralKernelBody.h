@@ -486,16 +486,28 @@ inline IntLanes SmallestEigenvectors(const double (*covariance)[Lanes],
 }
 
 /**
- * The smallest eigenvectors of Lanes matrices given by lane (covariance[k][lane]): the lanes
- * side by side (SmallestEigenvectors), and those it flags through the scalar solver, so that
- * every lane gets SmallestEigenvector's bits.
+ * The smallest eigenvectors of the matrices of the lanes marked in `solve` (others are left
+ * alone), given by lane (covariance[k][lane]), each with SmallestEigenvector's bits: side by
+ * side (SmallestEigenvectors), and those it flags through the scalar solver. A single matrix
+ * goes straight to the scalar solver, which is then as fast and does not compute 8 lanes.
  */
-inline void SolveNormals(const double (*covariance)[Lanes], double (*normal)[Lanes])
+inline void SolveNormals(const double (*covariance)[Lanes],
+  const bool* solve,
+  double (*normal)[Lanes])
 {
-  const IntLanes scalar = SmallestEigenvectors(covariance, normal);
+  std::size_t count = 0;
   for (std::size_t lane = 0; lane < Lanes; ++lane)
   {
-    if (scalar[lane])
+    count += solve[lane] ? 1 : 0;
+  }
+  IntLanes scalar = {};
+  if (count > 1)
+  {
+    scalar = SmallestEigenvectors(covariance, normal);
+  }
+  for (std::size_t lane = 0; lane < Lanes; ++lane)
+  {
+    if (solve[lane] && (count == 1 || scalar[lane]))
     {
       const double matrix[6] = { covariance[0][lane],
         covariance[1][lane],
@@ -598,7 +610,7 @@ void FilterPoints(const double (*points)[3],
 
   // The regression planes' normals, one point per lane.
   double normals[3][Lanes];
-  SolveNormals(covariance, normals);
+  SolveNormals(covariance, planed, normals);
 
   // Pass 2 for each point: the bilateral average of the heights h = <n, q - p> over the same
   // neighbours.
@@ -912,7 +924,12 @@ void SmallestEigenvectorsOfMatrices(const double* matrices, double* eigenvectors
         covariance[entry][lane] = matrices[6 * (first + lane) + entry];
       }
     }
-    SolveNormals(covariance, normal);
+    bool solve[Lanes] = {};
+    for (std::size_t lane = 0; lane < lanes; ++lane)
+    {
+      solve[lane] = true;
+    }
+    SolveNormals(covariance, solve, normal);
     for (std::size_t lane = 0; lane < lanes; ++lane)
     {
       for (int axis = 0; axis < 3; ++axis)

@@ -94,10 +94,12 @@ private:
   /// Calling thread only: asks ShouldAbort and reports progress.
   void PollObserver();
   /// The points of the leaves within reach of a leaf of a cell (given the cell's 27
-  /// neighbours, GetNeighbourCells) that are near the leaf's box, in an order fixed by geometry.
+  /// neighbours, GetNeighbourCells), in an order fixed by geometry; for a leaf of several
+  /// points, only those near the leaf's box.
   void GatherCandidates(std::size_t cell,
     const std::int32_t* neighbours,
     int localLeaf,
+    std::size_t pointsInLeaf,
     CandidateNeighbours& candidates) const;
 
   ProcessingOctree& Octree;
