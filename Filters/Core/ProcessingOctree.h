@@ -88,9 +88,14 @@ public:
   /// The index stored for the cell, or `index` if there was none (then stored); coords holds
   /// the coordinates of the cells stored so far, by index.
   std::int32_t Insert(const LatticeCoord& cell, std::int32_t index, const LatticeCoord* coords);
+  /// Stores the `count` distinct cells coords[0] to coords[count - 1] as indices 0 to count - 1
+  /// in a cleared map, with numberOfThreads threads. The map's layout may depend on the
+  /// threads; what Find returns does not.
+  void InsertDistinct(const LatticeCoord* coords, std::size_t count, int numberOfThreads);
 
 private:
-  struct Slot
+  // Eight bytes, aligned, so that InsertDistinct can claim a slot with one compare-and-swap.
+  struct alignas(8) Slot
   {
     std::uint32_t Tag = 0;
     std::int32_t Index = Missing;
