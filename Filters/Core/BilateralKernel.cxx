@@ -52,6 +52,24 @@ PCB_DECLARE_KERNEL_BUILD(avx512)
 #endif
 #undef PCB_DECLARE_KERNEL_BUILD
 
+// Returns FUNCTION(arguments...) of the build for INSTRUCTION_SET.
+#if PCB_KERNEL_X86
+#define PCB_RETURN_FROM_BUILD(INSTRUCTION_SET, FUNCTION, ...)                                      \
+  switch (INSTRUCTION_SET)                                                                         \
+  {                                                                                                \
+    case KernelInstructionSet::Avx512:                                                             \
+      return avx512::FUNCTION(__VA_ARGS__);                                                        \
+    case KernelInstructionSet::Avx2:                                                               \
+      return avx2::FUNCTION(__VA_ARGS__);                                                          \
+    default:                                                                                       \
+      return generic::FUNCTION(__VA_ARGS__);                                                       \
+  }
+#else
+#define PCB_RETURN_FROM_BUILD(INSTRUCTION_SET, FUNCTION, ...)                                      \
+  (void)(INSTRUCTION_SET);                                                                         \
+  return generic::FUNCTION(__VA_ARGS__);
+#endif
+
 namespace
 {
 KernelInstructionSet BestInstructionSet()
@@ -118,21 +136,21 @@ void CandidateNeighbours::AppendNearBox(const double* x,
   double* to[3] = {
     this->X.data() + this->Count, this->Y.data() + this->Count, this->Z.data() + this->Count
   };
-  std::size_t kept;
-  switch (GetKernelInstructionSet())
+  this->Count += [&]() -> std::size_t
   {
-#if PCB_KERNEL_X86
-    case KernelInstructionSet::Avx512:
-      kept = avx512::CopyNearBox(x, y, z, count, low, high, reachSquared, to[0], to[1], to[2]);
-      break;
-    case KernelInstructionSet::Avx2:
-      kept = avx2::CopyNearBox(x, y, z, count, low, high, reachSquared, to[0], to[1], to[2]);
-      break;
-#endif
-    default:
-      kept = generic::CopyNearBox(x, y, z, count, low, high, reachSquared, to[0], to[1], to[2]);
-  }
-  this->Count += kept;
+    PCB_RETURN_FROM_BUILD(GetKernelInstructionSet(),
+      CopyNearBox,
+      x,
+      y,
+      z,
+      count,
+      low,
+      high,
+      reachSquared,
+      to[0],
+      to[1],
+      to[2]);
+  }();
 }
 
 void CandidateNeighbours::Scratch(KernelScratch* scratch, std::size_t points)
@@ -207,47 +225,18 @@ bool SetKernelInstructionSet(KernelInstructionSet instructionSet)
 
 void KernelExp(const double* x, double* result, std::size_t count)
 {
-  switch (GetKernelInstructionSet())
-  {
-#if PCB_KERNEL_X86
-    case KernelInstructionSet::Avx512:
-      return avx512::ExpOfNonPositive(x, result, count);
-    case KernelInstructionSet::Avx2:
-      return avx2::ExpOfNonPositive(x, result, count);
-#endif
-    default:
-      return generic::ExpOfNonPositive(x, result, count);
-  }
+  PCB_RETURN_FROM_BUILD(GetKernelInstructionSet(), ExpOfNonPositive, x, result, count);
 }
 
 void KernelSmallestEigenvectors(const double* matrices, double* eigenvectors, std::size_t count)
 {
-  switch (GetKernelInstructionSet())
-  {
-#if PCB_KERNEL_X86
-    case KernelInstructionSet::Avx512:
-      return avx512::SmallestEigenvectorsOfMatrices(matrices, eigenvectors, count);
-    case KernelInstructionSet::Avx2:
-      return avx2::SmallestEigenvectorsOfMatrices(matrices, eigenvectors, count);
-#endif
-    default:
-      return generic::SmallestEigenvectorsOfMatrices(matrices, eigenvectors, count);
-  }
+  PCB_RETURN_FROM_BUILD(
+    GetKernelInstructionSet(), SmallestEigenvectorsOfMatrices, matrices, eigenvectors, count);
 }
 
 EdgeAwareKernel GetEdgeAwareKernel()
 {
-  switch (GetKernelInstructionSet())
-  {
-#if PCB_KERNEL_X86
-    case KernelInstructionSet::Avx512:
-      return avx512::MakeEdgeAwareKernel();
-    case KernelInstructionSet::Avx2:
-      return avx2::MakeEdgeAwareKernel();
-#endif
-    default:
-      return generic::MakeEdgeAwareKernel();
-  }
+  PCB_RETURN_FROM_BUILD(GetKernelInstructionSet(), MakeEdgeAwareKernel);
 }
 
 double KernelArithmetic(KernelInstructionSet instructionSet,
@@ -263,17 +252,8 @@ double KernelArithmetic(KernelInstructionSet instructionSet,
   {
     return 0.0;
   }
-  switch (instructionSet)
-  {
-#if PCB_KERNEL_X86
-    case KernelInstructionSet::Avx512:
-      return avx512::ArithmeticFloor(dx, dy, dz, count, constants, normal, distanceWeight);
-    case KernelInstructionSet::Avx2:
-      return avx2::ArithmeticFloor(dx, dy, dz, count, constants, normal, distanceWeight);
-#endif
-    default:
-      return generic::ArithmeticFloor(dx, dy, dz, count, constants, normal, distanceWeight);
-  }
+  PCB_RETURN_FROM_BUILD(
+    instructionSet, ArithmeticFloor, dx, dy, dz, count, constants, normal, distanceWeight);
 }
 
 namespace
@@ -443,19 +423,17 @@ void FilterPoints(const double (*points)[3],
   {
     results[point] = FilteredPoint();
   }
-  switch (GetKernelInstructionSet())
-  {
-#if PCB_KERNEL_X86
-    case KernelInstructionSet::Avx512:
-      avx512::FilterPoints(points, count, x, y, z, candidateCount, constants, scratch, results);
-      break;
-    case KernelInstructionSet::Avx2:
-      avx2::FilterPoints(points, count, x, y, z, candidateCount, constants, scratch, results);
-      break;
-#endif
-    default:
-      generic::FilterPoints(points, count, x, y, z, candidateCount, constants, scratch, results);
-  }
+  PCB_RETURN_FROM_BUILD(GetKernelInstructionSet(),
+    FilterPoints,
+    points,
+    count,
+    x,
+    y,
+    z,
+    candidateCount,
+    constants,
+    scratch,
+    results);
 }
 
 FilteredPoint FilterPoint(const double p[3],
