@@ -333,7 +333,7 @@ void CheckWriteBeyondLimit(vtkPolyData* cloud, const std::string& path)
   rlimit limit;
   getrlimit(RLIMIT_FSIZE, &limit);
   rlimit small = limit;
-  small.rlim_cur = 100000;
+  small.rlim_cur = 6000000; // within the second chunk of the fwrite path (4.5 MB each)
   void (*handler)(int) = std::signal(SIGXFSZ, SIG_IGN); // else the signal ends the process
   setrlimit(RLIMIT_FSIZE, &small);
   vtkNew<vtkLASPointCloudWriter> writer;
@@ -436,15 +436,17 @@ void TestEveryPointFormat()
   }
 }
 
-void TestSizeLimit()
+void TestChunksAndSizeLimit()
 {
   vtkSmartPointer<vtkPolyData> model = FormatModel(3, "limited");
   if (!model)
   {
     return;
   }
-  vtkSmartPointer<vtkPolyData> cloud = MakeCloud(3, 20000);
+  // More than two chunks of the fwrite path (131072 points each), 37 blocks of 8192 points.
+  vtkSmartPointer<vtkPolyData> cloud = MakeCloud(3, 300000);
   FillArraysLike(model, cloud);
+  CheckMappedAndChunked(cloud, "chunks");
   CheckWriteBeyondLimit(cloud, "limited.las");
   setenv("PCB_LAS_WRITE_MAPPED", "0", 1);
   CheckWriteBeyondLimit(cloud, "limited-chunked.las");
@@ -774,7 +776,7 @@ int main(int argc, char* argv[])
 {
   const std::map<std::string, std::function<void()>> cases = {
     { "every-point-format", TestEveryPointFormat },
-    { "size-limit", TestSizeLimit },
+    { "chunks-and-size-limit", TestChunksAndSizeLimit },
     { "default-header", TestDefaultHeader },
     { "extra-bytes", TestExtraBytes },
     { "scaled-extra-bytes", TestScaledExtraBytes },
