@@ -1362,7 +1362,12 @@ bool WritePointsInChunks(std::FILE* file,
   // zero-filled: every block is cleared before it is encoded.
   constexpr std::size_t Slots = 3;
   const std::size_t chunkCount = (blockCount + BlocksAtOnce - 1) / BlocksAtOnce;
+  // Allocated before the writing thread starts, so that nothing throws while it runs.
   std::unique_ptr<std::uint8_t[]> chunks[Slots];
+  for (std::size_t c = 0; c < std::min(Slots, chunkCount); ++c)
+  {
+    chunks[c].reset(new std::uint8_t[encoder.Bytes(0, BlocksAtOnce)]);
+  }
   // The chunks encoded and written so far, the errno of a failed write (errno itself is the
   // writing thread's), and whether the encoding stopped.
   std::mutex mutex;
@@ -1417,18 +1422,14 @@ bool WritePointsInChunks(std::FILE* file,
         break;
       }
     }
-    std::unique_ptr<std::uint8_t[]>& chunk = chunks[c % Slots];
-    if (!chunk)
-    {
-      chunk.reset(new std::uint8_t[encoder.Bytes(0, BlocksAtOnce)]);
-    }
+    std::uint8_t* chunk = chunks[c % Slots].get();
     const std::size_t firstBlock = c * BlocksAtOnce;
     const auto blocks = static_cast<std::int64_t>(std::min(BlocksAtOnce, blockCount - firstBlock));
 #pragma omp parallel for schedule(static) num_threads(encoders)
     for (std::int64_t b = 0; b < blocks; ++b)
     {
       const std::size_t block = firstBlock + static_cast<std::size_t>(b);
-      std::uint8_t* records = chunk.get() + encoder.Bytes(firstBlock, static_cast<std::size_t>(b));
+      std::uint8_t* records = chunk + encoder.Bytes(firstBlock, static_cast<std::size_t>(b));
       std::memset(records, 0, encoder.Bytes(block, 1));
       summaries[block] = encoder.Encode(block, records);
     }
