@@ -14,11 +14,13 @@ namespace pcbilateral
 class ReplacingFile
 {
 public:
-  /// Opens `path` + ".partial" for writing; Get() is null when that failed (see OpenError()).
+  /// Opens `path` + ".partial" for writing (empty, and readable too: the LAS writer maps it,
+  /// which needs a descriptor open for reading); Get() is null when that failed (see
+  /// OpenError()).
   explicit ReplacingFile(const std::string& path)
     : Path(path)
     , Temporary(path + ".partial")
-    , File(std::fopen(this->Temporary.c_str(), "wb"))
+    , File(std::fopen(this->Temporary.c_str(), "w+b"))
     , OpenErrno(errno)
   {
   }
@@ -45,14 +47,15 @@ public:
   }
 
   /// Closes the file and, when `ok` (every write succeeded), moves it onto the path; otherwise
-  /// removes it. Returns an empty string or "PATH: write failed (reason)".
-  std::string Commit(bool ok)
+  /// removes it. Returns an empty string or "PATH: write failed (reason)", the reason that of
+  /// `failure` (an errno value) when given, else of errno.
+  std::string Commit(bool ok, int failure = 0)
   {
     ok = (std::fclose(this->File) == 0) && ok;
     this->File = nullptr;
     if (!ok || std::rename(this->Temporary.c_str(), this->Path.c_str()) != 0)
     {
-      const std::string reason = std::strerror(errno);
+      const std::string reason = std::strerror(failure ? failure : errno);
       std::remove(this->Temporary.c_str());
       return this->Path + ": write failed (" + reason + ")";
     }

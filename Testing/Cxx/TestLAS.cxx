@@ -1,7 +1,8 @@
 // The LAS reader and writer: every point format 0-10 written, read back and written again
-// (same values, same point records byte for byte), extra bytes named by their record, the
-// header chosen for points from elsewhere, and damaged files through the VTK reader (one
-// error, an empty output).
+// (same values, same point records byte for byte), written into a mapping of the file and in
+// chunks (the same bytes; a file beyond the size limit gives one error and no file), extra
+// bytes named by their record, the header chosen for points from elsewhere, and damaged files
+// through the VTK reader (one error, an empty output).
 #include "CoreTesting.h"
 
 #include "vtkLASPointCloudReader.h"
@@ -21,13 +22,19 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnsignedShortArray.h"
 
+#include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <string>
 #include <vector>
+
+#include <sys/resource.h>
+#include <unistd.h>
 
 namespace
 {
@@ -301,21 +308,74 @@ void CheckRecordsWrittenBack(const std::string& path, vtkPolyData* read, const s
   }
 }
 
+/// Writes `cloud` into a mapping of the file (where the file system allows it) and in chunks
+/// with fwrite (PCB_LAS_WRITE_MAPPED=0, as where it does not): the same bytes.
+void CheckMappedAndChunked(vtkPolyData* cloud, const std::string& name)
+{
+  unsetenv("PCB_LAS_WRITE_MAPPED");
+  const bool mapped = Write(cloud, name + "-mapped.las");
+  setenv("PCB_LAS_WRITE_MAPPED", "0", 1);
+  const bool chunked = Write(cloud, name + "-chunked.las");
+  unsetenv("PCB_LAS_WRITE_MAPPED");
+  if (mapped && chunked)
+  {
+    const std::vector<char> bytes = FileBytes(name + "-mapped.las");
+    PCB_CHECK(bytes.size() > 227 && bytes == FileBytes(name + "-chunked.las"),
+      "%s: the mapped and the chunked writes differ",
+      name.c_str());
+  }
+}
+
+/// A file larger than the process may write (RLIMIT_FSIZE, as a full file system): one error,
+/// and neither the file nor its temporary file left.
+void CheckWriteBeyondLimit(vtkPolyData* cloud, const std::string& path)
+{
+  rlimit limit;
+  getrlimit(RLIMIT_FSIZE, &limit);
+  rlimit small = limit;
+  small.rlim_cur = 6000000; // within the second chunk of the fwrite path (4.5 MB each)
+  void (*handler)(int) = std::signal(SIGXFSZ, SIG_IGN); // else the signal ends the process
+  setrlimit(RLIMIT_FSIZE, &small);
+  vtkNew<vtkLASPointCloudWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(cloud);
+  writer->Write();
+  setrlimit(RLIMIT_FSIZE, &limit);
+  std::signal(SIGXFSZ, handler);
+  const std::string expected = path + ": write failed (" + std::strerror(EFBIG) + ")";
+  PCB_CHECK(expected == writer->GetErrorMessage(),
+    "%s: \"%s\" instead of \"%s\"",
+    path.c_str(),
+    writer->GetErrorMessage(),
+    expected.c_str());
+  PCB_CHECK(access(path.c_str(), F_OK) != 0 && access((path + ".partial").c_str(), F_OK) != 0,
+    "%s: a file was left after the failed write",
+    path.c_str());
+}
+
+/// An empty file of the format, written and read back: the reader's arrays tell its fields.
+vtkSmartPointer<vtkPolyData> FormatModel(int format, const std::string& name)
+{
+  vtkSmartPointer<vtkPolyData> empty = MakeCloud(format, 0);
+  return Write(empty, name + "-empty.las") ? Read(name + "-empty.las") : nullptr;
+}
+
 void TestEveryPointFormat()
 {
   const vtkIdType count = 20000; // more than two blocks of the parallel coder
   for (int format = 0; format <= 10; ++format)
   {
     const std::string name = "format" + std::to_string(format);
-    // First an empty file of the format, for the reader to tell its arrays.
-    vtkSmartPointer<vtkPolyData> empty = MakeCloud(format, 0);
-    if (!Write(empty, name + "-empty.las"))
+    vtkSmartPointer<vtkPolyData> model = FormatModel(format, name);
+    if (!model)
     {
       continue;
     }
-    vtkSmartPointer<vtkPolyData> model = Read(name + "-empty.las");
     vtkSmartPointer<vtkPolyData> cloud = MakeCloud(format, count);
+    // The points alone: every other field has no column and must be zeros either way.
+    CheckMappedAndChunked(cloud, name + "-points");
     FillArraysLike(model, cloud);
+    CheckMappedAndChunked(cloud, name);
     if (!Write(cloud, name + ".las"))
     {
       continue;
@@ -374,6 +434,23 @@ void TestEveryPointFormat()
       name.c_str(),
       FileBytes(name + ".las")[104]);
   }
+}
+
+void TestChunksAndSizeLimit()
+{
+  vtkSmartPointer<vtkPolyData> model = FormatModel(3, "limited");
+  if (!model)
+  {
+    return;
+  }
+  // More than two chunks of the fwrite path (131072 points each), 37 blocks of 8192 points.
+  vtkSmartPointer<vtkPolyData> cloud = MakeCloud(3, 300000);
+  FillArraysLike(model, cloud);
+  CheckMappedAndChunked(cloud, "chunks");
+  CheckWriteBeyondLimit(cloud, "limited.las");
+  setenv("PCB_LAS_WRITE_MAPPED", "0", 1);
+  CheckWriteBeyondLimit(cloud, "limited-chunked.las");
+  unsetenv("PCB_LAS_WRITE_MAPPED");
 }
 
 void TestDefaultHeader()
@@ -699,6 +776,7 @@ int main(int argc, char* argv[])
 {
   const std::map<std::string, std::function<void()>> cases = {
     { "every-point-format", TestEveryPointFormat },
+    { "chunks-and-size-limit", TestChunksAndSizeLimit },
     { "default-header", TestDefaultHeader },
     { "extra-bytes", TestExtraBytes },
     { "scaled-extra-bytes", TestScaledExtraBytes },
