@@ -140,6 +140,18 @@ bool SetKernelInstructionSet(KernelInstructionSet instructionSet);
 /// value, 0 below x = -708. For tests.
 void KernelExp(const double* x, double* result, std::size_t count);
 
+/// A point's neighbours for steps 2 and 3 of the edge-aware mode: Count indices into the
+/// sorted coordinates X, Y, Z and the normals (3 per index).
+struct SortedNeighbours
+{
+  const std::uint32_t* Index = nullptr;
+  std::size_t Count = 0;
+  const double* X = nullptr;
+  const double* Y = nullptr;
+  const double* Z = nullptr;
+  const double* Normals = nullptr;
+};
+
 /**
  * The per-point arithmetic of the edge-aware mode (EdgeAwareNormals.h), built with the kernel
  * for each instruction set: the same lanes, sum tree and exponential, so the same bits in every
@@ -155,8 +167,8 @@ struct EdgeAwareKernel
     const double* x,
     const double* y,
     const double* z,
-    std::uint32_t begin,
-    std::uint32_t end,
+    std::size_t begin,
+    std::size_t end,
     double radiusSquared,
     double* dx,
     double* dy,
@@ -171,27 +183,16 @@ struct EdgeAwareKernel
     double distanceScale,
     double* distanceWeight,
     double n[3]);
-  /// The bilateral sum of the neighbours' normals (step 2), over neighbours given by sorted
-  /// index in the sorted coordinates x, y, z and normals (3 per index).
+  /// The bilateral sum of the neighbours' normals (step 2).
   void (*NormalSum)(const double p[3],
-    const std::uint32_t* index,
-    std::size_t count,
-    const double* x,
-    const double* y,
-    const double* z,
-    const double* normals,
+    const SortedNeighbours& neighbours,
     const double own[3],
     double distanceScale,
     double agreementScale,
     double sum[3]);
-  /// The sums of the weights and weighted heights of the displacement (step 3), likewise.
+  /// The sums of the weights and weighted heights of the displacement (step 3).
   void (*HeightSums)(const double p[3],
-    const std::uint32_t* index,
-    std::size_t count,
-    const double* x,
-    const double* y,
-    const double* z,
-    const double* normals,
+    const SortedNeighbours& neighbours,
     const double m[3],
     double distanceScale,
     double normalScale,

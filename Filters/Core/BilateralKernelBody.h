@@ -680,24 +680,6 @@ double ArithmeticFloor(const double* dx,
 // build. Its arrays of packed neighbours hold whole vectors: a count is padded up to a multiple
 // of Lanes with neighbours that add exact zeros to every sum (see PadNeighbours).
 
-/// Step 1's selection (EdgeAwareKernel::Select): the neighbours among the sorted points
-/// [begin, end), appended with their sorted indices after the `count` already packed.
-std::size_t EdgeAwareSelect(const double p[3],
-  const double* x,
-  const double* y,
-  const double* z,
-  std::uint32_t begin,
-  std::uint32_t end,
-  double radiusSquared,
-  double* dx,
-  double* dy,
-  double* dz,
-  std::uint32_t* index,
-  std::size_t count)
-{
-  return PackNeighbours<true>(p, x, y, z, begin, end, radiusSquared, dx, dy, dz, index, count);
-}
-
 /**
  * Pads `count` packed neighbours up to whole vectors with neighbours so far away that their
  * squared distance overflows to infinity (weight exp(-inf) = 0, exact zeros in every sum, as in
@@ -715,8 +697,8 @@ inline std::size_t PadNeighbours(double* dx, double* dy, double* dz, std::size_t
 }
 
 /**
- * Step 1 for a point whose `count` neighbours EdgeAwareSelect packed (room for Lanes more): the
- * paper's regression plane normal, weighted by exp(-|q - p|^2 * distanceScale), with the
+ * Step 1 for a point whose `count` neighbours PackNeighbours<true> packed (room for Lanes more):
+ * the paper's regression plane normal, weighted by exp(-|q - p|^2 * distanceScale), with the
  * kernel's own pass 1. Returns false (n untouched) when the weights sum to zero.
  */
 bool EdgeAwarePlaneNormal(double* dx,
@@ -747,20 +729,19 @@ struct NeighbourLanes
 };
 
 /**
- * Loads neighbours k to k + Lanes - 1 of the `count` sorted indices `index`: their offsets q - p
+ * Loads neighbours k to k + Lanes - 1 of `neighbours`: their offsets q - p
  * from the sorted coordinates x, y, z (computed as PackNeighbours does: the same bits) and their
- * normals (3 per sorted index). The lanes past `count` are padding, as in PadNeighbours.
+ * normals. The lanes past the last neighbour are padding, as in PadNeighbours.
  */
 inline NeighbourLanes LoadNeighbours(const double p[3],
-  const std::uint32_t* index,
-  std::size_t k,
-  std::size_t count,
-  const double* x,
-  const double* y,
-  const double* z,
-  const double* normals)
+  const SortedNeighbours& neighbours,
+  std::size_t k)
 {
   NeighbourLanes lanes;
+  const std::uint32_t* index = neighbours.Index;
+  const std::size_t count = neighbours.Count;
+  const double *x = neighbours.X, *y = neighbours.Y, *z = neighbours.Z;
+  const double* normals = neighbours.Normals;
 #if defined(__AVX512F__)
   // Hardware gathers, no packed copy in memory.
   const std::size_t left = count - k;
@@ -813,16 +794,11 @@ inline NeighbourLanes LoadNeighbours(const double p[3],
 }
 
 /**
- * Step 2 for sorted point p of normal `own` over its `count` neighbours (sorted indices
- * `index`): the sum of exp(-|q - p|^2 * distanceScale) psi(own, n_j) sign(own . n_j) n_j.
+ * Step 2 for sorted point p of normal `own` over its neighbours: the sum of exp(-|q - p|^2 *
+ * distanceScale) psi(own, n_j) sign(own . n_j) n_j.
  */
 void EdgeAwareNormalSum(const double p[3],
-  const std::uint32_t* index,
-  std::size_t count,
-  const double* x,
-  const double* y,
-  const double* z,
-  const double* normals,
+  const SortedNeighbours& neighbours,
   const double own[3],
   double distanceScale,
   double agreementScale,
@@ -830,9 +806,9 @@ void EdgeAwareNormalSum(const double p[3],
 {
   const DoubleLanes zero = {};
   DoubleLanes sumX = zero, sumY = zero, sumZ = zero;
-  for (std::size_t k = 0; k < count; k += Lanes)
+  for (std::size_t k = 0; k < neighbours.Count; k += Lanes)
   {
-    const NeighbourLanes q = LoadNeighbours(p, index, k, count, x, y, z, normals);
+    const NeighbourLanes q = LoadNeighbours(p, neighbours, k);
     const DoubleLanes distanceSquared = (q.Dx * q.Dx + q.Dy * q.Dy) + q.Dz * q.Dz;
     const DoubleLanes cosine = (q.Nx * own[0] + q.Ny * own[1]) + q.Nz * own[2];
     const DoubleLanes w = ExpOfNonPositive(
@@ -849,8 +825,8 @@ void EdgeAwareNormalSum(const double p[3],
 }
 
 /**
- * Step 3 for sorted point p of filtered normal m over its `count` neighbours (sorted indices
- * `index`, filtered `normals`): the sums of the weights
+ * Step 3 for sorted point p of filtered normal m over its neighbours (with their filtered
+ * normals): the sums of the weights
  * exp(-|q - p|^2 * distanceScale - h^2 * normalScale) psi(m, m_j) and of the weighted heights
  * h = <(m + s m_j) / 2, q - p>, s the sign of m . m_j.
  *
@@ -861,12 +837,7 @@ void EdgeAwareNormalSum(const double p[3],
  * surface), while on a plane the two normals agree and h is the paper's.
  */
 void EdgeAwareHeightSums(const double p[3],
-  const std::uint32_t* index,
-  std::size_t count,
-  const double* x,
-  const double* y,
-  const double* z,
-  const double* normals,
+  const SortedNeighbours& neighbours,
   const double m[3],
   double distanceScale,
   double normalScale,
@@ -876,9 +847,9 @@ void EdgeAwareHeightSums(const double p[3],
 {
   const DoubleLanes zero = {};
   DoubleLanes weights = zero, heights = zero;
-  for (std::size_t k = 0; k < count; k += Lanes)
+  for (std::size_t k = 0; k < neighbours.Count; k += Lanes)
   {
-    const NeighbourLanes q = LoadNeighbours(p, index, k, count, x, y, z, normals);
+    const NeighbourLanes q = LoadNeighbours(p, neighbours, k);
     const DoubleLanes distanceSquared = (q.Dx * q.Dx + q.Dy * q.Dy) + q.Dz * q.Dz;
     const DoubleLanes cosine = (q.Nx * m[0] + q.Ny * m[1]) + q.Nz * m[2];
     // The neighbour's normal turned to agree with m (the normals are not oriented).
@@ -901,7 +872,7 @@ void EdgeAwareHeightSums(const double p[3],
 EdgeAwareKernel MakeEdgeAwareKernel()
 {
   EdgeAwareKernel kernel;
-  kernel.Select = &EdgeAwareSelect;
+  kernel.Select = &PackNeighbours<true>;
   kernel.PlaneNormal = &EdgeAwarePlaneNormal;
   kernel.NormalSum = &EdgeAwareNormalSum;
   kernel.HeightSums = &EdgeAwareHeightSums;

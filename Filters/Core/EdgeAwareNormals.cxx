@@ -266,20 +266,30 @@ public:
 
   /// The sorted indices of the neighbours of sorted point i (and their number): the list
   /// kept, or the one found again in `hood`.
-  const std::uint32_t* Fetch(const EdgeAwareKernel& kernel,
+  /// Point i's neighbours, with `normals` (3 per sorted point) as theirs.
+  SortedNeighbours Fetch(const EdgeAwareKernel& kernel,
     const SortedGrid& grid,
     std::size_t i,
     Neighbourhood& hood,
-    std::size_t& count) const
+    const double* normals) const
   {
+    SortedNeighbours neighbours;
     if (this->Kept[i])
     {
-      count = this->Lists[i].size();
-      return this->Lists[i].data();
+      neighbours.Index = this->Lists[i].data();
+      neighbours.Count = this->Lists[i].size();
     }
-    hood.Select(kernel, grid, i);
-    count = hood.Count;
-    return hood.Index.data();
+    else
+    {
+      hood.Select(kernel, grid, i);
+      neighbours.Index = hood.Index.data();
+      neighbours.Count = hood.Count;
+    }
+    neighbours.X = grid.X.data();
+    neighbours.Y = grid.Y.data();
+    neighbours.Z = grid.Z.data();
+    neighbours.Normals = normals;
+    return neighbours;
   }
 
   void Prepare() { this->Kept.assign(this->Lists.size(), 0); }
@@ -378,22 +388,11 @@ bool RunEdgeAwareIteration(PointState& state,
         {
           return;
         }
-        std::size_t count;
-        const std::uint32_t* neighbours = cache.Fetch(kernel, grid, i, hood, count);
-        visited += count;
+        const SortedNeighbours neighbours = cache.Fetch(kernel, grid, i, hood, normals.data());
+        visited += neighbours.Count;
         const double p[3] = { grid.X[i], grid.Y[i], grid.Z[i] };
         double sum[3];
-        kernel.NormalSum(p,
-          neighbours,
-          count,
-          grid.X.data(),
-          grid.Y.data(),
-          grid.Z.data(),
-          normals.data(),
-          own,
-          constants.DistanceScale,
-          agreementScale,
-          sum);
+        kernel.NormalSum(p, neighbours, own, constants.DistanceScale, agreementScale, sum);
         const double length = std::sqrt((sum[0] * sum[0] + sum[1] * sum[1]) + sum[2] * sum[2]);
         if (!(length > 0.0))
         {
@@ -443,17 +442,11 @@ bool RunEdgeAwareIteration(PointState& state,
         isolated[i] = 1; // fewer than MinimumNeighbourCount neighbours
         return;
       }
-      std::size_t count;
-      const std::uint32_t* neighbours = cache.Fetch(kernel, grid, i, hood, count);
-      visited += count;
+      const SortedNeighbours neighbours = cache.Fetch(kernel, grid, i, hood, normals.data());
+      visited += neighbours.Count;
       double total, weighted;
       kernel.HeightSums(p,
         neighbours,
-        count,
-        grid.X.data(),
-        grid.Y.data(),
-        grid.Z.data(),
-        normals.data(),
         m,
         constants.DistanceScale,
         constants.NormalScale,
