@@ -410,8 +410,10 @@ void Rule()
   user.NumberOfIterations = 0;
   user.NumberOfThreads = 3;
   const pcbilateral::AutomaticRule rule;
+  // The general rule's radius for these scales, which the flat and smooth rules scale.
+  const double generalRadius = rule.RadiusInSpacings * 0.01 + rule.RadiusInSigmas * 0.002;
   pcbilateral::BilateralParameters chosen = pcbilateral::ChooseParameters(scales, user);
-  PCB_CHECK(chosen.Radius == rule.RadiusInSpacings * 0.01 + rule.RadiusInSigmas * 0.002 &&
+  PCB_CHECK(chosen.Radius == generalRadius &&
               chosen.NormalRadius == rule.NormalRadiusInSigmas * 0.002 &&
               chosen.NumberOfIterations == rule.NumberOfIterations && chosen.NumberOfThreads == 3,
     "automatic: r %g rn %g N %d",
@@ -428,8 +430,8 @@ void Rule()
   user.NormalRadius = 0.3;
   user.NumberOfIterations = 7;
   chosen = pcbilateral::ChooseParameters(scales, user);
-  PCB_CHECK(chosen.Radius == rule.RadiusInSpacings * 0.01 + rule.RadiusInSigmas * 0.002 &&
-              chosen.NormalRadius == 0.3 && chosen.NumberOfIterations == 7,
+  PCB_CHECK(
+    chosen.Radius == generalRadius && chosen.NormalRadius == 0.3 && chosen.NumberOfIterations == 7,
     "given rn and N: r %g rn %g N %d",
     chosen.Radius,
     chosen.NormalRadius,
@@ -440,8 +442,7 @@ void Rule()
   user = pcbilateral::BilateralParameters();
   user.NumberOfIterations = 0;
   chosen = pcbilateral::ChooseParameters(scales, user);
-  PCB_CHECK(chosen.Radius == rule.FlatRadiusFactor *
-                               (rule.RadiusInSpacings * 0.01 + rule.RadiusInSigmas * 0.002) &&
+  PCB_CHECK(chosen.Radius == rule.FlatRadiusFactor * generalRadius &&
               chosen.NumberOfIterations == rule.FlatIterations,
     "flat: r %g N %d",
     chosen.Radius,
@@ -454,8 +455,7 @@ void Rule()
   PCB_CHECK(!pcbilateral::IsFlat(scales) && pcbilateral::IsSmoothWithThinNoise(scales),
     "a curved cloud without creases, sigma 0.2 spacings: smooth with thin noise expected");
   chosen = pcbilateral::ChooseParameters(scales, user);
-  const double smoothRadius =
-    rule.SmoothRadiusFactor * (rule.RadiusInSpacings * 0.01 + rule.RadiusInSigmas * 0.002);
+  const double smoothRadius = rule.SmoothRadiusFactor * generalRadius;
   PCB_CHECK(chosen.Radius == smoothRadius && chosen.NormalRadius == smoothRadius &&
               chosen.NumberOfIterations == rule.SmoothIterations,
     "smooth, thin noise: r %g rn %g N %d",
