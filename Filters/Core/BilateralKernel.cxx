@@ -258,34 +258,24 @@ double KernelArithmetic(KernelInstructionSet instructionSet,
 
 namespace
 {
-/**
- * The largest of the cross products of the rows of the symmetric matrix B - eigenvalue I (the
- * most accurate one): a vector along the eigenvector of that eigenvalue, when it is simple.
- * Returns its squared length.
- */
-double EigenvectorFromRows(const double b[6], double eigenvalue, double vector[3])
+// The scalar operations SmallestEigenvectorSteps.h is written with.
+inline double Abs(double x)
 {
-  const double rows[3][3] = { { b[0] - eigenvalue, b[1], b[2] },
-    { b[1], b[3] - eigenvalue, b[4] },
-    { b[2], b[4], b[5] - eigenvalue } };
-  double bestNorm = 0.0;
-  vector[0] = vector[1] = vector[2] = 0.0;
-  for (const auto& pair : { std::make_pair(0, 1), std::make_pair(0, 2), std::make_pair(1, 2) })
-  {
-    const double* u = rows[pair.first];
-    const double* v = rows[pair.second];
-    const double cross[3] = {
-      u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]
-    };
-    const double norm = cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2];
-    if (norm > bestNorm)
-    {
-      bestNorm = norm;
-      std::copy(cross, cross + 3, vector);
-    }
-  }
-  return bestNorm;
+  return std::abs(x);
 }
+inline double Sqrt(double x)
+{
+  return std::sqrt(x);
+}
+inline bool Less(double a, double b)
+{
+  return a < b;
+}
+inline double Select(bool mask, double a, double b)
+{
+  return mask ? a : b;
+}
+#include "SmallestEigenvectorSteps.h"
 
 /// A vector orthogonal to the non-zero vector u: u crossed with the axis it is least aligned
 /// with. Returns its squared length.
@@ -310,21 +300,9 @@ double OrthogonalVector(const double u[3], double vector[3])
 
 void SmallestEigenvector(const double covariance[6], double eigenvector[3])
 {
-  // The eigenvectors of C are those of B = (C - shift I) / scale, with the shift making B's
-  // trace zero and the scale its largest entry one: the closed form below then works on
-  // numbers of order one, whatever the units and the offset of the cloud.
-  const double shift = (covariance[0] + covariance[3] + covariance[5]) / 3.0;
-  double b[6] = { covariance[0] - shift,
-    covariance[1],
-    covariance[2],
-    covariance[3] - shift,
-    covariance[4],
-    covariance[5] - shift };
-  double scale = 0.0;
-  for (const double entry : b)
-  {
-    scale = std::max(scale, std::abs(entry));
-  }
+  // The eigenvectors of C are those of B = (C - shift I) / scale (SmallestEigenvectorSteps.h).
+  double b[6];
+  const double scale = CenteredMatrix(covariance, b);
   eigenvector[0] = 0.0;
   eigenvector[1] = 0.0;
   eigenvector[2] = 1.0;
@@ -332,45 +310,16 @@ void SmallestEigenvector(const double covariance[6], double eigenvector[3])
   {
     return; // C = shift I: every direction is an eigenvector
   }
-  const double inverseScale = 1.0 / scale;
-  for (double& entry : b)
-  {
-    entry *= inverseScale;
-  }
-  const double b00 = b[0], b01 = b[1], b02 = b[2], b11 = b[3], b12 = b[4], b22 = b[5];
-
-  // B's eigenvalues are 2 p t for the three roots t of 4 t^3 - 3 t = c, with p^2 = tr(B^2) / 6
-  // and c = det(B) / (2 p^3) in [-1, 1] (the characteristic cubic; classically t = cos(phi +
-  // 2 pi j / 3) with cos(3 phi) = c). The smallest root is in [-1, -1/2]: t = -(1/2 + e) with e
-  // in [0, 1/2] the root of (6 + 4 e) e^2 = 1 - c, found by Newton's method rather than with
-  // acos and cos, whose last bits differ between libm versions and between their FMA and
-  // non-FMA code paths, and which cost half of this function. Written in e, the cubic stays
-  // well conditioned where the two smallest roots meet (c near 1, e near 0).
-  const double p = std::sqrt(
-    (b00 * b00 + b11 * b11 + b22 * b22 + 2.0 * (b01 * b01 + b02 * b02 + b12 * b12)) / 6.0);
-  const double determinant =
-    b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) + b02 * (b01 * b12 - b11 * b02);
-  const double cosine = std::min(1.0, std::max(-1.0, determinant / (2.0 * p * p * p)));
-  const double gap = 1.0 - cosine;
-  // The start, a cubic in s = sqrt((1 - c) / 2) fitted to the root (e = sqrt((1 - c) / 6) near
-  // c = 1, e = 1/2 at c = -1), is within 0.02% of it; two steps then give the root to 1.7e-16
-  // relative (checked against a 50-digit solution over c in [-1, 1]).
-  const double s = std::sqrt(0.5 * gap);
-  double e = s * (0.57725885 + s * (-0.10911916 + s * (0.04309189 - 0.01129872 * s)));
-  if (e > 0.0)
-  {
-    for (int step = 0; step < 2; ++step)
-    {
-      e -= ((6.0 + 4.0 * e) * (e * e) - gap) / (12.0 * e * (1.0 + e));
-    }
-  }
+  double p;
+  const double cosine = CubicCosine(b, scale, p);
+  const double e = SmallestRootOffset(cosine);
 
   double best[3];
   double bestNorm;
-  // Below this, the two smallest eigenvalues are within 4e-6 p of each other (points along a
-  // line): the smallest is then known only to about the square root of the rounding error, and
-  // so is the plane of its eigenvectors, while the largest is simple and well conditioned. Any
-  // unit vector orthogonal to the largest's eigenvector is then the answer.
+  // Below MeetingEigenvalueRoots, the two smallest eigenvalues are within 4e-6 p of each other
+  // (points along a line): the smallest is then known only to about the square root of the
+  // rounding error, and so is the plane of its eigenvectors, while the largest is simple and
+  // well conditioned. Any unit vector orthogonal to the largest's eigenvector is the answer.
   if (e < MeetingEigenvalueRoots)
   {
     // The largest root, near 1 (f'(1) = 9: two steps from 1 suffice).

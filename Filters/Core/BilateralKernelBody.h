@@ -405,77 +405,33 @@ inline IntLanes Less(DoubleLanes a, DoubleLanes b)
   return (IntLanes)(a < b);
 }
 
+#include "SmallestEigenvectorSteps.h"
+
 /**
- * SmallestEigenvector (BilateralKernel.cxx) for Lanes matrices at once, one per lane: the same
- * operations in the same order, so the same bits. Entries are by lane (covariance[k][lane]).
- * Returns the lanes whose matrix takes one of the scalar function's other paths (no spread, a
- * NaN or infinity, two smallest eigenvalues that meet, parallel rows): their vectors here are
- * meaningless, and the caller solves them with the scalar function.
+ * SmallestEigenvector (BilateralKernel.cxx) for Lanes matrices at once, one per lane, with the
+ * same steps (SmallestEigenvectorSteps.h), so the same bits. Entries are by lane
+ * (covariance[k][lane]). Returns the lanes whose matrix takes one of the scalar function's other
+ * paths (no spread, a NaN or infinity, two smallest eigenvalues that meet, parallel rows): their
+ * vectors here are meaningless, and the caller solves them with the scalar function.
  */
 inline IntLanes SmallestEigenvectors(const double (*covariance)[Lanes],
   double (*eigenvector)[Lanes])
 {
   const DoubleLanes zero = {};
-  const DoubleLanes c0 = Load(covariance[0]), c1 = Load(covariance[1]), c2 = Load(covariance[2]);
-  const DoubleLanes c3 = Load(covariance[3]), c4 = Load(covariance[4]), c5 = Load(covariance[5]);
-  const DoubleLanes shift = (c0 + c3 + c5) / 3.0;
-  DoubleLanes b[6] = { c0 - shift, c1, c2, c3 - shift, c4, c5 - shift };
-  DoubleLanes scale = zero;
-  for (const DoubleLanes entry : b)
-  {
-    const DoubleLanes magnitude = Abs(entry);
-    scale = Select(Less(scale, magnitude), magnitude, scale); // std::max(scale, magnitude)
-  }
+  const DoubleLanes c[6] = { Load(covariance[0]),
+    Load(covariance[1]),
+    Load(covariance[2]),
+    Load(covariance[3]),
+    Load(covariance[4]),
+    Load(covariance[5]) };
+  DoubleLanes b[6];
+  const DoubleLanes scale = CenteredMatrix(c, b);
   IntLanes scalar = ~(Less(zero, scale) & Less(scale, zero + HUGE_VAL));
-  const DoubleLanes inverseScale = 1.0 / scale;
-  for (DoubleLanes& entry : b)
-  {
-    entry *= inverseScale;
-  }
-  const DoubleLanes b00 = b[0], b01 = b[1], b02 = b[2], b11 = b[3], b12 = b[4], b22 = b[5];
-  const DoubleLanes p =
-    Sqrt((b00 * b00 + b11 * b11 + b22 * b22 + 2.0 * (b01 * b01 + b02 * b02 + b12 * b12)) / 6.0);
-  const DoubleLanes determinant =
-    b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) + b02 * (b01 * b12 - b11 * b02);
-  const DoubleLanes ratio = determinant / (2.0 * p * p * p);
-  const DoubleLanes atLeastMinusOne = Select(Less(zero - 1.0, ratio), ratio, zero - 1.0);
-  const DoubleLanes cosine = Select(Less(atLeastMinusOne, zero + 1.0), atLeastMinusOne, zero + 1.0);
-  const DoubleLanes gap = 1.0 - cosine;
-  const DoubleLanes s = Sqrt(0.5 * gap);
-  DoubleLanes e = s * (0.57725885 + s * (-0.10911916 + s * (0.04309189 - 0.01129872 * s)));
-  const IntLanes positive = Less(zero, e);
-  DoubleLanes stepped = e;
-  for (int step = 0; step < 2; ++step)
-  {
-    stepped -=
-      ((6.0 + 4.0 * stepped) * (stepped * stepped) - gap) / (12.0 * stepped * (1.0 + stepped));
-  }
-  e = Select(positive, stepped, e);
+  DoubleLanes p;
+  const DoubleLanes e = SmallestRootOffset(CubicCosine(b, scale, p));
   scalar |= Less(e, zero + MeetingEigenvalueRoots);
-  const DoubleLanes smallest = -p * (1.0 + 2.0 * e);
-
-  // EigenvectorFromRows: the first largest of the rows' three cross products.
-  const DoubleLanes rows[3][3] = {
-    { b00 - smallest, b01, b02 }, { b01, b11 - smallest, b12 }, { b02, b12, b22 - smallest }
-  };
-  const int pairs[3][2] = { { 0, 1 }, { 0, 2 }, { 1, 2 } };
-  DoubleLanes best[3] = { zero, zero, zero };
-  DoubleLanes bestNorm = zero;
-  for (const auto& pair : pairs)
-  {
-    const DoubleLanes* u = rows[pair[0]];
-    const DoubleLanes* v = rows[pair[1]];
-    const DoubleLanes cross[3] = {
-      u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]
-    };
-    const DoubleLanes norm = cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2];
-    const IntLanes larger = Less(bestNorm, norm);
-    bestNorm = Select(larger, norm, bestNorm);
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      best[axis] = Select(larger, cross[axis], best[axis]);
-    }
-  }
+  DoubleLanes best[3];
+  const DoubleLanes bestNorm = EigenvectorFromRows(b, -p * (1.0 + 2.0 * e), best);
   scalar |= ~Less(zero, bestNorm);
   const DoubleLanes length = Sqrt(bestNorm);
   for (int axis = 0; axis < 3; ++axis)
