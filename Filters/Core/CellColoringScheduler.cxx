@@ -169,6 +169,58 @@ void CellColoringScheduler::GatherCandidates(std::size_t cell,
   }
 }
 
+namespace
+{
+/// Stores a point's estimated normal, turned to agree with its orientation normal if it has one
+/// (the orientation of n does not change p + d n: only the reported normal flips).
+void KeepNormal(PointState& state, std::uint32_t id, const double estimated[3])
+{
+  const std::size_t at = 3 * static_cast<std::size_t>(id);
+  double sign = 1.0;
+  if (state.OrientationNormals)
+  {
+    const double* reference = state.OrientationNormals + at;
+    const double agreement =
+      estimated[0] * reference[0] + estimated[1] * reference[1] + estimated[2] * reference[2];
+    sign = agreement < 0.0 ? -1.0 : 1.0;
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    state.Normals[at + axis] = sign * estimated[axis];
+  }
+}
+} // namespace
+
+bool CellColoringScheduler::StopRequested(bool isMaster)
+{
+  if (this->Aborted.load(std::memory_order_relaxed))
+  {
+    return true;
+  }
+  if (isMaster && this->ShouldAbort && this->ShouldAbort())
+  {
+    this->Aborted.store(true, std::memory_order_relaxed);
+    return true;
+  }
+  return false;
+}
+
+void CellColoringScheduler::CountProgress(ThreadScratch& scratch, std::size_t points, bool isMaster)
+{
+  scratch.PointsSinceReport += points;
+  if (scratch.PointsSinceReport >= PointsPerReport ||
+      scratch.EvaluationsSinceReport >= EvaluationsPerReport)
+  {
+    this->PointsDone.fetch_add(scratch.PointsSinceReport, std::memory_order_relaxed);
+    scratch.PointsSinceReport = 0;
+    scratch.EvaluationsSinceReport = 0;
+    if (isMaster && this->ReportPoints)
+    {
+      this->ReportPoints(this->PointsDone.load(std::memory_order_relaxed));
+    }
+  }
+}
+
 void CellColoringScheduler::ProcessCell(std::size_t cell,
   PointState& state,
   ThreadScratch& scratch,
@@ -184,7 +236,6 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
   double* movedX = this->Octree.GetMovedX();
   double* movedY = this->Octree.GetMovedY();
   double* movedZ = this->Octree.GetMovedZ();
-  const bool orient = state.OrientationNormals != nullptr;
   const bool keepNormals = !state.Normals.empty();
   // The points bound for each of the 27 cells around, listed here and handed over at the end.
   std::int32_t first[27], last[27];
@@ -209,13 +260,8 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
     // solves their eigenvectors side by side.
     for (std::uint32_t next = begin; next < end;)
     {
-      if (this->Aborted.load(std::memory_order_relaxed))
+      if (this->StopRequested(isMaster))
       {
-        return;
-      }
-      if (isMaster && this->ShouldAbort && this->ShouldAbort())
-      {
-        this->Aborted.store(true, std::memory_order_relaxed);
         return;
       }
       std::uint32_t batch[KernelLanes];
@@ -241,18 +287,7 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
       }
       // Progress within the leaf: with a radius as large as the cloud, one leaf may hold every
       // point.
-      scratch.PointsSinceReport += next - batchBegin;
-      if (scratch.PointsSinceReport >= PointsPerReport ||
-          scratch.EvaluationsSinceReport >= EvaluationsPerReport)
-      {
-        this->PointsDone.fetch_add(scratch.PointsSinceReport, std::memory_order_relaxed);
-        scratch.PointsSinceReport = 0;
-        scratch.EvaluationsSinceReport = 0;
-        if (isMaster && this->ReportPoints)
-        {
-          this->ReportPoints(this->PointsDone.load(std::memory_order_relaxed));
-        }
-      }
+      this->CountProgress(scratch, next - batchBegin, isMaster);
       FilteredPoint filteredPoints[KernelLanes];
       FilterPoints(points, batchSize, scratch.Candidates, this->Constants, filteredPoints);
       scratch.EvaluationsSinceReport += batchSize * scratch.Candidates.Size();
@@ -268,21 +303,7 @@ void CellColoringScheduler::ProcessCell(std::size_t cell,
           p[2] + filtered.Displacement * filtered.Normal[2] };
         if (keepNormals)
         {
-          // The orientation of n does not change p + d n: only the reported normal flips.
-          double* normal = state.Normals.data() + 3 * static_cast<std::size_t>(id);
-          double sign = 1.0;
-          if (orient)
-          {
-            const double* reference = state.OrientationNormals + 3 * static_cast<std::size_t>(id);
-            const double agreement = filtered.Normal[0] * reference[0] +
-                                     filtered.Normal[1] * reference[1] +
-                                     filtered.Normal[2] * reference[2];
-            sign = agreement < 0.0 ? -1.0 : 1.0;
-          }
-          for (int axis = 0; axis < 3; ++axis)
-          {
-            normal[axis] = sign * filtered.Normal[axis];
-          }
+          KeepNormal(state, id, filtered.Normal);
         }
         if (!filtered.Filtered && this->RemoveIsolatedPoints)
         {

@@ -91,6 +91,10 @@ private:
   };
 
   void ProcessCell(std::size_t cell, PointState& state, ThreadScratch& scratch, bool isMaster);
+  /// Whether the run is to stop: aborted already, or (calling thread only) ShouldAbort says so.
+  bool StopRequested(bool isMaster);
+  /// Counts `points` done by a thread, and reports progress every so often (calling thread).
+  void CountProgress(ThreadScratch& scratch, std::size_t points, bool isMaster);
   /// Calling thread only: asks ShouldAbort and reports progress.
   void PollObserver();
   /// The points of the leaves within reach of a leaf of a cell (given the cell's 27
