@@ -103,7 +103,7 @@ private:
   void GatherCandidates(std::size_t cell,
     const std::int32_t* neighbours,
     int localLeaf,
-    std::size_t pointsInLeaf,
+    std::size_t pointsToFilter,
     CandidateNeighbours& candidates) const;
 
   ProcessingOctree& Octree;
