@@ -56,24 +56,31 @@ inline DoubleLanes Select(IntLanes mask, DoubleLanes a, DoubleLanes b)
   return (DoubleLanes)((mask & (IntLanes)a) | (~mask & (IntLanes)b));
 }
 
-/// All ones in the lanes where x < limit, zero elsewhere.
-inline IntLanes LessThan(DoubleLanes x, double limit)
+/// All ones in the lanes where a < b (false for NaN), zero elsewhere.
+inline IntLanes Less(DoubleLanes a, DoubleLanes b)
 {
 #if defined(__AVX2__) && !defined(__AVX512F__)
   // GCC compiles the vector comparison below one lane at a time for AVX2 (a scalar compare and
   // a conditional move per lane, which made the AVX2 build as slow as the SSE2 one); two AVX
   // comparisons give the same masks.
-  __m256d halves[2];
-  std::memcpy(halves, &x, sizeof(halves));
-  const __m256d bound = _mm256_set1_pd(limit);
-  halves[0] = _mm256_cmp_pd(halves[0], bound, _CMP_LT_OQ);
-  halves[1] = _mm256_cmp_pd(halves[1], bound, _CMP_LT_OQ);
+  __m256d halves[2], bounds[2];
+  std::memcpy(halves, &a, sizeof(halves));
+  std::memcpy(bounds, &b, sizeof(bounds));
+  halves[0] = _mm256_cmp_pd(halves[0], bounds[0], _CMP_LT_OQ);
+  halves[1] = _mm256_cmp_pd(halves[1], bounds[1], _CMP_LT_OQ);
   IntLanes mask;
   std::memcpy(&mask, halves, sizeof(mask));
   return mask;
 #else
-  return (IntLanes)(x < limit);
+  return (IntLanes)(a < b);
 #endif
+}
+
+/// All ones in the lanes where x < limit, zero elsewhere.
+inline IntLanes LessThan(DoubleLanes x, double limit)
+{
+  const DoubleLanes zero = {};
+  return Less(x, zero + limit);
 }
 
 /// The sum of the lanes, in a fixed tree: the same bits for any vector width.
@@ -209,8 +216,7 @@ inline std::size_t PackNeighbours(const double p[3],
 
 /**
  * Copies, in order, the points [0, count) of sx, sy, sz whose squared distance to the box
- * [low, high] is below reachSquared to x, y, z (which may be the same arrays: a point is
- * written at or before its own place, after it was read). Returns their number.
+ * [low, high] is below reachSquared to x, y, z. Returns their number.
  */
 std::size_t CopyNearBox(const double* sx,
   const double* sy,
@@ -397,12 +403,6 @@ inline DoubleLanes Sqrt(DoubleLanes x)
   }
 #endif
   return x;
-}
-
-/// All ones in the lanes where a < b (false for NaN), zero elsewhere.
-inline IntLanes Less(DoubleLanes a, DoubleLanes b)
-{
-  return (IntLanes)(a < b);
 }
 
 #include "SmallestEigenvectorSteps.h"
