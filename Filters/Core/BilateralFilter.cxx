@@ -4,6 +4,7 @@
 #include "CellColoringScheduler.h"
 #include "CloudMeasurement.h"
 #include "EdgeAwareNormals.h"
+
 #include "HugePages.h"
 #include "ProcessingOctree.h"
 
@@ -30,8 +31,8 @@ std::string Describe(const char* what, double value)
 }
 
 /// The largest extent of a cloud, in radii, whose octree lattice coordinates stay far inside
-/// 64-bit integers.
-constexpr double MaximumExtentInRadii = 1e15;
+/// 32-bit integers (ProcessingOctree.h: LatticeCoord).
+constexpr double MaximumExtentInRadii = 1e8;
 /// Positions stay below this magnitude, far from overflow.
 constexpr double MaximumMagnitude = 1e300;
 /// Above this mean number of neighbours per point, the run is warned about: it will be slow,
@@ -71,7 +72,7 @@ std::string CheckPrecisionLimits(const BilateralParameters& parameters,
   const RadiiUsed& radii)
 {
   // Every position a run can reach must stay far from overflow, lattice coordinates (extent
-  // over radius) must fit in 64-bit integers with room to spare, and the Gaussians' scales
+  // over radius) must fit in 32-bit integers with room to spare, and the Gaussians' scales
   // must be finite.
   const KernelConstants constants(radii.Radius, radii.NormalRadius);
   std::ostringstream problem;
@@ -247,6 +248,9 @@ public:
   CellColoringScheduler Scheduler;
   PointState State;
   int Threads;
+  /// Whether an iteration has placed the points since the octree's last layout (Load makes the
+  /// first one).
+  bool PointsPlaced = false;
 
   /// Writes the points' last moves from the octree's layout back to their ids.
   void ScatterMoves()
@@ -355,7 +359,10 @@ struct BilateralRun::Internals
   /// One iteration of an engine; false if aborted.
   bool Iterate(IterationEngine& engine)
   {
-    engine.Octree.Compact(this->Threads);
+    if (engine.PointsPlaced)
+    {
+      engine.Octree.Compact(this->Threads);
+    }
     if (this->Iteration == 0)
     {
       const double neighbours = engine.Scheduler.EstimateNeighboursPerPoint(32);
@@ -369,6 +376,7 @@ struct BilateralRun::Internals
         this->Warn(warning.str());
       }
     }
+    engine.PointsPlaced = true;
     if (!engine.Scheduler.RunIteration(engine.State))
     {
       return false;

@@ -409,11 +409,12 @@ bool CellColoringScheduler::RunIteration(PointState& state)
   this->PointsDone.store(0);
   this->PointsProcessed = this->Octree.GetNumberOfPoints();
 
-  std::array<std::vector<std::int64_t>, 8> classes;
+  // Cell numbers fit in 32 bits (the octree numbers them with std::int32_t).
+  std::array<std::vector<std::uint32_t>, 8> classes;
   for (std::size_t cell = 0; cell < this->Octree.GetNumberOfProcessingCells(); ++cell)
   {
     classes[ProcessingOctree::ColourOf(this->Octree.GetCellCoord(cell))].push_back(
-      static_cast<std::int64_t>(cell));
+      static_cast<std::uint32_t>(cell));
   }
 
   for (const auto& cells : classes)

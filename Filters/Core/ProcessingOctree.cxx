@@ -58,6 +58,88 @@ struct LeafOrder
   }
 };
 
+/// The order of the cells in a layout: by lattice coordinates (z, then y, then x), so that it
+/// does not depend on the order in which cells were created. Cells are distinct, so the order is
+/// total.
+struct LatticeOrder
+{
+  const LatticeCoord* Coords;
+
+  bool operator()(std::int32_t a, std::int32_t b) const
+  {
+    const LatticeCoord& ca = this->Coords[a];
+    const LatticeCoord& cb = this->Coords[b];
+    if (ca.Z != cb.Z)
+    {
+      return ca.Z < cb.Z;
+    }
+    if (ca.Y != cb.Y)
+    {
+      return ca.Y < cb.Y;
+    }
+    return ca.X < cb.X;
+  }
+};
+
+/**
+ * Puts a cell's points in the layout's order: by leaf, then by LeafOrder within each leaf.
+ * `points` lists them, in any order, as indices into the arrays that `leafOf` and `order` read;
+ * `sorted` receives them in layout order, and the ends of the cell's occupied leaves (counted from
+ * cellBegin) go to leafEnds.
+ */
+template<typename LeafOfPoint>
+void OrderCellPoints(const std::uint32_t* points,
+  std::size_t count,
+  LeafOfPoint leafOf,
+  const LeafOrder& order,
+  std::uint32_t cellBegin,
+  std::vector<std::uint32_t>& sorted,
+  std::uint32_t* leafEnds)
+{
+  constexpr int leaves = ProcessingOctree::LeavesPerCell;
+  std::uint32_t leafStarts[leaves + 1] = {};
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    ++leafStarts[leafOf(points[k]) + 1];
+  }
+  for (int leaf = 0; leaf < leaves; ++leaf)
+  {
+    leafStarts[leaf + 1] += leafStarts[leaf];
+  }
+  sorted.resize(count);
+  std::uint32_t fill[leaves];
+  std::copy(leafStarts, leafStarts + leaves, fill);
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    sorted[fill[leafOf(points[k])]++] = points[k];
+  }
+  for (int leaf = 0; leaf < leaves; ++leaf)
+  {
+    if (leafStarts[leaf] == leafStarts[leaf + 1])
+    {
+      continue;
+    }
+    std::sort(sorted.begin() + leafStarts[leaf], sorted.begin() + leafStarts[leaf + 1], order);
+    *leafEnds++ = cellBegin + leafStarts[leaf + 1];
+  }
+}
+
+/// Reorders the values of a stretch of an array that starts at index `begin`: the k-th becomes
+/// the one at index order[k], through `copy`.
+template<typename T>
+void PermuteStretch(T* stretch,
+  const std::vector<std::uint32_t>& order,
+  std::uint32_t begin,
+  std::vector<T>& copy)
+{
+  copy.resize(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k)
+  {
+    copy[k] = stretch[order[k] - begin];
+  }
+  std::copy(copy.begin(), copy.end(), stretch);
+}
+
 std::int64_t FloorDivide(std::int64_t value, std::int64_t divisor)
 {
   const std::int64_t quotient = value / divisor;
@@ -230,12 +312,12 @@ ProcessingOctree::ProcessingOctree(const double boundsMin[3],
 
 LatticeCoord ProcessingOctree::LeafOf(const double p[3]) const
 {
-  // Floor by truncation and a correction: lattice coordinates are far inside 64-bit integers
-  // (the filter refuses clouds wider than 1e15 radii).
+  // Floor by truncation and a correction: lattice coordinates are far inside 32-bit integers
+  // (see LatticeCoord).
   auto floorToInteger = [](double value)
   {
     const auto truncated = static_cast<std::int64_t>(value);
-    return truncated - (value < static_cast<double>(truncated) ? 1 : 0);
+    return static_cast<std::int32_t>(truncated - (value < static_cast<double>(truncated) ? 1 : 0));
   };
   LatticeCoord leaf;
   leaf.X = floorToInteger((p[0] - this->RootOrigin[0]) / this->LeafSize);
@@ -247,9 +329,9 @@ LatticeCoord ProcessingOctree::LeafOf(const double p[3]) const
 LatticeCoord ProcessingOctree::CellOfLeaf(const LatticeCoord& leaf)
 {
   LatticeCoord cell;
-  cell.X = FloorDivide(leaf.X, LeavesPerAxis);
-  cell.Y = FloorDivide(leaf.Y, LeavesPerAxis);
-  cell.Z = FloorDivide(leaf.Z, LeavesPerAxis);
+  cell.X = static_cast<std::int32_t>(FloorDivide(leaf.X, LeavesPerAxis));
+  cell.Y = static_cast<std::int32_t>(FloorDivide(leaf.Y, LeavesPerAxis));
+  cell.Z = static_cast<std::int32_t>(FloorDivide(leaf.Z, LeavesPerAxis));
   return cell;
 }
 
@@ -292,7 +374,7 @@ void ProcessingOctree::Load(const double* positions, std::size_t count, int numb
   // Each point's cell (held in NextLink until the lists are made) and leaf, in parallel: the
   // map is filled from a sample of the points first (cells hold tens of points, so the sample
   // finds nearly all of them), then read by all threads; the few cells the sample missed are
-  // created after, serially. Cells are numbered in no meaningful order: Compact sorts them.
+  // created after, serially. Cells are numbered in no meaningful order until sorted below.
   this->NextLink.resize(n);
   this->NextLeaf.resize(n);
   auto positionOf = [this, positions](std::size_t i)
@@ -317,29 +399,35 @@ void ProcessingOctree::Load(const double* positions, std::size_t count, int numb
     }
   }
 
-  // The points grouped by cell, so that each cell's list runs through consecutive indices:
-  // Compact then reads each cell's points from one stretch of memory. Placed one by one in id
-  // order instead, a cloud whose ids are not in spatial order (random, or shuffled by a previous
-  // tool) made lists that jump across the whole cloud, and the first Compact of 20 million such
-  // points took some 10 s of cache misses instead of 0.3 s. The order of the points within a
-  // cell's stretch depends on the threads, and need not be fixed: Compact sorts each leaf's
-  // points by geometry alone.
+  // The first layout, built here rather than by Compact: the cells in lattice order, each
+  // cell's points first grouped into one stretch of the layout arrays (in an order that depends
+  // on the threads), then put in layout order within that stretch. Compact would copy every
+  // position and id a second time, beside the input: that copy was the peak memory of sparse
+  // clouds. Grouping by cell also keeps the sort's reads in one stretch of memory: placed one by
+  // one in id order, a cloud whose ids are not in spatial order (random, or shuffled by a previous
+  // tool) was read across the whole cloud, some 10 s of cache misses for 20 million points.
   const std::size_t cells = this->CellCoords.size();
-  std::vector<std::uint32_t> starts(cells + 1, 0);
+  std::vector<std::int32_t> kept(cells);
+  std::iota(kept.begin(), kept.end(), 0);
+  this->SortCells(kept, numberOfThreads);
+  std::vector<std::uint32_t> cellCounts(cells, 0);
+  std::vector<std::uint64_t> cellMasks(cells, 0);
   for (std::size_t i = 0; i < n; ++i)
   {
-    ++starts[static_cast<std::size_t>(this->NextLink[i]) + 1];
+    ++cellCounts[static_cast<std::size_t>(this->NextLink[i])];
+    cellMasks[static_cast<std::size_t>(this->NextLink[i])] |= std::uint64_t{ 1 }
+                                                              << this->NextLeaf[i];
   }
-  for (std::size_t cell = 0; cell < cells; ++cell)
-  {
-    starts[cell + 1] += starts[cell];
-  }
+  this->SetUpCells(kept, cellCounts, cellMasks);
+  cellCounts = std::vector<std::uint32_t>();
+  cellMasks = std::vector<std::uint64_t>();
+
   std::unique_ptr<std::atomic<std::uint32_t>[]> fill(new std::atomic<std::uint32_t>[cells]);
   for (std::size_t cell = 0; cell < cells; ++cell)
   {
-    fill[cell].store(starts[cell], std::memory_order_relaxed);
+    fill[static_cast<std::size_t>(kept[cell])].store(
+      this->CellBegins[cell], std::memory_order_relaxed);
   }
-  // The layout arrays are free until Compact: they take the grouped ids and positions.
   this->CompactedIds.resize(n);
   this->X.resize(n);
   this->Y.resize(n);
@@ -359,21 +447,37 @@ void ProcessingOctree::Load(const double* positions, std::size_t count, int numb
   }
   fill.reset();
   this->Ids.swap(this->CompactedIds);
-  this->MovedX.swap(this->X);
-  this->MovedY.swap(this->Y);
-  this->MovedZ.swap(this->Z);
-  std::copy(leaves.begin(), leaves.end(), this->NextLeaf.begin());
+  // The ids of the finite points in input order are not needed again; Compact makes its own.
+  PointArray<std::uint32_t>().swap(this->CompactedIds);
+
+  const LeafOrder order{ this->X.data(), this->Y.data(), this->Z.data(), this->Ids.data() };
   const auto signedCells = static_cast<std::int64_t>(cells);
-#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
-  for (std::int64_t cell = 0; cell < signedCells; ++cell)
+#pragma omp parallel num_threads(numberOfThreads)
   {
-    const std::uint32_t begin = starts[cell], end = starts[cell + 1];
-    for (std::uint32_t i = begin; i < end; ++i)
+    std::vector<std::uint32_t> stretch, sorted, ids;
+    std::vector<double> coordinates;
+#pragma omp for schedule(static)
+    for (std::int64_t cell = 0; cell < signedCells; ++cell)
     {
-      this->NextLink[i] = i + 1 < end ? static_cast<std::int32_t>(i + 1) : -1;
+      const std::uint32_t begin = this->CellBegins[cell], end = this->CellBegins[cell + 1];
+      stretch.resize(end - begin);
+      std::iota(stretch.begin(), stretch.end(), begin);
+      OrderCellPoints(
+        stretch.data(),
+        stretch.size(),
+        [&leaves](std::uint32_t i) { return leaves[i]; },
+        order,
+        begin,
+        sorted,
+        this->LeafEnds.data() + this->LeafSlots[cell]);
+      // In place, through a copy of the cell's own points.
+      PermuteStretch(this->Ids.data() + begin, sorted, begin, ids);
+      PermuteStretch(this->X.data() + begin, sorted, begin, coordinates);
+      PermuteStretch(this->Y.data() + begin, sorted, begin, coordinates);
+      PermuteStretch(this->Z.data() + begin, sorted, begin, coordinates);
     }
-    this->NextHead[cell] = static_cast<std::int32_t>(begin);
   }
+  this->FinishCells(kept, n, numberOfThreads);
 }
 
 std::int32_t ProcessingOctree::FindCell(const LatticeCoord& cell) const
@@ -402,55 +506,14 @@ void ProcessingOctree::PlaceSerially(std::uint32_t index)
   this->Place(index, this->FindOrCreateCell(CellOfLeaf(leaf)), LocalLeafIndex(leaf));
 }
 
-void ProcessingOctree::Compact(int numberOfThreads)
+void ProcessingOctree::SortCells(std::vector<std::int32_t>& kept, int numberOfThreads) const
 {
-  // Each cell's points and occupied leaves.
-  const auto oldCellCount = static_cast<std::int64_t>(this->CellCoords.size());
-  std::vector<std::uint32_t> cellCounts(this->CellCoords.size(), 0);
-  std::vector<std::uint64_t> cellMasks(this->CellCoords.size(), 0);
-#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
-  for (std::int64_t cell = 0; cell < oldCellCount; ++cell)
-  {
-    std::uint32_t count = 0;
-    std::uint64_t mask = 0;
-    for (std::int32_t index = this->NextHead[cell]; index >= 0; index = this->NextLink[index])
-    {
-      ++count;
-      mask |= std::uint64_t{ 1 } << this->NextLeaf[index];
-    }
-    cellCounts[cell] = count;
-    cellMasks[cell] = mask;
-  }
-
-  // Non-empty cells in lattice order (z, then y, then x), so that the layout does not depend
-  // on the order in which cells were created.
-  std::vector<std::int32_t> kept;
-  for (std::int32_t cell = 0; cell < oldCellCount; ++cell)
-  {
-    if (cellCounts[cell] > 0)
-    {
-      kept.push_back(cell);
-    }
-  }
-  auto latticeOrder = [this](std::int32_t a, std::int32_t b)
-  {
-    const LatticeCoord& ca = this->CellCoords[a];
-    const LatticeCoord& cb = this->CellCoords[b];
-    if (ca.Z != cb.Z)
-    {
-      return ca.Z < cb.Z;
-    }
-    if (ca.Y != cb.Y)
-    {
-      return ca.Y < cb.Y;
-    }
-    return ca.X < cb.X;
-  };
   // The cells of the last layout come first and are in that order already; only the cells
-  // created since (all of them after Load, few after an iteration) are sorted, in two halves in
+  // created since (all of them at Load, few after an iteration) are sorted, in two halves in
   // parallel, then merged in. This part is serial, and a sort of all cells cost sparse clouds
-  // (up to one cell per two points) a good share of their 2-thread speed-up. Cells are
-  // distinct, so the order is total and the result the same whatever the way it is reached.
+  // (up to one cell per two points) a good share of their 2-thread speed-up. The order is total,
+  // so the result is the same whatever the way it is reached.
+  const LatticeOrder latticeOrder{ this->CellCoords.data() };
   const auto firstNew = static_cast<std::size_t>(
     std::lower_bound(
       kept.begin(), kept.end(), static_cast<std::int32_t>(this->NumberOfProcessingCells)) -
@@ -474,7 +537,12 @@ void ProcessingOctree::Compact(int numberOfThreads)
     std::sort(newBegin, kept.end(), latticeOrder);
   }
   std::inplace_merge(kept.begin(), newBegin, kept.end(), latticeOrder);
+}
 
+void ProcessingOctree::SetUpCells(const std::vector<std::int32_t>& kept,
+  const std::vector<std::uint32_t>& cellCounts,
+  const std::vector<std::uint64_t>& cellMasks)
+{
   const std::size_t newCellCount = kept.size();
   this->LeafMasks.resize(newCellCount);
   this->CellBegins.resize(newCellCount + 1);
@@ -489,10 +557,81 @@ void ProcessingOctree::Compact(int numberOfThreads)
     slots += static_cast<std::uint32_t>(Popcount(this->LeafMasks[cell]));
   }
   this->LeafEnds.resize(slots);
+}
+
+void ProcessingOctree::FinishCells(const std::vector<std::int32_t>& kept,
+  std::size_t pointCount,
+  int numberOfThreads)
+{
+  // The cells' coordinates in their new order, and the map to their new numbers, in parallel
+  // (serially, the map took a tenth of a sparse cloud's iteration on one thread, which weighed
+  // on its 2-thread speed-up).
+  const std::size_t newCellCount = kept.size();
+  const auto signedNewCellCount = static_cast<std::int64_t>(newCellCount);
+  // Room for the cells an iteration creates (points that land in a cell not stored yet), so
+  // that creating one does not copy all of them into a new array of twice the size: on sparse
+  // clouds (up to a cell per two points) that copy, beside the old array, was the iteration's
+  // peak memory. Room never written costs no memory.
+  const std::size_t room = newCellCount + newCellCount / 8 + 64;
+  std::vector<LatticeCoord> newCoords;
+  newCoords.reserve(room);
+  newCoords.resize(newCellCount);
+#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
+  for (std::int64_t cell = 0; cell < signedNewCellCount; ++cell)
+  {
+    newCoords[static_cast<std::size_t>(cell)] = this->CellCoords[kept[cell]];
+  }
+  this->CellIndex.InsertDistinct(newCoords.data(), newCellCount, numberOfThreads);
+  this->CellCoords = std::move(newCoords);
+  this->NumberOfProcessingCells = newCellCount;
+  this->NextHead.clear();
+  this->NextHead.reserve(room);
+  this->NextHead.resize(newCellCount, -1);
+  this->NextLink.assign(pointCount, -1);
+  this->NextLeaf.assign(pointCount, 0);
+  this->MovedX.resize(pointCount);
+  this->MovedY.resize(pointCount);
+  this->MovedZ.resize(pointCount);
+}
+
+void ProcessingOctree::Compact(int numberOfThreads)
+{
+  // Each cell's points and occupied leaves.
+  const auto oldCellCount = static_cast<std::int64_t>(this->CellCoords.size());
+  std::vector<std::uint32_t> cellCounts(this->CellCoords.size(), 0);
+  std::vector<std::uint64_t> cellMasks(this->CellCoords.size(), 0);
+#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
+  for (std::int64_t cell = 0; cell < oldCellCount; ++cell)
+  {
+    std::uint32_t count = 0;
+    std::uint64_t mask = 0;
+    for (std::int32_t index = this->NextHead[cell]; index >= 0; index = this->NextLink[index])
+    {
+      ++count;
+      mask |= std::uint64_t{ 1 } << this->NextLeaf[index];
+    }
+    cellCounts[cell] = count;
+    cellMasks[cell] = mask;
+  }
+
+  // Non-empty cells in lattice order.
+  std::vector<std::int32_t> kept;
+  for (std::int32_t cell = 0; cell < oldCellCount; ++cell)
+  {
+    if (cellCounts[cell] > 0)
+    {
+      kept.push_back(cell);
+    }
+  }
+  this->SortCells(kept, numberOfThreads);
+  this->SetUpCells(kept, cellCounts, cellMasks);
+  cellCounts = std::vector<std::uint32_t>();
+  cellMasks = std::vector<std::uint64_t>();
 
   // The new layout from the placed points: their ids and moved positions, by leaf, each leaf
   // sorted. The coordinate arrays of the last iteration are free to take it.
   const std::size_t pointCount = this->CellBegins.back();
+  ReserveWithHugePages(pointCount, this->CompactedIds);
   this->CompactedIds.resize(pointCount);
   this->X.resize(pointCount);
   this->Y.resize(pointCount);
@@ -500,46 +639,30 @@ void ProcessingOctree::Compact(int numberOfThreads)
   const LeafOrder order{
     this->MovedX.data(), this->MovedY.data(), this->MovedZ.data(), this->Ids.data()
   };
-  const auto signedNewCellCount = static_cast<std::int64_t>(newCellCount);
+  const auto signedNewCellCount = static_cast<std::int64_t>(kept.size());
 #pragma omp parallel num_threads(numberOfThreads)
   {
-    std::vector<std::uint32_t> indices;
+    std::vector<std::uint32_t> listed, sorted;
 #pragma omp for schedule(static)
     for (std::int64_t cell = 0; cell < signedNewCellCount; ++cell)
     {
-      // Bucket the cell's points by leaf, then sort each bucket.
-      std::uint32_t leafStarts[LeavesPerCell + 1] = {};
+      listed.clear();
       for (std::int32_t index = this->NextHead[kept[cell]]; index >= 0;
            index = this->NextLink[index])
       {
-        ++leafStarts[this->NextLeaf[index] + 1];
-      }
-      for (int leaf = 0; leaf < LeavesPerCell; ++leaf)
-      {
-        leafStarts[leaf + 1] += leafStarts[leaf];
-      }
-      indices.resize(leafStarts[LeavesPerCell]);
-      std::uint32_t fill[LeavesPerCell];
-      std::copy(leafStarts, leafStarts + LeavesPerCell, fill);
-      for (std::int32_t index = this->NextHead[kept[cell]]; index >= 0;
-           index = this->NextLink[index])
-      {
-        indices[fill[this->NextLeaf[index]]++] = static_cast<std::uint32_t>(index);
+        listed.push_back(static_cast<std::uint32_t>(index));
       }
       const std::uint32_t cellBegin = this->CellBegins[cell];
-      std::uint32_t slot = this->LeafSlots[cell];
-      for (int leaf = 0; leaf < LeavesPerCell; ++leaf)
-      {
-        if (leafStarts[leaf] == leafStarts[leaf + 1])
-        {
-          continue;
-        }
-        std::sort(
-          indices.begin() + leafStarts[leaf], indices.begin() + leafStarts[leaf + 1], order);
-        this->LeafEnds[slot++] = cellBegin + leafStarts[leaf + 1];
-      }
+      OrderCellPoints(
+        listed.data(),
+        listed.size(),
+        [this](std::uint32_t i) { return this->NextLeaf[i]; },
+        order,
+        cellBegin,
+        sorted,
+        this->LeafEnds.data() + this->LeafSlots[cell]);
       std::uint32_t to = cellBegin;
-      for (const std::uint32_t from : indices)
+      for (const std::uint32_t from : sorted)
       {
         this->CompactedIds[to] = this->Ids[from];
         this->X[to] = this->MovedX[from];
@@ -550,27 +673,7 @@ void ProcessingOctree::Compact(int numberOfThreads)
     }
   }
   this->Ids.swap(this->CompactedIds);
-  this->MovedX.resize(pointCount);
-  this->MovedY.resize(pointCount);
-  this->MovedZ.resize(pointCount);
-
-  // The cells' coordinates in their new order, and the map to their new numbers, in parallel
-  // (serially, the map took a tenth of a sparse cloud's iteration on one thread, which weighed
-  // on its 2-thread speed-up).
-  cellCounts = std::vector<std::uint32_t>();
-  cellMasks = std::vector<std::uint64_t>();
-  std::vector<LatticeCoord> newCoords(newCellCount);
-#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
-  for (std::int64_t cell = 0; cell < signedNewCellCount; ++cell)
-  {
-    newCoords[static_cast<std::size_t>(cell)] = this->CellCoords[kept[cell]];
-  }
-  this->CellIndex.InsertDistinct(newCoords.data(), newCellCount, numberOfThreads);
-  this->CellCoords = std::move(newCoords);
-  this->NumberOfProcessingCells = newCellCount;
-  this->NextHead.assign(newCellCount, -1);
-  this->NextLink.assign(pointCount, -1);
-  this->NextLeaf.assign(pointCount, 0);
+  this->FinishCells(kept, pointCount, numberOfThreads);
 }
 
 void ProcessingOctree::ReleaseAllButMoves()

@@ -16,10 +16,13 @@ namespace pcbilateral
 {
 
 /// Integer coordinates of a cell or a leaf on the octree's lattice (may be negative: points
-/// that drift out of the root cube keep their place on the same lattice).
+/// that drift out of the root cube keep their place on the same lattice). 32 bits each: the
+/// filter refuses clouds more than 1e8 radii wide, about 2e8 leaves, and a point drifts by less
+/// than 2 leaves per iteration. 12 bytes rather than 24 per stored cell: sparse clouds have up
+/// to a cell per two points.
 struct LatticeCoord
 {
-  std::int64_t X = 0, Y = 0, Z = 0;
+  std::int32_t X = 0, Y = 0, Z = 0;
   bool operator==(const LatticeCoord& other) const
   {
     return X == other.X && Y == other.Y && Z == other.Z;
@@ -161,8 +164,8 @@ public:
 
   /**
    * Takes the points to filter: the finite ones among `count` interleaved xyz positions, which
-   * keep their index as id. They are placed into the next iteration's lists, grouped by cell,
-   * with numberOfThreads threads; Compact then builds the first layout.
+   * keep their index as id, and lays them out for the first iteration with numberOfThreads
+   * threads (as Compact lays out placed points).
    */
   void Load(const double* positions, std::size_t count, int numberOfThreads = 1);
 
@@ -200,9 +203,9 @@ public:
   ///@}
 
   /**
-   * Turns the placed points into the layout read by the next iteration: drops empty cells,
-   * sorts cells by lattice coordinates and each leaf's points by coordinates, lays out their
-   * ids and moved positions in that order.
+   * After an iteration has placed its points: turns them into the layout read by the next
+   * iteration: drops empty cells, sorts cells by lattice coordinates and each leaf's points by
+   * coordinates, lays out their ids and moved positions in that order.
    */
   void Compact(int numberOfThreads);
 
@@ -280,6 +283,19 @@ private:
     bits = (bits + (bits >> 4)) & 0x0F0F0F0F0F0F0F0FULL;
     return static_cast<int>((bits * 0x0101010101010101ULL) >> 56);
   }
+
+  /// Sorts `kept` (cell numbers) into lattice order; the cells of the last layout, numbered
+  /// below NumberOfProcessingCells in that order already, must come first.
+  void SortCells(std::vector<std::int32_t>& kept, int numberOfThreads) const;
+  /// The layout's cell tables for the cells `kept` (old numbers, in their new order), given
+  /// each old cell's number of points and leaf mask; LeafEnds is sized, not filled.
+  void SetUpCells(const std::vector<std::int32_t>& kept,
+    const std::vector<std::uint32_t>& cellCounts,
+    const std::vector<std::uint64_t>& cellMasks);
+  /// Renumbers the cells as `kept` orders them and readies the lists of the next iteration.
+  void FinishCells(const std::vector<std::int32_t>& kept,
+    std::size_t pointCount,
+    int numberOfThreads);
 
   // Next iteration: per cell, the head of a list of indices linked through NextLink (-1 ends
   // it), and each index's leaf in its cell.

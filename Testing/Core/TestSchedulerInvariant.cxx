@@ -42,11 +42,11 @@ std::size_t CheckDilationsShareNoLeaf(const ProcessingOctree& octree, double rad
       last[axis] = static_cast<std::int64_t>(std::floor((high - origin[axis]) / leafSize));
     }
     auto& claimed = owner[ProcessingOctree::ColourOf(c)];
-    for (std::int64_t z = first[2]; z <= last[2]; ++z)
+    for (auto z = static_cast<std::int32_t>(first[2]); z <= last[2]; ++z)
     {
-      for (std::int64_t y = first[1]; y <= last[1]; ++y)
+      for (auto y = static_cast<std::int32_t>(first[1]); y <= last[1]; ++y)
       {
-        for (std::int64_t x = first[0]; x <= last[0]; ++x)
+        for (auto x = static_cast<std::int32_t>(first[0]); x <= last[0]; ++x)
         {
           const auto inserted = claimed.emplace(LatticeCoord{ x, y, z }, cell);
           PCB_CHECK(inserted.second || inserted.first->second == cell,
@@ -95,7 +95,6 @@ int main()
     }
     ProcessingOctree octree(boundsMin, boundsMax, radius);
     octree.Load(points.data(), count);
-    octree.Compact(1);
     PCB_CHECK(octree.GetNumberOfPoints() == count,
       "trial %d: %zu of %zu points placed",
       trial,

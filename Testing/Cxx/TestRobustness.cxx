@@ -321,7 +321,9 @@ void TestBadParameters()
          Bad{ "NaN normal radius", 0.05, nan, 1, "normal radius" },
          Bad{ "infinite normal radius", 0.05, inf, 1, "normal radius" },
          Bad{ "negative iterations", 0.05, 0.0, -1, "iterations" },
-         Bad{ "a huge number of iterations", 0.05, 0.0, 1000000, "at most 1000" } })
+         Bad{ "a huge number of iterations", 0.05, 0.0, 1000000, "at most 1000" },
+         // The octree numbers its lattice in 32 bits: at most 1e8 radii across.
+         Bad{ "a radius 1e-9 of the cloud", 1e-9, 0.0, 1, "give a larger radius" } })
   {
     const Run run = Filter(input, bad.Radius, bad.Iterations, bad.NormalRadius);
     // Exactly one: the filter's own message, without the executive's "returned failure" dump.
@@ -336,6 +338,16 @@ void TestBadParameters()
       bad.Says,
       run.Messages.c_str());
   }
+  // Just inside that limit (5e7 radii), the lattice's coordinates still fit: the run completes,
+  // no point moving by more than r.
+  const Run tiny = Filter(input, 2e-8, 2, 2e-8);
+  PCB_CHECK(tiny.Errors == 0 && tiny.Output->GetNumberOfPoints() == input->GetNumberOfPoints(),
+    "radius 2e-8: %d errors, %lld points: %s",
+    tiny.Errors,
+    (long long)tiny.Output->GetNumberOfPoints(),
+    tiny.Messages.c_str());
+  CheckSane("radius 2e-8", input, tiny, 2e-8);
+
   // 0 iterations means automatic, as 0 radii do: the filter runs.
   const Run automatic = Filter(input, 0.05, 0);
   PCB_CHECK(
