@@ -124,22 +124,6 @@ void OrderCellPoints(const std::uint32_t* points,
   }
 }
 
-/// Reorders the values of a stretch of an array that starts at index `begin`: the k-th becomes
-/// the one at index order[k], through `copy`.
-template<typename T>
-void PermuteStretch(T* stretch,
-  const std::vector<std::uint32_t>& order,
-  std::uint32_t begin,
-  std::vector<T>& copy)
-{
-  copy.resize(order.size());
-  for (std::size_t k = 0; k < order.size(); ++k)
-  {
-    copy[k] = stretch[order[k] - begin];
-  }
-  std::copy(copy.begin(), copy.end(), stretch);
-}
-
 std::int64_t FloorDivide(std::int64_t value, std::int64_t divisor)
 {
   const std::int64_t quotient = value / divisor;
@@ -399,13 +383,9 @@ void ProcessingOctree::Load(const double* positions, std::size_t count, int numb
     }
   }
 
-  // The first layout, built here rather than by Compact: the cells in lattice order, each
-  // cell's points first grouped into one stretch of the layout arrays (in an order that depends
-  // on the threads), then put in layout order within that stretch. Compact would copy every
-  // position and id a second time, beside the input: that copy was the peak memory of sparse
-  // clouds. Grouping by cell also keeps the sort's reads in one stretch of memory: placed one by
-  // one in id order, a cloud whose ids are not in spatial order (random, or shuffled by a previous
-  // tool) was read across the whole cloud, some 10 s of cache misses for 20 million points.
+  // The first layout, built here rather than by Compact (which would copy every position and
+  // id a second time, beside the input: that copy was the peak memory of sparse clouds): the
+  // cells in lattice order, each cell's points in layout order.
   const std::size_t cells = this->CellCoords.size();
   std::vector<std::int32_t> kept(cells);
   std::iota(kept.begin(), kept.end(), 0);
@@ -422,59 +402,139 @@ void ProcessingOctree::Load(const double* positions, std::size_t count, int numb
   cellCounts = std::vector<std::uint32_t>();
   cellMasks = std::vector<std::uint64_t>();
 
-  std::unique_ptr<std::atomic<std::uint32_t>[]> fill(new std::atomic<std::uint32_t>[cells]);
-  for (std::size_t cell = 0; cell < cells; ++cell)
+  // The points reach their places in two passes, each writing to few places at a time. A cloud
+  // whose points are not in spatial order (random, or shuffled by a previous tool) made a single
+  // pass write each point to its own cell, one of hundreds of thousands: a cache and TLB miss
+  // per array per point, 5.9 s of the 28 s that lidar20M took on one thread. First, each point
+  // goes to its bucket, a run of consecutive cells of about bucketPoints points; then each bucket
+  // is ordered in cache. Buckets fill in a fixed order (chunks of points, in order), but that
+  // order does not matter: the second pass orders every cell's points by geometry alone.
+  const std::size_t bucketPoints = std::max<std::size_t>(4096, n / 1024);
+  std::vector<std::uint32_t> bucketFirstCell;
+  // By old cell number: its bucket, and its new number within the bucket shifted left by 6 with
+  // room for a leaf index (a bucket holds at most bucketPoints cells, far below 2^26).
+  std::vector<std::uint32_t> bucketOfCell(cells), cellCode(cells);
+  for (std::size_t cell = 0, inBucket = 0; cell < cells; ++cell)
   {
-    fill[static_cast<std::size_t>(kept[cell])].store(
-      this->CellBegins[cell], std::memory_order_relaxed);
+    if (cell == 0 || inBucket >= bucketPoints)
+    {
+      bucketFirstCell.push_back(static_cast<std::uint32_t>(cell));
+      inBucket = 0;
+    }
+    const auto old = static_cast<std::size_t>(kept[cell]);
+    bucketOfCell[old] = static_cast<std::uint32_t>(bucketFirstCell.size() - 1);
+    cellCode[old] = static_cast<std::uint32_t>(cell - bucketFirstCell.back()) << 6;
+    inBucket += this->CellBegins[cell + 1] - this->CellBegins[cell];
+  }
+  static_assert(LeavesPerCell <= 64, "a leaf index takes 6 bits of a cell code");
+  const std::size_t buckets = bucketFirstCell.size();
+  bucketFirstCell.push_back(static_cast<std::uint32_t>(cells));
+
+  // Pass 1: fixed chunks of points each count their points per bucket, then write them where
+  // the counts say (bucket by bucket, chunk by chunk), in parallel.
+  constexpr std::size_t Chunks = 64;
+  std::vector<std::uint32_t> cursors(Chunks * buckets, 0);
+  auto chunkBegin = [n](std::size_t chunk) { return chunk * n / Chunks; };
+#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
+  for (std::int64_t chunk = 0; chunk < static_cast<std::int64_t>(Chunks); ++chunk)
+  {
+    std::uint32_t* counts = cursors.data() + static_cast<std::size_t>(chunk) * buckets;
+    for (std::size_t i = chunkBegin(chunk); i < chunkBegin(chunk + 1); ++i)
+    {
+      ++counts[bucketOfCell[static_cast<std::size_t>(this->NextLink[i])]];
+    }
+  }
+  for (std::size_t bucket = 0, at = 0; bucket < buckets; ++bucket)
+  {
+    for (std::size_t chunk = 0; chunk < Chunks; ++chunk)
+    {
+      std::uint32_t& cursor = cursors[chunk * buckets + bucket];
+      const std::uint32_t count = cursor;
+      cursor = static_cast<std::uint32_t>(at);
+      at += count;
+    }
   }
   this->CompactedIds.resize(n);
   this->X.resize(n);
   this->Y.resize(n);
   this->Z.resize(n);
-  PointArray<std::uint8_t> leaves(n);
+  PointArray<std::uint32_t> codes(n);
 #pragma omp parallel for schedule(static) num_threads(numberOfThreads)
-  for (std::int64_t i = 0; i < signedCount; ++i)
+  for (std::int64_t chunk = 0; chunk < static_cast<std::int64_t>(Chunks); ++chunk)
   {
-    const std::uint32_t to =
-      fill[static_cast<std::size_t>(this->NextLink[i])].fetch_add(1, std::memory_order_relaxed);
-    const double* p = positionOf(static_cast<std::size_t>(i));
-    this->CompactedIds[to] = this->Ids[i];
-    this->X[to] = p[0];
-    this->Y[to] = p[1];
-    this->Z[to] = p[2];
-    leaves[to] = this->NextLeaf[i];
+    std::uint32_t* cursor = cursors.data() + static_cast<std::size_t>(chunk) * buckets;
+    for (std::size_t i = chunkBegin(chunk); i < chunkBegin(chunk + 1); ++i)
+    {
+      const auto cell = static_cast<std::size_t>(this->NextLink[i]);
+      const std::uint32_t to = cursor[bucketOfCell[cell]]++;
+      const double* p = positionOf(i);
+      this->X[to] = p[0];
+      this->Y[to] = p[1];
+      this->Z[to] = p[2];
+      this->CompactedIds[to] = this->Ids[i];
+      codes[to] = cellCode[cell] | this->NextLeaf[i];
+    }
   }
-  fill.reset();
   this->Ids.swap(this->CompactedIds);
   // The ids of the finite points in input order are not needed again; Compact makes its own.
   PointArray<std::uint32_t>().swap(this->CompactedIds);
 
-  const LeafOrder order{ this->X.data(), this->Y.data(), this->Z.data(), this->Ids.data() };
-  const auto signedCells = static_cast<std::int64_t>(cells);
+  // Pass 2: each bucket's points, copied aside, sorted by cell and written back in layout order.
+  const auto signedBuckets = static_cast<std::int64_t>(buckets);
 #pragma omp parallel num_threads(numberOfThreads)
   {
-    std::vector<std::uint32_t> stretch, sorted, ids;
-    std::vector<double> coordinates;
-#pragma omp for schedule(static)
-    for (std::int64_t cell = 0; cell < signedCells; ++cell)
+    std::vector<double> x, y, z;
+    std::vector<std::uint32_t> ids, bucketCodes, byCell, cellStarts, sorted;
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t bucket = 0; bucket < signedBuckets; ++bucket)
     {
-      const std::uint32_t begin = this->CellBegins[cell], end = this->CellBegins[cell + 1];
-      stretch.resize(end - begin);
-      std::iota(stretch.begin(), stretch.end(), begin);
-      OrderCellPoints(
-        stretch.data(),
-        stretch.size(),
-        [&leaves](std::uint32_t i) { return leaves[i]; },
-        order,
-        begin,
-        sorted,
-        this->LeafEnds.data() + this->LeafSlots[cell]);
-      // In place, through a copy of the cell's own points.
-      PermuteStretch(this->Ids.data() + begin, sorted, begin, ids);
-      PermuteStretch(this->X.data() + begin, sorted, begin, coordinates);
-      PermuteStretch(this->Y.data() + begin, sorted, begin, coordinates);
-      PermuteStretch(this->Z.data() + begin, sorted, begin, coordinates);
+      const std::uint32_t firstCell = bucketFirstCell[bucket];
+      const std::uint32_t endCell = bucketFirstCell[bucket + 1];
+      const std::uint32_t begin = this->CellBegins[firstCell];
+      const std::uint32_t end = this->CellBegins[endCell];
+      x.assign(this->X.begin() + begin, this->X.begin() + end);
+      y.assign(this->Y.begin() + begin, this->Y.begin() + end);
+      z.assign(this->Z.begin() + begin, this->Z.begin() + end);
+      ids.assign(this->Ids.begin() + begin, this->Ids.begin() + end);
+      bucketCodes.assign(codes.begin() + begin, codes.begin() + end);
+      // The copies' indices, grouped by cell.
+      cellStarts.assign(endCell - firstCell + 1, 0);
+      for (const std::uint32_t code : bucketCodes)
+      {
+        ++cellStarts[(code >> 6) + 1];
+      }
+      for (std::size_t cell = 0; cell + 1 < cellStarts.size(); ++cell)
+      {
+        cellStarts[cell + 1] += cellStarts[cell];
+      }
+      byCell.resize(bucketCodes.size());
+      for (std::uint32_t k = 0; k < bucketCodes.size(); ++k)
+      {
+        byCell[cellStarts[bucketCodes[k] >> 6]++] = k;
+      }
+      const LeafOrder order{ x.data(), y.data(), z.data(), ids.data() };
+      std::uint32_t listed = 0;
+      for (std::uint32_t cell = firstCell; cell < endCell; ++cell)
+      {
+        const std::uint32_t cellBegin = this->CellBegins[cell];
+        const std::uint32_t count = this->CellBegins[cell + 1] - cellBegin;
+        OrderCellPoints(
+          byCell.data() + listed,
+          count,
+          [&bucketCodes](std::uint32_t k) { return bucketCodes[k] & 63u; },
+          order,
+          cellBegin,
+          sorted,
+          this->LeafEnds.data() + this->LeafSlots[cell]);
+        listed += count;
+        for (std::uint32_t k = 0; k < count; ++k)
+        {
+          this->X[cellBegin + k] = x[sorted[k]];
+          this->Y[cellBegin + k] = y[sorted[k]];
+          this->Z[cellBegin + k] = z[sorted[k]];
+          this->Ids[cellBegin + k] = ids[sorted[k]];
+        }
+      }
     }
   }
   this->FinishCells(kept, n, numberOfThreads);
