@@ -124,11 +124,6 @@ void OrderCellPoints(const std::uint32_t* points,
   }
 }
 
-std::int64_t FloorDivide(std::int64_t value, std::int64_t divisor)
-{
-  const std::int64_t quotient = value / divisor;
-  return (value % divisor < 0) ? quotient - 1 : quotient;
-}
 } // namespace
 
 std::size_t LatticeCoordHash::operator()(const LatticeCoord& c) const
@@ -292,40 +287,6 @@ ProcessingOctree::ProcessingOctree(const double boundsMin[3],
   }
   this->CellSize = std::ldexp(this->RootSize, -this->ProcessingDepth);
   this->LeafSize = this->CellSize / LeavesPerAxis;
-}
-
-LatticeCoord ProcessingOctree::LeafOf(const double p[3]) const
-{
-  // Floor by truncation and a correction: lattice coordinates are far inside 32-bit integers
-  // (see LatticeCoord).
-  auto floorToInteger = [](double value)
-  {
-    const auto truncated = static_cast<std::int64_t>(value);
-    return static_cast<std::int32_t>(truncated - (value < static_cast<double>(truncated) ? 1 : 0));
-  };
-  LatticeCoord leaf;
-  leaf.X = floorToInteger((p[0] - this->RootOrigin[0]) / this->LeafSize);
-  leaf.Y = floorToInteger((p[1] - this->RootOrigin[1]) / this->LeafSize);
-  leaf.Z = floorToInteger((p[2] - this->RootOrigin[2]) / this->LeafSize);
-  return leaf;
-}
-
-LatticeCoord ProcessingOctree::CellOfLeaf(const LatticeCoord& leaf)
-{
-  LatticeCoord cell;
-  cell.X = static_cast<std::int32_t>(FloorDivide(leaf.X, LeavesPerAxis));
-  cell.Y = static_cast<std::int32_t>(FloorDivide(leaf.Y, LeavesPerAxis));
-  cell.Z = static_cast<std::int32_t>(FloorDivide(leaf.Z, LeavesPerAxis));
-  return cell;
-}
-
-int ProcessingOctree::LocalLeafIndex(const LatticeCoord& leaf)
-{
-  const LatticeCoord cell = CellOfLeaf(leaf);
-  const auto x = static_cast<int>(leaf.X - LeavesPerAxis * cell.X);
-  const auto y = static_cast<int>(leaf.Y - LeavesPerAxis * cell.Y);
-  const auto z = static_cast<int>(leaf.Z - LeavesPerAxis * cell.Z);
-  return x + LeavesPerAxis * (y + LeavesPerAxis * z);
 }
 
 void ProcessingOctree::Load(const double* positions, std::size_t count, int numberOfThreads)
