@@ -4,11 +4,8 @@
 #include "HugePages.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstring>
-#include <memory>
-
 #include <numeric>
 #include <type_traits>
 
