@@ -313,7 +313,7 @@ void ProcessingOctree::Load(const double* positions, std::size_t count, int numb
   const std::size_t n = this->Ids.size();
   const auto signedCount = static_cast<std::int64_t>(n);
 
-  // Each point's cell (held in NextLink until the lists are made) and leaf, in parallel: the
+  // Each point's cell (held in NextLink until the layout is made) and leaf, in parallel: the
   // map is filled from a sample of the points first (cells hold tens of points, so the sample
   // finds nearly all of them), then read by all threads; the few cells the sample missed are
   // created after, serially. Cells are numbered in no meaningful order until sorted below.
@@ -725,7 +725,7 @@ void ProcessingOctree::GetNeighbourCells(std::size_t cell, std::int32_t neighbou
   {
     for (int dy = -1; dy <= 1; ++dy)
     {
-      // Compact numbers the cells in lattice order, so the cells of a row (one y and z) that
+      // A layout numbers the cells in lattice order, so the cells of a row (one y and z) that
       // exist are numbered one after the other: found the first, the next is checked beside
       // it rather than looked up (a hash lookup is a cache miss or two). In the cell's own row
       // its own number is known.

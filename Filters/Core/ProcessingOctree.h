@@ -33,7 +33,7 @@ struct LatticeCoord
  * std::allocator, except that resize() leaves new elements of the octree's per-point arrays
  * uninitialised instead of zeroing them: every element is written before it is read, and the
  * zeroing was a serial pass over fresh memory (its page faults included) of some 30 bytes per
- * point, 1.4 s of lidar20M's 2-thread Load and as much of its first Compact. Now the pages are
+ * point, 1.4 s of lidar20M's 2-thread Load and as much of its first layout. Now the pages are
  * first touched where the arrays are filled, in parallel.
  */
 template<typename T>
@@ -236,8 +236,8 @@ public:
   void Compact(int numberOfThreads);
 
   ///@{
-  /// The layout of this iteration (valid after Compact).
-  /// Cells that held points at the last Compact, numbered 0 to this count - 1. Cells created
+  /// The layout of this iteration (valid after Load or Compact).
+  /// Cells that held points at the last layout, numbered 0 to this count - 1. Cells created
   /// while placing come after them.
   std::size_t GetNumberOfProcessingCells() const { return this->NumberOfProcessingCells; }
   const LatticeCoord& GetCellCoord(std::size_t cell) const { return this->CellCoords[cell]; }
