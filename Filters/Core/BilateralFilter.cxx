@@ -1,12 +1,13 @@
 #include "BilateralFilter.h"
 
+#include "AutomaticRule.h"
 #include "BilateralKernel.h"
 #include "CellColoringScheduler.h"
 #include "CloudMeasurement.h"
 #include "EdgeAwareNormals.h"
-
 #include "HugePages.h"
 #include "ProcessingOctree.h"
+#include "Threads.h"
 
 #include <algorithm>
 #include <chrono>
@@ -14,22 +15,11 @@
 #include <limits>
 #include <sstream>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 namespace pcbilateral
 {
 
 namespace
 {
-std::string Describe(const char* what, double value)
-{
-  std::ostringstream message;
-  message << what << " must be a finite number >= 0 (0 means automatic), got " << value;
-  return message.str();
-}
-
 /// The largest extent of a cloud, in radii, whose octree lattice coordinates stay far inside
 /// 32-bit integers (ProcessingOctree.h: LatticeCoord).
 constexpr double MaximumExtentInRadii = 1e8;
@@ -59,7 +49,7 @@ RadiiUsed ResolveRadii(const BilateralParameters& parameters, const CloudExtent&
   RadiiUsed radii;
   radii.Radius = parameters.Radius > 0.0
                    ? parameters.Radius
-                   : AutomaticRadius(extent.NumberOfFinitePoints, extent.LargestExtent());
+                   : PaperRadius(extent.NumberOfFinitePoints, extent.LargestExtent());
   radii.NormalRadius = parameters.NormalRadius > 0.0 ? parameters.NormalRadius : radii.Radius;
   return radii;
 }
@@ -99,122 +89,7 @@ std::string CheckPrecisionLimits(const BilateralParameters& parameters,
   return problem.str();
 }
 
-bool IsFiniteExtent(const CloudExtent& extent)
-{
-  return IsFinitePoint(extent.Min) && IsFinitePoint(extent.Max);
-}
 } // namespace
-
-int ResolveThreadCount(int requested)
-{
-#ifdef _OPENMP
-  return requested > 0 ? requested : omp_get_max_threads();
-#else
-  (void)requested;
-  return 1;
-#endif
-}
-
-double AutomaticRadius(std::size_t numberOfPoints, double largestExtent)
-{
-  if (numberOfPoints == 0)
-  {
-    return 0.0;
-  }
-  return std::sqrt(20.0 / static_cast<double>(numberOfPoints)) * largestExtent;
-}
-
-double CloudExtent::LargestExtent() const
-{
-  return std::max(
-    { this->Max[0] - this->Min[0], this->Max[1] - this->Min[1], this->Max[2] - this->Min[2] });
-}
-
-double CloudExtent::LargestMagnitude() const
-{
-  double largest = 0.0;
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    largest = std::max({ largest, std::abs(this->Min[axis]), std::abs(this->Max[axis]) });
-  }
-  return largest;
-}
-
-CloudExtent MeasureCloud(const PointCloudView& cloud)
-{
-  CloudExtent extent;
-  for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
-  {
-    const double* p = cloud.Positions + 3 * i;
-    if (!IsFinitePoint(p))
-    {
-      continue;
-    }
-    const bool first = extent.NumberOfFinitePoints == 0;
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      extent.Min[axis] = first ? p[axis] : std::min(extent.Min[axis], p[axis]);
-      extent.Max[axis] = first ? p[axis] : std::max(extent.Max[axis], p[axis]);
-    }
-    ++extent.NumberOfFinitePoints;
-  }
-  return extent;
-}
-
-CloudExtent MergeExtents(const CloudExtent& a, const CloudExtent& b)
-{
-  if (a.NumberOfFinitePoints == 0)
-  {
-    return b;
-  }
-  if (b.NumberOfFinitePoints == 0)
-  {
-    return a;
-  }
-  CloudExtent merged;
-  merged.NumberOfFinitePoints = a.NumberOfFinitePoints + b.NumberOfFinitePoints;
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    merged.Min[axis] = std::min(a.Min[axis], b.Min[axis]);
-    merged.Max[axis] = std::max(a.Max[axis], b.Max[axis]);
-  }
-  return merged;
-}
-
-std::string CheckParameters(const BilateralParameters& parameters)
-{
-  if (!(std::isfinite(parameters.Radius) && parameters.Radius >= 0.0))
-  {
-    return Describe("the radius", parameters.Radius);
-  }
-  if (!(std::isfinite(parameters.NormalRadius) && parameters.NormalRadius >= 0.0))
-  {
-    return Describe("the normal radius", parameters.NormalRadius);
-  }
-  if (parameters.NumberOfIterations < 0)
-  {
-    return "the number of iterations must be >= 0 (0 means automatic), got " +
-           std::to_string(parameters.NumberOfIterations);
-  }
-  if (parameters.NumberOfIterations > limits::MaximumIterations)
-  {
-    return "the number of iterations must be at most " + std::to_string(limits::MaximumIterations) +
-           ", got " + std::to_string(parameters.NumberOfIterations) +
-           " (each iteration moves the points by up to the radius: a few are enough)";
-  }
-  if (parameters.Automatic != AutomaticParameters::Measured &&
-      parameters.Automatic != AutomaticParameters::Paper)
-  {
-    return "the automatic parameters must be measured (0) or the paper's (1), got " +
-           std::to_string(static_cast<int>(parameters.Automatic));
-  }
-  if (parameters.NumberOfThreads < 0)
-  {
-    return "the number of threads must be >= 0 (0 means all cores), got " +
-           std::to_string(parameters.NumberOfThreads);
-  }
-  return std::string();
-}
 
 /**
  * The octree, the scheduler and the per-point state of the points being filtered: a whole
@@ -512,7 +387,7 @@ bool BilateralRun::Start(const CloudExtent& wholeCloud, const CloudScales* whole
     return false;
   }
   run.Started = true;
-  if (!IsFiniteExtent(wholeCloud))
+  if (!wholeCloud.IsFinite())
   {
     this->Stop(BilateralStatus::Failed, "the extent of the whole cloud is not finite");
     return false;

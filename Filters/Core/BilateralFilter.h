@@ -5,6 +5,9 @@
 #ifndef pcbilateral_BilateralFilter_h
 #define pcbilateral_BilateralFilter_h
 
+#include "BilateralParameters.h"
+#include "PointCloudView.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -15,78 +18,6 @@
 namespace pcbilateral
 {
 struct CloudScales;
-
-/// The finite points of a cloud and their bounding box (NaN and infinite points are left out).
-struct CloudExtent
-{
-  std::size_t NumberOfFinitePoints = 0;
-  double Min[3] = { 0.0, 0.0, 0.0 };
-  double Max[3] = { 0.0, 0.0, 0.0 };
-  double LargestExtent() const;
-  /// The largest absolute value of a coordinate.
-  double LargestMagnitude() const;
-};
-
-/// Limits every front end enforces (the VTK class, the ParaView XML and the command line read
-/// them from here, so that they cannot disagree).
-namespace limits
-{
-/// More iterations than this are refused: the paper uses a few, and each one may move the points
-/// by up to the radius, so that thousands would only collapse the cloud, slowly.
-constexpr int MaximumIterations = 1000;
-} // namespace limits
-
-/// How the parameters left at 0 (automatic) are chosen.
-enum class AutomaticParameters
-{
-  /// From the cloud's measured point spacing and noise (CloudMeasurement.h, README.md
-  /// "Automatic parameters"): r = 5 spacings + 4 sigma, rn = 5 sigma, N = 2 (flat clouds:
-  /// 1.5 r, N = 3; smooth clouds with noise below half a spacing: 1.25 r, rn = r, N = 1).
-  Measured = 0,
-  /// The paper's heuristic: r = sqrt(20 / number of points) x the bounding box's largest
-  /// extent, rn = r, N = 1 (the authors' program).
-  Paper = 1
-};
-
-/// Parameters in the paper's terms (section 5). The member initialisers are the defaults of
-/// every front end: all automatic.
-struct BilateralParameters
-{
-  /// Neighbourhood radius r; sd = r / 3. Zero means automatic (see Automatic).
-  double Radius = 0.0;
-  /// Normal radius rn, the thickness of the slab around the tangent plane; sn = rn / 3. Zero
-  /// means automatic (see Automatic).
-  double NormalRadius = 0.0;
-  /// Number of iterations N; each reads the positions written by the previous one. Zero means
-  /// automatic (see Automatic).
-  int NumberOfIterations = 0;
-  /// How the parameters left at 0 are chosen; each given parameter overrides only itself.
-  AutomaticParameters Automatic = AutomaticParameters::Measured;
-  /// Points with fewer than 5 neighbours (or a zero weight sum) stay where they are; with this
-  /// on they are removed for the rest of the run instead, as the authors' program does.
-  bool RemoveIsolatedPoints = false;
-  /// Threads for the parallel loops; 0 uses all cores. Results do not depend on it.
-  int NumberOfThreads = 0;
-  /// Also return the estimated normals of the last iteration.
-  bool ComputeNormals = false;
-  /// Edge-aware mode, beyond the paper (EdgeAwareNormals.h): the normals are filtered
-  /// bilaterally before the displacement, which keeps sharp edges under strong noise. Off: the
-  /// paper's filter, bit for bit.
-  bool EdgeAware = false;
-};
-
-/// Why these parameters cannot run, in words for the user, or empty. The one check of every
-/// front end (a BilateralRun makes it first).
-std::string CheckParameters(const BilateralParameters& parameters);
-
-/// The points to filter. Arrays are interleaved x y z, NumberOfPoints triples.
-struct PointCloudView
-{
-  std::size_t NumberOfPoints = 0;
-  const double* Positions = nullptr;
-  /// Optional: each estimated normal is flipped to agree with this one.
-  const double* OrientationNormals = nullptr;
-};
 
 /// Hooks called from the calling thread while the filter runs.
 struct BilateralObserver
@@ -137,21 +68,6 @@ struct BilateralResult
   /// Neighbours visited, summed over points and iterations (the kernel's unit of work).
   std::uint64_t NumberOfNeighbourEvaluations = 0;
 };
-
-/// The automatic radius of the paper: sqrt(20 / numberOfPoints) * largestExtent.
-double AutomaticRadius(std::size_t numberOfPoints, double largestExtent);
-
-/// The extent of the finite points among a cloud's points.
-CloudExtent MeasureCloud(const PointCloudView& cloud);
-/// The extent of two parts of one cloud together.
-CloudExtent MergeExtents(const CloudExtent& a, const CloudExtent& b);
-
-/// Whether p lies in box (xmin, xmax, ymin, ymax, zmin, zmax), bounds included.
-inline bool InsideBox(const double box[6], const double p[3])
-{
-  return p[0] >= box[0] && p[0] <= box[1] && p[1] >= box[2] && p[1] <= box[3] && p[2] >= box[4] &&
-         p[2] <= box[5];
-}
 
 /**
  * One run of the filter, one iteration at a time. RunBilateralFilter is the loop over it for a

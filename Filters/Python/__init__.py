@@ -21,10 +21,10 @@ import vtkmodules.vtkIOCore  # noqa: F401
 import vtkmodules.vtkIOPLY  # noqa: F401
 import vtkmodules.vtkIOXML  # noqa: F401
 
-from .vtkFiltersPointCloudBilateral import (  # noqa: F401
+from .vtkFiltersPointCloudBilateral import vtkPointCloudBilateralFilter  # noqa: F401
+from .vtkIOPointCloudBilateral import (  # noqa: F401
     vtkLASPointCloudReader,
     vtkLASPointCloudWriter,
-    vtkPointCloudBilateralFilter,
     vtkPointCloudFileIO,
     vtkPointCloudTextReader,
     vtkPointCloudTextWriter,

@@ -15,6 +15,7 @@
 //
 //   pcb_edges [--only SUBSTRING] [--no-cgal]
 #include "BilateralFilter.h"
+#include "AutomaticRule.h"
 #include "CloudMeasurement.h"
 #include "GroundTruth.h"
 #include "SampleShapes.h"

@@ -20,6 +20,7 @@
 //       times MeasureScales against one filter iteration with the automatic radius, 1 thread,
 //       on a 600k-point cube and a 1M-point sphere (noise 0.5%).
 #include "BilateralFilter.h"
+#include "AutomaticRule.h"
 #include "CloudMeasurement.h"
 #include "GroundTruth.h"
 #include "SampleShapes.h"

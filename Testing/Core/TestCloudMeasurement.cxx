@@ -7,6 +7,7 @@
 //   TestCloudMeasurement Rule          the rule's parameters on small clouds: error to the
 //                                      true surface against the old defaults and the paper's
 #include "BilateralFilter.h"
+#include "AutomaticRule.h"
 #include "CloudMeasurement.h"
 #include "CoreTesting.h"
 #include "SampleShapes.h"

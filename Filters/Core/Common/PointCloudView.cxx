@@ -1,0 +1,70 @@
+#include "PointCloudView.h"
+
+#include <algorithm>
+
+namespace pcbilateral
+{
+
+double CloudExtent::LargestExtent() const
+{
+  return std::max(
+    { this->Max[0] - this->Min[0], this->Max[1] - this->Min[1], this->Max[2] - this->Min[2] });
+}
+
+double CloudExtent::LargestMagnitude() const
+{
+  double largest = 0.0;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    largest = std::max({ largest, std::abs(this->Min[axis]), std::abs(this->Max[axis]) });
+  }
+  return largest;
+}
+
+bool CloudExtent::IsFinite() const
+{
+  return IsFinitePoint(this->Min) && IsFinitePoint(this->Max);
+}
+
+CloudExtent MeasureCloud(const PointCloudView& cloud)
+{
+  CloudExtent extent;
+  for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
+  {
+    const double* p = cloud.Positions + 3 * i;
+    if (!IsFinitePoint(p))
+    {
+      continue;
+    }
+    const bool first = extent.NumberOfFinitePoints == 0;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      extent.Min[axis] = first ? p[axis] : std::min(extent.Min[axis], p[axis]);
+      extent.Max[axis] = first ? p[axis] : std::max(extent.Max[axis], p[axis]);
+    }
+    ++extent.NumberOfFinitePoints;
+  }
+  return extent;
+}
+
+CloudExtent MergeExtents(const CloudExtent& a, const CloudExtent& b)
+{
+  if (a.NumberOfFinitePoints == 0)
+  {
+    return b;
+  }
+  if (b.NumberOfFinitePoints == 0)
+  {
+    return a;
+  }
+  CloudExtent merged;
+  merged.NumberOfFinitePoints = a.NumberOfFinitePoints + b.NumberOfFinitePoints;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    merged.Min[axis] = std::min(a.Min[axis], b.Min[axis]);
+    merged.Max[axis] = std::max(a.Max[axis], b.Max[axis]);
+  }
+  return merged;
+}
+
+} // namespace pcbilateral

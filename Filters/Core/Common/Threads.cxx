@@ -1,0 +1,29 @@
+#include "Threads.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace pcbilateral
+{
+
+int ResolveThreadCount(int requested)
+{
+#ifdef _OPENMP
+  return requested > 0 ? requested : omp_get_max_threads();
+#else
+  (void)requested;
+  return 1;
+#endif
+}
+
+int CurrentThreadIndex()
+{
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+} // namespace pcbilateral

@@ -1,0 +1,18 @@
+// How the core's parallel loops pick and name their threads (OpenMP when built with it, one
+// thread otherwise). Plain C++17.
+#ifndef pcbilateral_Threads_h
+#define pcbilateral_Threads_h
+
+namespace pcbilateral
+{
+
+/// The number of threads a parallel loop uses for a requested number (0: all cores; 1 without
+/// OpenMP).
+int ResolveThreadCount(int requested);
+
+/// The index of the calling thread inside a parallel region (0 outside one, or without OpenMP).
+int CurrentThreadIndex();
+
+} // namespace pcbilateral
+
+#endif

@@ -1,0 +1,885 @@
+// The body of the per-point kernel (Algorithm 1), compiled once per instruction set by
+// BilateralKernelGeneric.cxx, BilateralKernelAvx2.cxx and BilateralKernelAvx512.cxx, each with
+// PCB_KERNEL_VARIANT naming its own namespace. Private to the core.
+//
+// Every build computes the same bits. What makes that true:
+// - arithmetic is element-wise IEEE double (+, -, *, /) on GCC/Clang vector types, with
+//   floating-point contraction off (no FMA), so a lane computes what a scalar would;
+// - every sum runs in Lanes partial sums (neighbour k goes to lane k % Lanes) that are added in a
+//   fixed tree at the end, whatever the hardware vector width;
+// - the exponential is this file's own (no libm call, whose last bit differs between libm
+//   versions and between its FMA and non-FMA code paths).
+// Nothing here may call out-of-line C++ library templates: this header is compiled with
+// instruction sets the machine may lack, and such a template instantiated here could be the
+// copy the linker keeps for the whole program.
+#ifndef PCB_KERNEL_VARIANT
+#error "define PCB_KERNEL_VARIANT (the namespace of this build) before including this file"
+#endif
+
+#include "BilateralKernel.h"
+#include "BitOperations.h"
+
+#include <cstdint>
+#include <cstring>
+
+#if defined(__AVX512F__) || defined(__AVX2__)
+#include <immintrin.h>
+#elif defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace pcbilateral
+{
+namespace PCB_KERNEL_VARIANT
+{
+
+constexpr std::size_t Lanes = KernelLanes;
+typedef double DoubleLanes __attribute__((vector_size(Lanes * sizeof(double))));
+typedef std::int64_t IntLanes __attribute__((vector_size(Lanes * sizeof(double))));
+typedef std::uint64_t BitsLanes __attribute__((vector_size(Lanes * sizeof(double))));
+
+inline DoubleLanes Load(const double* values)
+{
+  DoubleLanes lanes;
+  std::memcpy(&lanes, values, sizeof(lanes));
+  return lanes;
+}
+
+inline void Store(double* values, DoubleLanes lanes)
+{
+  std::memcpy(values, &lanes, sizeof(lanes));
+}
+
+/// a where the mask is set (all ones), b elsewhere.
+inline DoubleLanes Select(IntLanes mask, DoubleLanes a, DoubleLanes b)
+{
+  return (DoubleLanes)((mask & (IntLanes)a) | (~mask & (IntLanes)b));
+}
+
+/// All ones in the lanes where a < b (false for NaN), zero elsewhere.
+inline IntLanes Less(DoubleLanes a, DoubleLanes b)
+{
+#if defined(__AVX2__) && !defined(__AVX512F__)
+  // GCC compiles the vector comparison below one lane at a time for AVX2 (a scalar compare and
+  // a conditional move per lane, which made the AVX2 build as slow as the SSE2 one); two AVX
+  // comparisons give the same masks.
+  __m256d halves[2], bounds[2];
+  std::memcpy(halves, &a, sizeof(halves));
+  std::memcpy(bounds, &b, sizeof(bounds));
+  halves[0] = _mm256_cmp_pd(halves[0], bounds[0], _CMP_LT_OQ);
+  halves[1] = _mm256_cmp_pd(halves[1], bounds[1], _CMP_LT_OQ);
+  IntLanes mask;
+  std::memcpy(&mask, halves, sizeof(mask));
+  return mask;
+#else
+  return (IntLanes)(a < b);
+#endif
+}
+
+/// All ones in the lanes where x < limit, zero elsewhere.
+inline IntLanes LessThan(DoubleLanes x, double limit)
+{
+  const DoubleLanes zero = {};
+  return Less(x, zero + limit);
+}
+
+/// The sum of the lanes, in a fixed tree: the same bits for any vector width.
+inline double SumLanes(DoubleLanes lanes)
+{
+  static_assert(Lanes == 8, "the tree below adds 8 lanes");
+  return ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])) +
+         ((lanes[4] + lanes[5]) + (lanes[6] + lanes[7]));
+}
+
+/**
+ * exp(x) for x <= 0, -inf included, within 1 ulp: exp(x) = 2^k exp(r) with r = x - k ln2 in
+ * [-ln2/2, ln2/2], exp(r) by its Taylor polynomial of degree 13 (remainder below 0.1 ulp), 2^k
+ * put in the exponent bits. Results below 2^-1021 (x < -708) are 0: the kernel's weights are
+ * summed with the point's own weight exp(0) = 1, next to which they vanish.
+ *
+ * Constants: 1/ln2 and 1/k! are the doubles nearest to them; ln2 = Ln2High + Ln2Low with
+ * Ln2High rounded to 28 significant bits, so that k * Ln2High is exact for any k here.
+ */
+inline DoubleLanes ExpOfNonPositive(DoubleLanes x)
+{
+  constexpr double InverseLn2 = 0x1.71547652b82fep+0;
+  constexpr double Ln2High = 0x1.62e42ffp-1;
+  constexpr double Ln2Low = -0x1.718432a1b0e26p-35;
+  // Adding 1.5 * 2^52 rounds to an integer and leaves it in the low bits of the mantissa.
+  constexpr double RoundingShift = 0x1.8p52;
+  constexpr double Lowest = -708.0;
+
+  const DoubleLanes zero = {};
+  const IntLanes underflows = LessThan(x, Lowest);
+  x = Select(underflows, zero + Lowest, x); // also turns -inf into a finite number
+  const DoubleLanes shifted = x * InverseLn2 + RoundingShift;
+  const DoubleLanes k = shifted - RoundingShift;
+  const DoubleLanes r = (x - k * Ln2High) - k * Ln2Low;
+
+  // exp(r) = 1 + (r + tail), the tail (r^2/2! to r^13/13!) by Estrin's scheme: a tree four
+  // products deep instead of Horner's chain of thirteen, so that consecutive vectors overlap in
+  // the pipeline. Adding the large terms last keeps the rounding errors below one ulp.
+  const DoubleLanes r2 = r * r;
+  const DoubleLanes r4 = r2 * r2;
+  const DoubleLanes r8 = r4 * r4;
+  const DoubleLanes c23 = r * 0x1.5555555555555p-3 + 0.5;                      // 1/2!, 1/3!
+  const DoubleLanes c45 = r * 0x1.1111111111111p-7 + 0x1.5555555555555p-5;     // 1/4!, 1/5!
+  const DoubleLanes c67 = r * 0x1.a01a01a01a01ap-13 + 0x1.6c16c16c16c17p-10;   // 1/6!, 1/7!
+  const DoubleLanes c89 = r * 0x1.71de3a556c734p-19 + 0x1.a01a01a01a01ap-16;   // 1/8!, 1/9!
+  const DoubleLanes c1011 = r * 0x1.ae64567f544e4p-26 + 0x1.27e4fb7789f5cp-22; // 1/10!, 1/11!
+  const DoubleLanes c1213 = r * 0x1.6124613a86d09p-33 + 0x1.1eed8eff8d898p-29; // 1/12!, 1/13!
+  const DoubleLanes c47 = c67 * r2 + c45;
+  const DoubleLanes c813 = (c1213 * r4 + (c1011 * r2 + c89));
+  const DoubleLanes tail = c23 * r2 + (c47 * r4 + c813 * r8);
+  const DoubleLanes p = (r + tail) + 1.0;
+
+  // 2^k: k sits in the low bits of `shifted`; the biased exponent k + 1023 goes in bits 52-62.
+  constexpr std::int64_t ShiftBits = 0x4338000000000000LL; // the bits of RoundingShift
+  const IntLanes exponent = (IntLanes)shifted - ShiftBits + 1023;
+  const DoubleLanes scale = (DoubleLanes)((BitsLanes)exponent << 52);
+  return Select(underflows, zero, p * scale);
+}
+
+/**
+ * Packs the candidates [begin, end) of x, y, z with |q - p|^2 < r^2, in candidate order, after
+ * the `count` neighbours already packed: their offsets q - p to dx, dy, dz and, when
+ * WithIndices, their candidate indices to index. The arrays need room for
+ * count + (end - begin) + Lanes values. Returns the new count. Shared by the paper's kernel
+ * (FilterPoint, without indices) and the edge-aware mode's step 1 (with them), so that both
+ * compute their offsets and distances the same way.
+ */
+template<bool WithIndices>
+inline std::size_t PackNeighbours(const double p[3],
+  const double* x,
+  const double* y,
+  const double* z,
+  std::size_t begin,
+  std::size_t end,
+  double radiusSquared,
+  double* dx,
+  double* dy,
+  double* dz,
+  std::uint32_t* index,
+  std::size_t count)
+{
+#if defined(__AVX512F__)
+  // Eight candidates at a time, the neighbours (and their indices) packed with a compress each.
+  const __m512d px = _mm512_set1_pd(p[0]);
+  const __m512d py = _mm512_set1_pd(p[1]);
+  const __m512d pz = _mm512_set1_pd(p[2]);
+  const __m512d limit = _mm512_set1_pd(radiusSquared);
+  for (std::size_t j = begin; j < end; j += 8)
+  {
+    const std::size_t left = end - j;
+    const __mmask8 valid = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
+    const __m512d ox = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, x + j), px);
+    const __m512d oy = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, y + j), py);
+    const __m512d oz = _mm512_sub_pd(_mm512_maskz_loadu_pd(valid, z + j), pz);
+    const __m512d d2 = _mm512_add_pd(
+      _mm512_add_pd(_mm512_mul_pd(ox, ox), _mm512_mul_pd(oy, oy)), _mm512_mul_pd(oz, oz));
+    const __mmask8 inside = _mm512_mask_cmp_pd_mask(valid, d2, limit, _CMP_LT_OQ);
+    _mm512_storeu_pd(dx + count, _mm512_maskz_compress_pd(inside, ox));
+    _mm512_storeu_pd(dy + count, _mm512_maskz_compress_pd(inside, oy));
+    _mm512_storeu_pd(dz + count, _mm512_maskz_compress_pd(inside, oz));
+    if constexpr (WithIndices)
+    {
+      const __m256i indices = _mm256_add_epi32(
+        _mm256_set1_epi32(static_cast<int>(j)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+      _mm256_storeu_si256(
+        reinterpret_cast<__m256i*>(index + count), _mm256_maskz_compress_epi32(inside, indices));
+    }
+    count += static_cast<std::size_t>(PopCount(inside));
+  }
+#else
+  // Without a branch per candidate: most candidates are not neighbours, and a branch on that
+  // is mispredicted often. Every candidate is written, and kept by advancing only for a
+  // neighbour.
+  const double px = p[0], py = p[1], pz = p[2];
+  for (std::size_t j = begin; j < end; ++j)
+  {
+    const double ox = x[j] - px;
+    const double oy = y[j] - py;
+    const double oz = z[j] - pz;
+    const double d2 = (ox * ox + oy * oy) + oz * oz;
+    dx[count] = ox;
+    dy[count] = oy;
+    dz[count] = oz;
+    if constexpr (WithIndices)
+    {
+      index[count] = static_cast<std::uint32_t>(j);
+    }
+    count += d2 < radiusSquared ? 1 : 0;
+  }
+#endif
+  return count;
+}
+
+/**
+ * Copies, in order, the points [0, count) of sx, sy, sz whose squared distance to the box
+ * [low, high] is below reachSquared to x, y, z. Returns their number.
+ */
+std::size_t CopyNearBox(const double* sx,
+  const double* sy,
+  const double* sz,
+  std::size_t count,
+  const double low[3],
+  const double high[3],
+  double reachSquared,
+  double* x,
+  double* y,
+  double* z)
+{
+  std::size_t kept = 0;
+#if defined(__AVX512F__)
+  const __m512d zero = _mm512_setzero_pd();
+  const __m512d lowX = _mm512_set1_pd(low[0]), highX = _mm512_set1_pd(high[0]);
+  const __m512d lowY = _mm512_set1_pd(low[1]), highY = _mm512_set1_pd(high[1]);
+  const __m512d lowZ = _mm512_set1_pd(low[2]), highZ = _mm512_set1_pd(high[2]);
+  const __m512d limit = _mm512_set1_pd(reachSquared);
+  for (std::size_t j = 0; j < count; j += 8)
+  {
+    const std::size_t left = count - j;
+    const __mmask8 valid = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
+    const __m512d qx = _mm512_maskz_loadu_pd(valid, sx + j);
+    const __m512d qy = _mm512_maskz_loadu_pd(valid, sy + j);
+    const __m512d qz = _mm512_maskz_loadu_pd(valid, sz + j);
+    const __m512d gx =
+      _mm512_max_pd(_mm512_max_pd(_mm512_sub_pd(lowX, qx), _mm512_sub_pd(qx, highX)), zero);
+    const __m512d gy =
+      _mm512_max_pd(_mm512_max_pd(_mm512_sub_pd(lowY, qy), _mm512_sub_pd(qy, highY)), zero);
+    const __m512d gz =
+      _mm512_max_pd(_mm512_max_pd(_mm512_sub_pd(lowZ, qz), _mm512_sub_pd(qz, highZ)), zero);
+    const __m512d d2 = _mm512_add_pd(
+      _mm512_add_pd(_mm512_mul_pd(gx, gx), _mm512_mul_pd(gy, gy)), _mm512_mul_pd(gz, gz));
+    const __mmask8 near = _mm512_mask_cmp_pd_mask(valid, d2, limit, _CMP_LT_OQ);
+    const int found = PopCount(near);
+    const __mmask8 stored = static_cast<__mmask8>(0xFFu >> (8 - found));
+    _mm512_mask_storeu_pd(x + kept, stored, _mm512_maskz_compress_pd(near, qx));
+    _mm512_mask_storeu_pd(y + kept, stored, _mm512_maskz_compress_pd(near, qy));
+    _mm512_mask_storeu_pd(z + kept, stored, _mm512_maskz_compress_pd(near, qz));
+    kept += static_cast<std::size_t>(found);
+  }
+#else
+  for (std::size_t j = 0; j < count; ++j)
+  {
+    const double q[3] = { sx[j], sy[j], sz[j] };
+    double d2 = 0.0;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      const double below = low[axis] - q[axis], above = q[axis] - high[axis];
+      const double gap = below > above ? below : above;
+      d2 += gap > 0.0 ? gap * gap : 0.0;
+    }
+    // Written whatever the test says, kept by advancing: no branch to mispredict.
+    x[kept] = q[0];
+    y[kept] = q[1];
+    z[kept] = q[2];
+    kept += d2 < reachSquared ? 1 : 0;
+  }
+#endif
+  return kept;
+}
+
+/// The weighted sums of pass 1 (see FilterPoint), one partial sum per lane.
+struct DistanceMoments
+{
+  DoubleLanes WeightSum, FirstX, FirstY, FirstZ, XX, XY, XZ, YY, YZ, ZZ;
+};
+
+/**
+ * Pass 1 over `padded` packed offsets (a multiple of Lanes): the distance weights, stored for
+ * pass 2, and the weighted first and second moments of the offsets q - p, for the regression
+ * plane. Shared by FilterPoint and ArithmeticFloor, so that the floor times this very code.
+ */
+inline DistanceMoments AccumulateDistanceMoments(const double* dx,
+  const double* dy,
+  const double* dz,
+  std::size_t padded,
+  double distanceScale,
+  double* distanceWeight)
+{
+  const DoubleLanes zero = {};
+  DoubleLanes weightSum = zero, firstX = zero, firstY = zero, firstZ = zero;
+  DoubleLanes xx = zero, xy = zero, xz = zero, yy = zero, yz = zero, zz = zero;
+  for (std::size_t k = 0; k < padded; k += Lanes)
+  {
+    const DoubleLanes ox = Load(dx + k);
+    const DoubleLanes oy = Load(dy + k);
+    const DoubleLanes oz = Load(dz + k);
+    // The squared distance again, as PackNeighbours computed it: cheaper than packing it.
+    const DoubleLanes distanceSquared = (ox * ox + oy * oy) + oz * oz;
+    const DoubleLanes w = ExpOfNonPositive(-distanceSquared * distanceScale);
+    Store(distanceWeight + k, w);
+    weightSum += w;
+    const DoubleLanes wx = w * ox, wy = w * oy, wz = w * oz;
+    firstX += wx;
+    firstY += wy;
+    firstZ += wz;
+    xx += wx * ox;
+    xy += wx * oy;
+    xz += wx * oz;
+    yy += wy * oy;
+    yz += wy * oz;
+    zz += wz * oz;
+  }
+  return DistanceMoments{ weightSum, firstX, firstY, firstZ, xx, xy, xz, yy, yz, zz };
+}
+
+/**
+ * The weighted covariance (xx, xy, xz, yy, yz, zz) of pass 1's moments, whose smallest
+ * eigenvector is the regression plane's normal. Returns false (covariance untouched) when the
+ * weights sum to zero.
+ */
+inline bool RegressionCovariance(const DistanceMoments& m, double covariance[6])
+{
+  const double totalWeight = SumLanes(m.WeightSum);
+  if (!(totalWeight > 0.0))
+  {
+    return false;
+  }
+  // Weighted covariance about the weighted mean; the offsets are small, so the one-pass form
+  // loses nothing that matters next to the noise it measures.
+  const double mean[3] = { SumLanes(m.FirstX) / totalWeight,
+    SumLanes(m.FirstY) / totalWeight,
+    SumLanes(m.FirstZ) / totalWeight };
+  covariance[0] = SumLanes(m.XX) / totalWeight - mean[0] * mean[0];
+  covariance[1] = SumLanes(m.XY) / totalWeight - mean[0] * mean[1];
+  covariance[2] = SumLanes(m.XZ) / totalWeight - mean[0] * mean[2];
+  covariance[3] = SumLanes(m.YY) / totalWeight - mean[1] * mean[1];
+  covariance[4] = SumLanes(m.YZ) / totalWeight - mean[1] * mean[2];
+  covariance[5] = SumLanes(m.ZZ) / totalWeight - mean[2] * mean[2];
+  return true;
+}
+
+/**
+ * The normal of the weighted regression plane of pass 1's moments. Returns false (n untouched)
+ * when the weights sum to zero.
+ */
+inline bool RegressionNormal(const DistanceMoments& m, double n[3])
+{
+  double covariance[6];
+  if (!RegressionCovariance(m, covariance))
+  {
+    return false;
+  }
+  SmallestEigenvector(covariance, n);
+  return true;
+}
+
+/// |x|, by clearing the sign bit.
+inline DoubleLanes Abs(DoubleLanes x)
+{
+  const BitsLanes zero = {};
+  const BitsLanes magnitude = zero + ~(std::uint64_t(1) << 63);
+  return (DoubleLanes)((BitsLanes)x & magnitude);
+}
+
+/// Lane-wise square root, rounded as IEEE 754 requires (the scalar std::sqrt's bits).
+inline DoubleLanes Sqrt(DoubleLanes x)
+{
+#if defined(__AVX512F__)
+  __m512d lanes;
+  std::memcpy(&lanes, &x, sizeof(lanes));
+  lanes = _mm512_sqrt_pd(lanes);
+  std::memcpy(&x, &lanes, sizeof(x));
+#elif defined(__AVX2__)
+  __m256d halves[2];
+  std::memcpy(halves, &x, sizeof(halves));
+  halves[0] = _mm256_sqrt_pd(halves[0]);
+  halves[1] = _mm256_sqrt_pd(halves[1]);
+  std::memcpy(&x, halves, sizeof(x));
+#elif defined(__SSE2__)
+  __m128d quarters[4];
+  std::memcpy(quarters, &x, sizeof(quarters));
+  for (__m128d& quarter : quarters)
+  {
+    quarter = _mm_sqrt_pd(quarter);
+  }
+  std::memcpy(&x, quarters, sizeof(x));
+#else
+  for (std::size_t lane = 0; lane < Lanes; ++lane)
+  {
+    x[lane] = std::sqrt(x[lane]);
+  }
+#endif
+  return x;
+}
+
+#include "SymmetricEigensolverSteps.h"
+
+/**
+ * SmallestEigenvector (SymmetricEigensolver.h) for Lanes matrices at once, one per lane, with the
+ * same steps (SymmetricEigensolverSteps.h), so the same bits. Entries are by lane
+ * (covariance[k][lane]). Returns the lanes whose matrix takes one of the scalar function's other
+ * paths (no spread, a NaN or infinity, two smallest eigenvalues that meet, parallel rows): their
+ * vectors here are meaningless, and the caller solves them with the scalar function.
+ */
+inline IntLanes SmallestEigenvectors(const double (*covariance)[Lanes],
+  double (*eigenvector)[Lanes])
+{
+  const DoubleLanes zero = {};
+  const DoubleLanes c[6] = { Load(covariance[0]),
+    Load(covariance[1]),
+    Load(covariance[2]),
+    Load(covariance[3]),
+    Load(covariance[4]),
+    Load(covariance[5]) };
+  DoubleLanes b[6];
+  const DoubleLanes scale = CenteredMatrix(c, b);
+  IntLanes scalar = ~(Less(zero, scale) & Less(scale, zero + HUGE_VAL));
+  DoubleLanes p;
+  const DoubleLanes e = SmallestRootOffset(CubicCosine(b, scale, p));
+  scalar |= Less(e, zero + MeetingEigenvalueRoots);
+  DoubleLanes best[3];
+  const DoubleLanes bestNorm = EigenvectorFromRows(b, -p * (1.0 + 2.0 * e), best);
+  scalar |= ~Less(zero, bestNorm);
+  const DoubleLanes length = Sqrt(bestNorm);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    Store(eigenvector[axis], best[axis] / length);
+  }
+  return scalar;
+}
+
+/**
+ * The smallest eigenvectors of the matrices of the lanes marked in `solve` (others are left
+ * alone), given by lane (covariance[k][lane]), each with SmallestEigenvector's bits: side by
+ * side (SmallestEigenvectors), and those it flags through the scalar solver. A single matrix
+ * goes straight to the scalar solver, which is then as fast and does not compute 8 lanes.
+ */
+inline void SolveNormals(const double (*covariance)[Lanes],
+  const bool* solve,
+  double (*normal)[Lanes])
+{
+  std::size_t count = 0;
+  for (std::size_t lane = 0; lane < Lanes; ++lane)
+  {
+    count += solve[lane] ? 1 : 0;
+  }
+  IntLanes scalar = {};
+  if (count > 1)
+  {
+    scalar = SmallestEigenvectors(covariance, normal);
+  }
+  for (std::size_t lane = 0; lane < Lanes; ++lane)
+  {
+    if (solve[lane] && (count == 1 || scalar[lane]))
+    {
+      const double matrix[6] = { covariance[0][lane],
+        covariance[1][lane],
+        covariance[2][lane],
+        covariance[3][lane],
+        covariance[4][lane],
+        covariance[5][lane] };
+      double n[3];
+      SmallestEigenvector(matrix, n);
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        normal[axis][lane] = n[axis];
+      }
+    }
+  }
+}
+
+/// Pass 2 over the same offsets: the sums of the bilateral weights and of the weighted heights
+/// h = <n, q - p>, one partial sum per lane.
+inline void AccumulateBilateralHeights(const double* dx,
+  const double* dy,
+  const double* dz,
+  const double* distanceWeight,
+  std::size_t padded,
+  const double n[3],
+  double normalScale,
+  DoubleLanes& bilateralWeightSum,
+  DoubleLanes& weightedHeightSum)
+{
+  const DoubleLanes zero = {};
+  bilateralWeightSum = zero;
+  weightedHeightSum = zero;
+  for (std::size_t k = 0; k < padded; k += Lanes)
+  {
+    const DoubleLanes h = (Load(dx + k) * n[0] + Load(dy + k) * n[1]) + Load(dz + k) * n[2];
+    const DoubleLanes w = Load(distanceWeight + k) * ExpOfNonPositive(-(h * h) * normalScale);
+    bilateralWeightSum += w;
+    weightedHeightSum += w * h;
+  }
+}
+
+/// Algorithm 1 for `pointCount` points (at most Lanes) against the same candidates (see
+/// FilterPoints in BilateralKernel.h), the entry point of this build (declared in
+/// BilateralKernel.cxx): pass 1 for each point, their eigenvectors side by side, pass 2 for each.
+/// `results` arrive zeroed: a point does not move unless this says so.
+void FilterPoints(const double (*points)[3],
+  std::size_t pointCount,
+  const double* x,
+  const double* y,
+  const double* z,
+  std::size_t count,
+  const KernelConstants& constants,
+  const KernelScratch* scratch,
+  FilteredPoint* results)
+{
+  // Pass 1 for each point: its neighbours, their distance weights and the covariance of the
+  // weighted regression plane, by lane. Lanes without a plane keep a zero matrix, which the
+  // eigensolver below flags (no spread) and which is never read.
+  std::size_t padded[Lanes] = {};
+  bool planed[Lanes] = {};
+  double covariance[6][Lanes] = {};
+  for (std::size_t point = 0; point < pointCount; ++point)
+  {
+    const KernelScratch& own = scratch[point];
+    const std::size_t neighbours = PackNeighbours<false>(points[point],
+      x,
+      y,
+      z,
+      0,
+      count,
+      constants.RadiusSquared,
+      own.Dx,
+      own.Dy,
+      own.Dz,
+      nullptr,
+      0);
+    results[point].NeighbourCount = static_cast<std::uint32_t>(neighbours);
+    if (neighbours < MinimumNeighbourCount)
+    {
+      continue;
+    }
+    // Pad to whole vectors with neighbours so far away that their squared distance overflows
+    // to infinity: their weights are exp(-inf) = 0, and they add exact zeros to every sum (the
+    // offsets are finite, so no 0 x inf).
+    padded[point] = (neighbours + Lanes - 1) / Lanes * Lanes;
+    for (std::size_t k = neighbours; k < padded[point]; ++k)
+    {
+      own.Dx[k] = own.Dy[k] = own.Dz[k] = 1e300;
+    }
+    double planeCovariance[6];
+    planed[point] = RegressionCovariance(
+      AccumulateDistanceMoments(
+        own.Dx, own.Dy, own.Dz, padded[point], constants.DistanceScale, own.DistanceWeight),
+      planeCovariance);
+    for (int entry = 0; entry < 6 && planed[point]; ++entry)
+    {
+      covariance[entry][point] = planeCovariance[entry];
+    }
+  }
+
+  // The regression planes' normals, one point per lane.
+  double normals[3][Lanes];
+  SolveNormals(covariance, planed, normals);
+
+  // Pass 2 for each point: the bilateral average of the heights h = <n, q - p> over the same
+  // neighbours.
+  for (std::size_t point = 0; point < pointCount; ++point)
+  {
+    if (!planed[point])
+    {
+      continue;
+    }
+    const double n[3] = { normals[0][point], normals[1][point], normals[2][point] };
+    const KernelScratch& own = scratch[point];
+    DoubleLanes bilateralWeightSum, weightedHeightSum;
+    AccumulateBilateralHeights(own.Dx,
+      own.Dy,
+      own.Dz,
+      own.DistanceWeight,
+      padded[point],
+      n,
+      constants.NormalScale,
+      bilateralWeightSum,
+      weightedHeightSum);
+    const double totalBilateralWeight = SumLanes(bilateralWeightSum);
+    if (!(totalBilateralWeight > 0.0))
+    {
+      continue;
+    }
+    FilteredPoint& result = results[point];
+    result.Displacement = SumLanes(weightedHeightSum) / totalBilateralWeight;
+    result.Normal[0] = n[0];
+    result.Normal[1] = n[1];
+    result.Normal[2] = n[2];
+    result.Filtered = true;
+  }
+}
+
+/// The kernel's arithmetic alone (see KernelArithmetic in BilateralKernel.h): both passes over
+/// packed neighbours with a given normal, without selection, padding or eigensolver.
+double ArithmeticFloor(const double* dx,
+  const double* dy,
+  const double* dz,
+  std::size_t padded,
+  const KernelConstants& constants,
+  const double n[3],
+  double* distanceWeight)
+{
+  const DistanceMoments m =
+    AccumulateDistanceMoments(dx, dy, dz, padded, constants.DistanceScale, distanceWeight);
+  DoubleLanes bilateralWeightSum, weightedHeightSum;
+  AccumulateBilateralHeights(dx,
+    dy,
+    dz,
+    distanceWeight,
+    padded,
+    n,
+    constants.NormalScale,
+    bilateralWeightSum,
+    weightedHeightSum);
+  // Every sum reaches the result, so that none of the arithmetic can be left out.
+  const DoubleLanes all = ((m.WeightSum + m.FirstX) + (m.FirstY + m.FirstZ)) +
+                          ((m.XX + m.XY) + (m.XZ + m.YY)) +
+                          ((m.YZ + m.ZZ) + (bilateralWeightSum + weightedHeightSum));
+  return SumLanes(all);
+}
+
+// The edge-aware mode's per-point arithmetic (EdgeAwareNormals.h), in this build: the same
+// lanes, fixed sum tree and exponential as the paper's kernel above, so the same bits in every
+// build. Its arrays of packed neighbours hold whole vectors: a count is padded up to a multiple
+// of Lanes with neighbours that add exact zeros to every sum (see PadNeighbours).
+
+/**
+ * Pads `count` packed neighbours up to whole vectors with neighbours so far away that their
+ * squared distance overflows to infinity (weight exp(-inf) = 0, exact zeros in every sum, as in
+ * FilterPoint). Steps 2 and 3 pad the same way, with a zero normal (a finite agreement
+ * exponent). Returns the padded count.
+ */
+inline std::size_t PadNeighbours(double* dx, double* dy, double* dz, std::size_t count)
+{
+  const std::size_t padded = (count + Lanes - 1) / Lanes * Lanes;
+  for (std::size_t k = count; k < padded; ++k)
+  {
+    dx[k] = dy[k] = dz[k] = 1e300;
+  }
+  return padded;
+}
+
+/**
+ * Step 1 for a point whose `count` neighbours PackNeighbours<true> packed (room for Lanes more):
+ * the paper's regression plane normal, weighted by exp(-|q - p|^2 * distanceScale), with the
+ * kernel's own pass 1. Returns false (n untouched) when the weights sum to zero.
+ */
+bool EdgeAwarePlaneNormal(double* dx,
+  double* dy,
+  double* dz,
+  std::size_t count,
+  double distanceScale,
+  double* distanceWeight,
+  double n[3])
+{
+  const std::size_t padded = PadNeighbours(dx, dy, dz, count);
+  return RegressionNormal(
+    AccumulateDistanceMoments(dx, dy, dz, padded, distanceScale, distanceWeight), n);
+}
+
+/// The exponent of the agreement weight of two unit normals of cosine c: -((1 - |c|) s)^2, with
+/// s = 1 / (1 - cos theta).
+inline DoubleLanes AgreementExponent(DoubleLanes cosine, double agreementScale)
+{
+  const DoubleLanes gap = (1.0 - Abs(cosine)) * agreementScale;
+  return -(gap * gap);
+}
+
+/// Neighbours k to k + Lanes - 1 of a list of sorted indices, for steps 2 and 3.
+struct NeighbourLanes
+{
+  DoubleLanes Dx, Dy, Dz, Nx, Ny, Nz;
+};
+
+/**
+ * Loads neighbours k to k + Lanes - 1 of `neighbours`: their offsets q - p
+ * from the sorted coordinates x, y, z (computed as PackNeighbours does: the same bits) and their
+ * normals. The lanes past the last neighbour are padding, as in PadNeighbours.
+ */
+inline NeighbourLanes LoadNeighbours(const double p[3],
+  const SortedNeighbours& neighbours,
+  std::size_t k)
+{
+  NeighbourLanes lanes;
+  const std::uint32_t* index = neighbours.Index;
+  const std::size_t count = neighbours.Count;
+  const double *x = neighbours.X, *y = neighbours.Y, *z = neighbours.Z;
+  const double* normals = neighbours.Normals;
+#if defined(__AVX512F__)
+  // Hardware gathers, no packed copy in memory.
+  const std::size_t left = count - k;
+  const __mmask8 valid = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
+  const __m256i j = _mm256_maskz_loadu_epi32(valid, index + k);
+  const __m256i j3 = _mm256_add_epi32(_mm256_add_epi32(j, j), j);
+  const __m512d far = _mm512_set1_pd(1e300);
+  const __m512d none = _mm512_setzero_pd();
+  const __m512d ox =
+    _mm512_sub_pd(_mm512_mask_i32gather_pd(none, valid, j, x, 8), _mm512_set1_pd(p[0]));
+  const __m512d oy =
+    _mm512_sub_pd(_mm512_mask_i32gather_pd(none, valid, j, y, 8), _mm512_set1_pd(p[1]));
+  const __m512d oz =
+    _mm512_sub_pd(_mm512_mask_i32gather_pd(none, valid, j, z, 8), _mm512_set1_pd(p[2]));
+  lanes.Dx = (DoubleLanes)_mm512_mask_blend_pd(valid, far, ox);
+  lanes.Dy = (DoubleLanes)_mm512_mask_blend_pd(valid, far, oy);
+  lanes.Dz = (DoubleLanes)_mm512_mask_blend_pd(valid, far, oz);
+  lanes.Nx = (DoubleLanes)_mm512_mask_i32gather_pd(none, valid, j3, normals, 8);
+  lanes.Ny = (DoubleLanes)_mm512_mask_i32gather_pd(none, valid, j3, normals + 1, 8);
+  lanes.Nz = (DoubleLanes)_mm512_mask_i32gather_pd(none, valid, j3, normals + 2, 8);
+#else
+  double values[6][Lanes];
+  const double px = p[0], py = p[1], pz = p[2];
+  for (std::size_t lane = 0; lane < Lanes; ++lane)
+  {
+    if (k + lane < count)
+    {
+      const std::size_t j = index[k + lane];
+      values[0][lane] = x[j] - px;
+      values[1][lane] = y[j] - py;
+      values[2][lane] = z[j] - pz;
+      values[3][lane] = normals[3 * j];
+      values[4][lane] = normals[3 * j + 1];
+      values[5][lane] = normals[3 * j + 2];
+    }
+    else
+    {
+      values[0][lane] = values[1][lane] = values[2][lane] = 1e300;
+      values[3][lane] = values[4][lane] = values[5][lane] = 0.0;
+    }
+  }
+  lanes.Dx = Load(values[0]);
+  lanes.Dy = Load(values[1]);
+  lanes.Dz = Load(values[2]);
+  lanes.Nx = Load(values[3]);
+  lanes.Ny = Load(values[4]);
+  lanes.Nz = Load(values[5]);
+#endif
+  return lanes;
+}
+
+/**
+ * Step 2 for sorted point p of normal `own` over its neighbours: the sum of exp(-|q - p|^2 *
+ * distanceScale) psi(own, n_j) sign(own . n_j) n_j.
+ */
+void EdgeAwareNormalSum(const double p[3],
+  const SortedNeighbours& neighbours,
+  const double own[3],
+  double distanceScale,
+  double agreementScale,
+  double sum[3])
+{
+  const DoubleLanes zero = {};
+  DoubleLanes sumX = zero, sumY = zero, sumZ = zero;
+  for (std::size_t k = 0; k < neighbours.Count; k += Lanes)
+  {
+    const NeighbourLanes q = LoadNeighbours(p, neighbours, k);
+    const DoubleLanes distanceSquared = (q.Dx * q.Dx + q.Dy * q.Dy) + q.Dz * q.Dz;
+    const DoubleLanes cosine = (q.Nx * own[0] + q.Ny * own[1]) + q.Nz * own[2];
+    const DoubleLanes w = ExpOfNonPositive(
+      -distanceSquared * distanceScale + AgreementExponent(cosine, agreementScale));
+    // The fitted normals are not oriented: a neighbour's counts with the sign of the cosine.
+    const DoubleLanes signedWeight = Select(LessThan(cosine, 0.0), -w, w);
+    sumX += signedWeight * q.Nx;
+    sumY += signedWeight * q.Ny;
+    sumZ += signedWeight * q.Nz;
+  }
+  sum[0] = SumLanes(sumX);
+  sum[1] = SumLanes(sumY);
+  sum[2] = SumLanes(sumZ);
+}
+
+/**
+ * Step 3 for sorted point p of filtered normal m over its neighbours (with their filtered
+ * normals): the sums of the weights
+ * exp(-|q - p|^2 * distanceScale - h^2 * normalScale) psi(m, m_j) and of the weighted heights
+ * h = <(m + s m_j) / 2, q - p>, s the sign of m . m_j.
+ *
+ * The height is measured along the mean of the two normals rather than along m alone: the chord
+ * q - p between two points of a sphere is orthogonal to the sum of their normals, and on any
+ * smooth surface the error is of third order in |q - p| (second order along m alone). So a
+ * curved surface is not shrunk (the paper's mean height of the neighbours lies inside a convex
+ * surface), while on a plane the two normals agree and h is the paper's.
+ */
+void EdgeAwareHeightSums(const double p[3],
+  const SortedNeighbours& neighbours,
+  const double m[3],
+  double distanceScale,
+  double normalScale,
+  double agreementScale,
+  double& weightSum,
+  double& weightedHeightSum)
+{
+  const DoubleLanes zero = {};
+  DoubleLanes weights = zero, heights = zero;
+  for (std::size_t k = 0; k < neighbours.Count; k += Lanes)
+  {
+    const NeighbourLanes q = LoadNeighbours(p, neighbours, k);
+    const DoubleLanes distanceSquared = (q.Dx * q.Dx + q.Dy * q.Dy) + q.Dz * q.Dz;
+    const DoubleLanes cosine = (q.Nx * m[0] + q.Ny * m[1]) + q.Nz * m[2];
+    // The neighbour's normal turned to agree with m (the normals are not oriented).
+    const IntLanes opposite = LessThan(cosine, 0.0);
+    const DoubleLanes nx = Select(opposite, -q.Nx, q.Nx);
+    const DoubleLanes ny = Select(opposite, -q.Ny, q.Ny);
+    const DoubleLanes nz = Select(opposite, -q.Nz, q.Nz);
+    const DoubleLanes h = ((q.Dx * (nx + m[0]) + q.Dy * (ny + m[1])) + q.Dz * (nz + m[2])) * 0.5;
+    const DoubleLanes w =
+      ExpOfNonPositive((-distanceSquared * distanceScale - (h * h) * normalScale) +
+                       AgreementExponent(cosine, agreementScale));
+    weights += w;
+    heights += w * h;
+  }
+  weightSum = SumLanes(weights);
+  weightedHeightSum = SumLanes(heights);
+}
+
+/// This build's edge-aware functions (declared in BilateralKernel.cxx).
+EdgeAwareKernel MakeEdgeAwareKernel()
+{
+  EdgeAwareKernel kernel;
+  kernel.Select = &PackNeighbours<true>;
+  kernel.PlaneNormal = &EdgeAwarePlaneNormal;
+  kernel.NormalSum = &EdgeAwareNormalSum;
+  kernel.HeightSums = &EdgeAwareHeightSums;
+  return kernel;
+}
+
+/// The eigensolver of FilterPoints in this build, for the tests: `count` matrices (6 entries
+/// each, as SmallestEigenvector takes them) solved Lanes at a time.
+void SmallestEigenvectorsOfMatrices(const double* matrices, double* eigenvectors, std::size_t count)
+{
+  for (std::size_t first = 0; first < count; first += Lanes)
+  {
+    double covariance[6][Lanes] = {};
+    double normal[3][Lanes];
+    const std::size_t lanes = count - first < Lanes ? count - first : Lanes;
+    for (std::size_t lane = 0; lane < lanes; ++lane)
+    {
+      for (int entry = 0; entry < 6; ++entry)
+      {
+        covariance[entry][lane] = matrices[6 * (first + lane) + entry];
+      }
+    }
+    bool solve[Lanes] = {};
+    for (std::size_t lane = 0; lane < lanes; ++lane)
+    {
+      solve[lane] = true;
+    }
+    SolveNormals(covariance, solve, normal);
+    for (std::size_t lane = 0; lane < lanes; ++lane)
+    {
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        eigenvectors[3 * (first + lane) + axis] = normal[axis][lane];
+      }
+    }
+  }
+}
+
+/// The exponential of this build, for the tests: out[i] = exp(in[i]) for in[i] <= 0.
+void ExpOfNonPositive(const double* in, double* out, std::size_t count)
+{
+  for (std::size_t i = 0; i + Lanes <= count; i += Lanes)
+  {
+    Store(out + i, ExpOfNonPositive(Load(in + i)));
+  }
+  for (std::size_t i = count / Lanes * Lanes; i < count; ++i)
+  {
+    double lanes[Lanes] = { in[i], 0, 0, 0, 0, 0, 0, 0 };
+    out[i] = ExpOfNonPositive(Load(lanes))[0];
+  }
+}
+
+} // namespace PCB_KERNEL_VARIANT
+} // namespace pcbilateral

@@ -1,0 +1,75 @@
+// The automatic rule: the filter's parameters from a cloud's measured spacing and noise, and
+// the paper's heuristic. This is the one place the rule is written; the command line's help,
+// the VTK class's documentation, ParaView's help text (generated from DescribeAutomaticRule at
+// build time) and docs/parameters.md point here. Plain C++17, no VTK types.
+#ifndef pcbilateral_AutomaticRule_h
+#define pcbilateral_AutomaticRule_h
+
+#include "BilateralParameters.h"
+#include "CloudMeasurement.h"
+
+#include <cstddef>
+#include <string>
+
+namespace pcbilateral
+{
+
+/// The automatic rule's constants (where they come from: docs/parameters.md):
+///   r = RadiusInSpacings x spacing + RadiusInSigmas x sigma,
+///   rn = NormalRadiusInSigmas x sigma, N = NumberOfIterations;
+/// on a flat cloud (CurvatureExcess below FlatExcess and FeatureFraction below
+/// FlatFeatureFraction: no edge, no bend at that scale), r is FlatRadiusFactor times larger and
+/// N = FlatIterations, since nothing limits the smoothing there but the noise.
+/// On a smooth cloud with thin noise (not flat, CreaseFraction below SmoothCreaseFraction, sigma
+/// below ThinNoiseInSpacings spacings), r is SmoothRadiusFactor times larger, rn = r and
+/// N = SmoothIterations: there is no edge for the range weight to keep, and one plain average
+/// along the normal beats two bilateral ones (measured on pcb_quality's spheres at 0.1% noise).
+/// The spacing term gives every point enough neighbours for a stable normal and average on a
+/// clean cloud; the sigma term widens the neighbourhood as the noise grows.
+struct AutomaticRule
+{
+  double RadiusInSpacings = 5.0;
+  double RadiusInSigmas = 4.0;
+  double NormalRadiusInSigmas = 5.0;
+  int NumberOfIterations = 2;
+  double FlatExcess = 0.007;
+  double FlatFeatureFraction = 0.01;
+  double FlatRadiusFactor = 1.5;
+  int FlatIterations = 3;
+  double SmoothCreaseFraction = 0.01;
+  double ThinNoiseInSpacings = 0.5;
+  double SmoothRadiusFactor = 1.25;
+  int SmoothIterations = 1;
+};
+
+/// Whether the rule treats the cloud as flat.
+bool IsFlat(const CloudScales& scales, const AutomaticRule& rule = AutomaticRule());
+
+/// Whether the rule treats the cloud as smooth with thin noise (never when it is flat).
+bool IsSmoothWithThinNoise(const CloudScales& scales, const AutomaticRule& rule = AutomaticRule());
+
+/// The parameters of the automatic mode: each of Radius, NormalRadius and NumberOfIterations
+/// that the user gave (Radius > 0, NormalRadius > 0, NumberOfIterations > 0; pass 0 for
+/// "automatic", also for the iterations) is kept; the others come from the rule applied to the
+/// measured scales. Every other field is copied from
+/// userParameters. When the scales are not valid, the unset parameters are left at 0, so that
+/// the filter falls back to the paper's heuristic for them.
+BilateralParameters ChooseParameters(const CloudScales& scales,
+  const BilateralParameters& userParameters,
+  const AutomaticRule& rule = AutomaticRule());
+
+/// The rule in words, with the numbers of `rule`, e.g. "r = 5 spacings + 4 sigma, rn = 5 sigma,
+/// N = 2 (on a flat cloud ...)": every front end shows this text rather than its own copy.
+std::string DescribeAutomaticRule(const AutomaticRule& rule = AutomaticRule());
+
+/// The paper's heuristic radius (AutomaticParameters::Paper, and the fallback for a cloud that
+/// could not be measured): sqrt(20 / numberOfPoints) x largestExtent; rn = r and N = 1 go with
+/// it. 0 for no points.
+double PaperRadius(std::size_t numberOfPoints, double largestExtent);
+
+/// The paper's heuristic in words.
+const char* DescribePaperRule();
+
+} // namespace pcbilateral
+
+#endif

@@ -1,0 +1,665 @@
+// How the scales are measured.
+//
+// Around each sample point, the points within a radius rho are fitted by a robust quadric
+// height function (LocalSurfaceFit.h), whose residuals estimate the noise sigma, corrected for
+// the fit's degrees of freedom, the clipping and the ball's cut of the noise's slab. The radius
+// must be a few sigmas for the slab to show, yet as small as possible to keep the edges out: it
+// is found as a fixed point, rho = 5 sigma(rho) but holding at least ~50 points, starting from
+// the smallest ball and growing. The per-sample deviations are read at their 25th percentile,
+// not the median: at strong noise the balls are wide enough that most samples see an edge,
+// which only raises their deviation.
+//
+// The density is counted over a small disc of each fitted surface, within 3 sigma of it, so
+// that neither the noise nor (much) the borders and density changes matter. The spacing is the
+// mean over the samples of 1 / (2 sqrt(density)), which is the mean nearest-neighbour distance
+// of points spread at random with that density.
+//
+// Flatness: at 1.5 times the automatic rule's radius, the residual variance a plane fit leaves
+// beyond a quadric fit of the same points (curvature and edges), in units of sigma^2. Creases:
+// on the same points, the residual variance the quadric itself leaves, in units of sigma^2
+// (about 1 where a smooth surface fits, well above it where an edge, corner or step does not).
+//
+// Large balls hold too many points: the ball is gathered from a subset of the cloud (each
+// point has a fixed pseudo-random key; level l keeps a 4^-l fraction of the points), chosen so
+// that it holds about a hundred points. Each level has its own grid (Neighbours/PointGrid.h).
+//
+// Every per-sample result is stored in its sample's slot and reduced in sample order, so the
+// result does not depend on the number of threads.
+#include "CloudMeasurement.h"
+
+#include "LocalSurfaceFit.h"
+#include "PointGrid.h"
+#include "Threads.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+namespace pcbilateral
+{
+namespace
+{
+/// SplitMix64's finaliser.
+std::uint64_t Mix(std::uint64_t x)
+{
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+std::uint64_t Bits(double value)
+{
+  // -0 and +0 are one point.
+  value = value == 0.0 ? 0.0 : value;
+  std::uint64_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  return bits;
+}
+
+/// A fixed pseudo-random key per point, from its coordinates alone: the same point gets the same
+/// key whatever its index, in whichever part of a distributed cloud it is.
+std::uint64_t MeasurementKey(const double* p)
+{
+  return Mix(Mix(Mix(Bits(p[0])) ^ Bits(p[1])) ^ Bits(p[2]));
+}
+
+/// The key that decides whether a point is in the measured selection (SelectMeasurementPoints):
+/// another hash than MeasurementKey, so that the selection and the levels inside it are
+/// independent.
+std::uint64_t SelectionKey(const double* p)
+{
+  return Mix(MeasurementKey(p) ^ 0x5bd1e995ull);
+}
+
+/// A finite point's MeasurementKey and index.
+struct KeyedPoint
+{
+  std::uint64_t Key;
+  std::size_t Index;
+};
+
+/// The indices of the count points with the smallest (key, coordinates), in that order.
+std::vector<std::size_t> SmallestKeys(const PointCloudView& cloud,
+  std::vector<KeyedPoint> keyed,
+  std::size_t count)
+{
+  auto before = [&](const KeyedPoint& a, const KeyedPoint& b)
+  {
+    if (a.Key != b.Key)
+    {
+      return a.Key < b.Key;
+    }
+    const double* p = cloud.Positions + 3 * a.Index;
+    const double* q = cloud.Positions + 3 * b.Index;
+    return std::lexicographical_compare(p, p + 3, q, q + 3);
+  };
+  count = std::min(count, keyed.size());
+  std::nth_element(keyed.begin(), keyed.begin() + count, keyed.end(), before);
+  keyed.resize(count);
+  std::sort(keyed.begin(), keyed.end(), before);
+  std::vector<std::size_t> indices(count);
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    indices[k] = keyed[k].Index;
+  }
+  return indices;
+}
+
+/// Points per ball that the fits aim at, and the fewest the radius may hold at full density.
+constexpr double PointsPerBall = 64.0;
+constexpr double FewestPointsPerBall = 48.0;
+/// The fixed point's radius in sigmas.
+constexpr double RadiusInSigmas = 5.0;
+constexpr int MaximumRounds = 12;
+/// The noise is read at this quantile of the per-sample deviations; its normal score.
+constexpr double DeviationQuantile = 0.25;
+constexpr double DeviationQuantileScore = 0.6745;
+/// The flatness is measured at FlatnessRadiusInSpacings x spacing + FlatnessRadiusInSigmas x
+/// sigma (1.5 times the automatic rule's radius), with about this many points per ball; a
+/// sample whose plane fit leaves FeatureExcess sigma^2 more variance than its quadric fit sees
+/// an edge or a strong bend.
+constexpr double FlatnessRadiusInSpacings = 7.5;
+constexpr double FlatnessRadiusInSigmas = 6.0;
+constexpr double FlatnessPointsPerBall = 96.0;
+constexpr double FeatureExcess = 0.5;
+/// A sample whose quadric fit at the flatness radius leaves more than CreaseVariance sigma^2
+/// of residual variance sees a crease: no smooth surface fits there. On the smooth shapes of
+/// pcb_quality (spheres, terrains) no sample exceeds 2; on the shapes with edges at 0.1% noise,
+/// 4% to 28% of them do (at stronger noise the quadric absorbs more of a blunt edge).
+constexpr double CreaseVariance = 2.0;
+/// Points in the disc that measures the density.
+constexpr double DiscPoints = 40.0;
+
+/// The points of the grid within rho of centre, relative to centre in units of rho, in a fixed
+/// order (lexicographic by coordinates), so that the fits' sums do not depend on the order the
+/// cloud lists its points in (equal points are interchangeable).
+void GatherBall(const PointGrid& grid,
+  const double centre[3],
+  double rho,
+  std::vector<std::array<double, 3>>& points)
+{
+  points.clear();
+  const double* x = grid.GetX();
+  const double* y = grid.GetY();
+  const double* z = grid.GetZ();
+  grid.ForEachInBall(centre,
+    rho,
+    [&](std::size_t i) {
+      points.push_back({ (x[i] - centre[0]) / rho, (y[i] - centre[1]) / rho,
+        (z[i] - centre[2]) / rho });
+    });
+  std::sort(points.begin(), points.end());
+}
+
+double Median(std::vector<double> values)
+{
+  if (values.empty())
+  {
+    return 0.0;
+  }
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+/// The steps of MeasureScales, on one cloud: each fills part of Scales, or sets its Problem and
+/// returns false.
+class ScaleMeasurement
+{
+public:
+  ScaleMeasurement(const PointCloudView& cloud, const ScaleMeasurementOptions& options)
+    : Cloud(cloud)
+    , Options(options)
+    , Extent(MeasureCloud(cloud))
+    , N(Extent.NumberOfFinitePoints)
+    , Threads(ResolveThreadCount(options.NumberOfThreads))
+  {
+  }
+
+  CloudScales Measure()
+  {
+    if (this->CheckCloud() && this->SortIntoLevels() && this->GuessDensity() &&
+        this->BuildGrids() && this->ChooseSamples() && this->FindNoise() &&
+        this->MeasureSpacing())
+    {
+      this->MeasureFlatness();
+      this->Scales.Valid = true;
+    }
+    return this->Scales;
+  }
+
+private:
+  bool Fail(const char* problem)
+  {
+    this->Scales.Problem = problem;
+    return false;
+  }
+
+  bool CheckCloud()
+  {
+    if (!(this->Options.PointFraction > 0.0 && this->Options.PointFraction <= 1.0))
+    {
+      return this->Fail("the point fraction must be in (0, 1]");
+    }
+    if (this->Cloud.NumberOfPoints > std::numeric_limits<std::uint32_t>::max())
+    {
+      // (The grids number points in 32 bits; the filter measures at most a selection of
+      // MaximumMeasuredPoints.)
+      return this->Fail("more than 2^32 points to measure");
+    }
+    if (this->N < 2 * FewestPointsToFit || !(this->Extent.LargestExtent() > 0.0))
+    {
+      this->Scales.Measurable = false;
+      return this->Fail(this->N < 2 * FewestPointsToFit
+          ? "too few finite points to measure the cloud"
+          : "the cloud has no extent");
+    }
+    return true;
+  }
+
+  /// The finite points with their keys, and their level: level l holds the points with key
+  /// < 4^-l.
+  bool SortIntoLevels()
+  {
+    this->Keyed.reserve(this->N);
+    this->Levels.assign(1, {});
+    for (std::size_t i = 0; i < this->Cloud.NumberOfPoints; ++i)
+    {
+      if (!IsFinitePoint(this->Cloud.Positions + 3 * i))
+      {
+        continue;
+      }
+      const std::uint64_t key = MeasurementKey(this->Cloud.Positions + 3 * i);
+      this->Keyed.push_back({ key, i });
+      // Each level keeps the keys whose top 2l bits are zero.
+      std::size_t level = 0;
+      while (level < 28 && (key >> (62 - 2 * level)) == 0)
+      {
+        ++level;
+      }
+      if (this->Levels.size() <= level)
+      {
+        this->Levels.resize(level + 1);
+      }
+      for (std::size_t l = 0; l <= level; ++l)
+      {
+        this->Levels[l].push_back(static_cast<std::uint32_t>(i));
+      }
+    }
+    while (this->Levels.size() > 1 && this->Levels.back().size() < 256)
+    {
+      this->Levels.pop_back();
+    }
+    for (const auto& level : this->Levels)
+    {
+      this->Fractions.push_back(static_cast<double>(level.size()) / static_cast<double>(this->N));
+    }
+    return true;
+  }
+
+  /// A first guess of the density: the bounding box's surface area holds the points (it
+  /// overstates the area of most surfaces by up to about 2, which only makes the first ball
+  /// larger).
+  bool GuessDensity()
+  {
+    const CloudExtent& extent = this->Extent;
+    const double size[3] = { extent.Max[0] - extent.Min[0], extent.Max[1] - extent.Min[1],
+      extent.Max[2] - extent.Min[2] };
+    const double boxArea = 2.0 * (size[0] * size[1] + size[1] * size[2] + size[2] * size[0]);
+    // (A flat box, e.g. points on a line, would give cells of no size.)
+    const double largest = extent.LargestExtent();
+    this->Density = static_cast<double>(this->N) / std::max(boxArea, 1e-4 * largest * largest);
+    if (!(std::isfinite(this->Density) && this->Density > 0.0))
+    {
+      // Coordinates so far apart that areas overflow: the filter refuses such clouds anyway.
+      return this->Fail("the cloud's extent is beyond what can be measured");
+    }
+    return true;
+  }
+
+  /// Grids: level l's cells are about two of its point spacings wide.
+  bool BuildGrids()
+  {
+    this->Grids.resize(this->Levels.size());
+    for (std::size_t l = 0; l < this->Levels.size(); ++l)
+    {
+      const double levelDensity = this->Density * this->Fractions[l];
+      if (!this->Grids[l].Build(this->Cloud.Positions,
+            this->Levels[l],
+            this->Extent.Min,
+            2.0 / std::sqrt(levelDensity)))
+      {
+        // (A cloud so spread out that its cells cannot be numbered, e.g. a few points far
+        // from a dense part: the filter refuses such clouds too.)
+        return this->Fail("the cloud's extent is beyond what can be measured");
+      }
+    }
+    return true;
+  }
+
+  /// The samples: the finite points with the smallest keys (a uniform pseudo-random choice that
+  /// depends on the points, not on their order), in the order of their keys.
+  bool ChooseSamples()
+  {
+    const PointCloudView& cloud = this->Cloud;
+    this->Samples = this->Options.SampleIndices;
+    if (this->Samples.empty())
+    {
+      this->Samples = SmallestKeys(
+        cloud, std::move(this->Keyed), std::min(this->Options.NumberOfSamples, this->N));
+    }
+    auto unusable = [&](std::size_t i)
+    { return i >= cloud.NumberOfPoints || !IsFinitePoint(cloud.Positions + 3 * i); };
+    this->Samples.erase(
+      std::remove_if(this->Samples.begin(), this->Samples.end(), unusable), this->Samples.end());
+    this->Scales.NumberOfSamples = this->Samples.size();
+    if (this->Samples.empty())
+    {
+      return this->Fail("no finite sample points");
+    }
+    this->Fits.resize(this->Samples.size());
+    return true;
+  }
+
+  /// The coarsest level whose grid still puts about `points` points in a ball of radius rho.
+  std::size_t LevelFor(double rho, double points) const
+  {
+    std::size_t level = 0;
+    const double expected = this->Density * M_PI * rho * rho;
+    while (level + 1 < this->Levels.size() && expected * this->Fractions[level + 1] >= points)
+    {
+      ++level;
+    }
+    return level;
+  }
+
+  /// One round: fits every sample's ball of radius rho, gathered from the coarsest level that
+  /// still puts about PointsPerBall points in it.
+  void FitAll(double rho)
+  {
+    const std::size_t level = this->LevelFor(rho, PointsPerBall);
+    const PointGrid& grid = this->Grids[level];
+    this->LevelUsed.assign(this->Samples.size(), level);
+#pragma omp parallel num_threads(this->Threads)
+    {
+      std::vector<std::array<double, 3>> points;
+#pragma omp for schedule(dynamic, 16)
+      for (std::ptrdiff_t s = 0; s < static_cast<std::ptrdiff_t>(this->Samples.size()); ++s)
+      {
+        // The ball is centred on the surface the sample's previous fit found, as the ball-cut
+        // correction assumes; without one yet, a first fit around the sample finds it.
+        LocalFit& previous = this->Fits[s];
+        const bool refit = previous.Fitted;
+        const double* start =
+          refit ? previous.SurfacePoint : this->Cloud.Positions + 3 * this->Samples[s];
+        double centre[3] = { start[0], start[1], start[2] };
+        LocalFit fit;
+        for (int pass = refit ? 1 : 0; pass < 2; ++pass)
+        {
+          GatherBall(grid, centre, rho, points);
+          fit = FitQuadric(points, centre, rho);
+          if (!fit.Fitted)
+          {
+            break;
+          }
+          std::copy(fit.SurfacePoint, fit.SurfacePoint + 3, centre);
+        }
+        previous = fit;
+      }
+    }
+  }
+
+  /// The noise seen by the fits of radius rho, and the density their inliers give. False when
+  /// too few balls could be fitted.
+  bool ReadRound(double rho, double& deviation, double& sigma)
+  {
+    std::vector<double> deviations, inlierCounts;
+    for (const LocalFit& fit : this->Fits)
+    {
+      if (fit.Fitted)
+      {
+        deviations.push_back(std::sqrt(fit.Variance));
+        inlierCounts.push_back(static_cast<double>(fit.Inliers));
+      }
+    }
+    if (deviations.size() < std::max<std::size_t>(8, this->Samples.size() / 10))
+    {
+      return false;
+    }
+    this->Scales.NumberOfFittedSamples = deviations.size();
+    // A low quantile rather than the median: near edges (and corners) the fit is worse, and at
+    // strong noise the balls are wide enough that most samples see an edge. On a flat part the
+    // per-sample estimate varies by about 1 / sqrt(2 (m - 6)) (m points), which the quantile's
+    // offset from the median corrects.
+    std::sort(deviations.begin(), deviations.end());
+    const double quantileDeviation =
+      deviations[static_cast<std::size_t>(DeviationQuantile * (deviations.size() - 1))];
+    const double spread =
+      1.0 / std::sqrt(2.0 * std::max(Median(inlierCounts) - QuadricTerms, 1.0));
+    deviation = quantileDeviation / (1.0 - DeviationQuantileScore * spread);
+    sigma = SigmaFromBallVariance(deviation * deviation, rho);
+    // The density, to size the next ball: the inliers of the well-fitted balls cover a disc of
+    // area pi (rho^2 - sigma^2) on average (the slab cut by the ball).
+    const double finiteSigma = std::isfinite(sigma) ? sigma : 0.0;
+    const double area = M_PI * std::max(rho * rho - finiteSigma * finiteSigma, 0.25 * rho * rho);
+    std::vector<double> densities;
+    for (std::size_t s = 0; s < this->Samples.size(); ++s)
+    {
+      const LocalFit& fit = this->Fits[s];
+      if (fit.Fitted && std::sqrt(fit.Variance) <= 2.0 * deviation)
+      {
+        densities.push_back(static_cast<double>(fit.Inliers) /
+          (this->Fractions[this->LevelUsed[s]] * area * (1.0 - 0.0027)));
+      }
+    }
+    this->Density = Median(densities);
+    return true;
+  }
+
+  /// The noise: the radius of the fits is a fixed point, rho = RadiusInSigmas sigma(rho) but
+  /// holding at least FewestPointsPerBall points, from the smallest ball, growing.
+  bool FindNoise()
+  {
+    double rho = std::sqrt(FewestPointsPerBall / (M_PI * this->Density));
+    double sigma = 0.0;
+    const double largestRadius = 0.5 * this->Extent.LargestExtent();
+    for (int round = 1; round <= MaximumRounds; ++round)
+    {
+      this->Scales.NumberOfRounds = round;
+      this->FitAll(rho);
+      double deviation = 0.0;
+      if (!this->ReadRound(rho, deviation, sigma))
+      {
+        // Balls too sparse to fit: the density guess was too high. Grow and retry.
+        rho *= 2.0;
+        this->Density *= 0.25;
+        if (rho > largestRadius)
+        {
+          return this->Fail("no neighbourhood of the cloud could be fitted by a surface");
+        }
+        continue;
+      }
+      const double wanted = std::max(std::sqrt(FewestPointsPerBall / (M_PI * this->Density)),
+        std::isfinite(sigma) ? RadiusInSigmas * sigma : 2.0 * rho);
+      this->Scales.NeighbourhoodRadius = rho;
+      if (std::abs(wanted - rho) <= 0.03 * rho || round == MaximumRounds ||
+          wanted > largestRadius)
+      {
+        break;
+      }
+      rho = wanted;
+    }
+    if (!std::isfinite(sigma))
+    {
+      return this->Fail("the noise is too strong to tell the surface from it");
+    }
+    this->Scales.NoiseSigma = sigma;
+    return true;
+  }
+
+  /// The points of the level-`level` grid over a disc of `disc` around the fit's foot on its
+  /// surface, within `slab` of it, per unit area.
+  double DiscDensity(const LocalFit& fit, std::size_t level, double disc, double slab) const
+  {
+    const PointGrid& grid = this->Grids[level];
+    std::size_t count = 0;
+    grid.ForEachInBall(fit.SurfacePoint,
+      std::sqrt(disc * disc + slab * slab),
+      [&](std::size_t i)
+      {
+        const double q[3] = { grid.GetX()[i], grid.GetY()[i], grid.GetZ()[i] };
+        double local[3];
+        fit.Local(q, local);
+        const double dx = (local[0] - fit.FootX) * fit.Scale;
+        const double dy = (local[1] - fit.FootY) * fit.Scale;
+        const double height = (local[2] - fit.Height(local[0], local[1])) * fit.Scale;
+        count += dx * dx + dy * dy <= disc * disc && std::abs(height) <= slab;
+      });
+    return static_cast<double>(count) /
+           (this->Fractions[level] * M_PI * disc * disc * (1.0 - 0.0027));
+  }
+
+  /// The spacing: the points counted over a small disc of each fitted surface (within 3 sigma
+  /// of it, in the slab), holding about DiscPoints points of the level it is counted on. Small,
+  /// so that borders and density changes blur little; counted in the slab, so that the noise
+  /// does not matter. The level is the finest whose cells are at least sigma wide, so that the
+  /// ball around the disc and slab spans a few cells only.
+  bool MeasureSpacing()
+  {
+    const double sigma = this->Scales.NoiseSigma;
+    std::size_t level = 0;
+    while (level + 1 < this->Levels.size() && this->Grids[level].GetCellSize() < sigma)
+    {
+      ++level;
+    }
+    const double disc = std::sqrt(DiscPoints / (M_PI * this->Density * this->Fractions[level]));
+    std::vector<double> discDensities(this->Samples.size(), 0.0);
+#pragma omp parallel for num_threads(this->Threads) schedule(dynamic, 16)
+    for (std::ptrdiff_t s = 0; s < static_cast<std::ptrdiff_t>(this->Samples.size()); ++s)
+    {
+      // Only the fits that look like noise around a smooth surface: near edges the quadric
+      // misses the surface at the centre, and the disc would count too few points.
+      const LocalFit& fit = this->Fits[s];
+      if (fit.Fitted && fit.Variance <= 4.0 * sigma * sigma)
+      {
+        discDensities[s] = this->DiscDensity(fit, level, disc, 3.0 * sigma);
+      }
+    }
+    // The mean of the per-sample spacings (points spread unevenly have the mean of their local
+    // spacings as mean nearest-neighbour distance), trimmed by 5% on each side against the few
+    // samples whose disc the fit placed badly. Empty discs are outliers: left out.
+    std::vector<double> densities, spacings;
+    for (double value : discDensities)
+    {
+      if (value > 0.0)
+      {
+        densities.push_back(value / this->Options.PointFraction);
+        spacings.push_back(0.5 / std::sqrt(value / this->Options.PointFraction));
+      }
+    }
+    if (densities.empty())
+    {
+      return this->Fail("no sample has neighbours on its fitted surface");
+    }
+    std::sort(spacings.begin(), spacings.end());
+    const std::size_t trim = spacings.size() / 20;
+    double spacingSum = 0.0;
+    for (std::size_t k = trim; k < spacings.size() - trim; ++k)
+    {
+      spacingSum += spacings[k];
+    }
+    this->Scales.PointSpacing = spacingSum / static_cast<double>(spacings.size() - 2 * trim);
+    this->Scales.SurfaceDensity = Median(densities);
+    return true;
+  }
+
+  /// Flatness at the scale the filter will work at (1.5 times the automatic radius): on the
+  /// same points, a plane leaves more residual variance than a quadric where the surface bends
+  /// or breaks. The excess, in units of sigma^2, is small on flat or gently curved parts,
+  /// noticeable on curved ones, large near edges.
+  void MeasureFlatness()
+  {
+    const double sigma = this->Scales.NoiseSigma;
+    const double rho =
+      FlatnessRadiusInSpacings * this->Scales.PointSpacing + FlatnessRadiusInSigmas * sigma;
+    this->Scales.FlatnessRadius = rho;
+    const PointGrid& grid = this->Grids[this->LevelFor(rho, FlatnessPointsPerBall)];
+    std::vector<double> excess(this->Samples.size(), -1.0);
+    std::vector<double> quadricVariance(this->Samples.size(), -1.0);
+#pragma omp parallel num_threads(this->Threads)
+    {
+      std::vector<std::array<double, 3>> points;
+#pragma omp for schedule(dynamic, 16)
+      for (std::ptrdiff_t s = 0; s < static_cast<std::ptrdiff_t>(this->Samples.size()); ++s)
+      {
+        if (!this->Fits[s].Fitted)
+        {
+          continue;
+        }
+        const double* centre = this->Fits[s].SurfacePoint;
+        GatherBall(grid, centre, rho, points);
+        const LocalFit quadric = FitQuadric(points, centre, rho);
+        const LocalFit plane = FitQuadric(points, centre, rho, 3);
+        if (quadric.Fitted && plane.Fitted)
+        {
+          excess[s] = (plane.Variance - quadric.Variance) / (sigma * sigma);
+          quadricVariance[s] = quadric.Variance / (sigma * sigma);
+        }
+      }
+    }
+    std::vector<double> measured;
+    std::size_t featured = 0, creased = 0;
+    for (std::size_t s = 0; s < excess.size(); ++s)
+    {
+      if (excess[s] >= -0.5)
+      {
+        measured.push_back(excess[s]);
+        featured += excess[s] > FeatureExcess;
+        creased += quadricVariance[s] > CreaseVariance;
+      }
+    }
+    const double count = static_cast<double>(measured.size());
+    this->Scales.CurvatureExcess = measured.empty() ? 0.0 : Median(measured);
+    this->Scales.FeatureFraction = measured.empty() ? 1.0 : static_cast<double>(featured) / count;
+    this->Scales.CreaseFraction = measured.empty() ? 1.0 : static_cast<double>(creased) / count;
+  }
+
+  const PointCloudView& Cloud;
+  const ScaleMeasurementOptions& Options;
+  const CloudExtent Extent;
+  const std::size_t N;
+  const int Threads;
+  CloudScales Scales;
+  std::vector<KeyedPoint> Keyed;
+  std::vector<std::vector<std::uint32_t>> Levels;
+  /// The fraction of the finite points each level holds.
+  std::vector<double> Fractions;
+  std::vector<PointGrid> Grids;
+  /// The current estimate of the number of points per unit area of surface.
+  double Density = 0.0;
+  std::vector<std::size_t> Samples;
+  std::vector<LocalFit> Fits;
+  /// The level each sample's last fit was gathered from.
+  std::vector<std::size_t> LevelUsed;
+};
+
+} // namespace
+
+CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOptions& options)
+{
+  return ScaleMeasurement(cloud, options).Measure();
+}
+
+double MeasuredFraction(std::size_t numberOfFinitePoints)
+{
+  return numberOfFinitePoints <= MaximumMeasuredPoints
+           ? 1.0
+           : static_cast<double>(MaximumMeasuredPoints) / static_cast<double>(numberOfFinitePoints);
+}
+
+std::vector<double> SelectMeasurementPoints(const PointCloudView& cloud, double fraction)
+{
+  // Selected: SelectionKey / 2^64 < fraction.
+  const double threshold = std::ldexp(fraction, 64);
+  std::vector<double> selection;
+  for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
+  {
+    const double* p = cloud.Positions + 3 * i;
+    if (IsFinitePoint(p) && (fraction >= 1.0 || static_cast<double>(SelectionKey(p)) < threshold))
+    {
+      selection.insert(selection.end(), p, p + 3);
+    }
+  }
+  return selection;
+}
+
+CloudScales MeasureSelection(const std::vector<double>& selection, double fraction, int threads)
+{
+  PointCloudView view;
+  view.NumberOfPoints = selection.size() / 3;
+  view.Positions = selection.data();
+  ScaleMeasurementOptions options;
+  options.PointFraction = fraction;
+  options.NumberOfThreads = threads;
+  return MeasureScales(view, options);
+}
+
+CloudScales MeasureWholeCloud(const PointCloudView& cloud, int threads)
+{
+  const double fraction = MeasuredFraction(MeasureCloud(cloud).NumberOfFinitePoints);
+  if (fraction >= 1.0)
+  {
+    // The selection would be a copy of the finite points; MeasureScales skips the others and
+    // does not depend on the order, so the cloud itself gives the same bits.
+    ScaleMeasurementOptions options;
+    options.NumberOfThreads = threads;
+    return MeasureScales(cloud, options);
+  }
+  return MeasureSelection(SelectMeasurementPoints(cloud, fraction), fraction, threads);
+}
+
+} // namespace pcbilateral

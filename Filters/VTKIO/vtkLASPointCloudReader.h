@@ -1,0 +1,72 @@
+/**
+ * @class   vtkLASPointCloudReader
+ * @brief   read uncompressed LAS files (LiDAR point clouds, LAS 1.0 to 1.4, point formats 0-10)
+ *
+ * The output has the points in double precision (the file's integer coordinates times its
+ * scale plus its offset), one vertex cell per point, and every field of the point records as
+ * a point array of the record's own type: Intensity, ReturnNumber, NumberOfReturns,
+ * ScanDirectionFlag, EdgeOfFlightLine, Classification, Synthetic, KeyPoint, Withheld,
+ * Overlap and ScannerChannel (formats 6-10), ScanAngleRank (formats 0-5, degrees) or ScanAngle
+ * (formats 6-10, degrees as floats: the stored integer times 0.006), UserData, PointSourceId,
+ * GpsTime, RGB (3 unsigned shorts, the file's 16-bit values), NIR, the wave packet fields, and
+ * the extra bytes named by the file's extra-bytes record (as doubles, stored value times scale
+ * plus offset, when the record gives a scale or an offset for an integer type of up to 32 bits,
+ * NaN for its no-data value; else the stored values). The writer stores these values back
+ * rounded to the nearest step, so a file read and written unchanged keeps its point records.
+ * Files with colours also get "Colors", the colours as 3 unsigned chars
+ * (the 16-bit values divided by 256, or as they are when no value exceeds 255) that ParaView
+ * shows as they are when "Map Scalars" is off.
+ *
+ * The header and the variable-length records are kept in the field data ("LAS Version",
+ * "LAS Point Format", "LAS Point Record Length", "LAS Scale", "LAS Offset", "LAS VLRs",
+ * "LAS EVLRs", ...; "LAS CRS WKT" when the file has a WKT coordinate system) so that
+ * vtkLASPointCloudWriter writes a file like the one read.
+ *
+ * A damaged or unsupported file (truncated, counts or offsets beyond the file, not LAS,
+ * compressed LAZ, a point format beyond 10) gives one error naming the file and the problem
+ * (also from GetErrorMessage()) and an empty output. Nothing is read outside the file.
+ *
+ * Decoding is parallel (OpenMP) over a memory-mapped file.
+ *
+ * @sa
+ * vtkLASPointCloudWriter vtkPointCloudFileIO
+ */
+#ifndef vtkLASPointCloudReader_h
+#define vtkLASPointCloudReader_h
+
+#include "vtkIOPointCloudBilateralModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <string> // For the error message
+
+class VTKIOPOINTCLOUDBILATERAL_EXPORT vtkLASPointCloudReader : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkLASPointCloudReader* New();
+  vtkTypeMacro(vtkLASPointCloudReader, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The file to read.
+  vtkSetStringMacro(FileName);
+  vtkGetStringMacro(FileName);
+  ///@}
+
+  /// Why the last read failed; empty after a successful read.
+  const char* GetErrorMessage() const { return this->ErrorMessage.c_str(); }
+
+protected:
+  vtkLASPointCloudReader();
+  ~vtkLASPointCloudReader() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  char* FileName = nullptr;
+  std::string ErrorMessage;
+
+private:
+  vtkLASPointCloudReader(const vtkLASPointCloudReader&) = delete;
+  void operator=(const vtkLASPointCloudReader&) = delete;
+};
+
+#endif

@@ -1,0 +1,64 @@
+/**
+ * @class   vtkLASPointCloudWriter
+ * @brief   write a point cloud as an uncompressed LAS file
+ *
+ * When the input carries the field data of vtkLASPointCloudReader (a LAS file read, then
+ * filtered), the file gets the version, point format, record length, scales, offsets, header
+ * identifiers and variable-length records of the file read, so that it stays valid for the
+ * tools that made it; each record field is filled from the point array of the same name (see
+ * vtkLASPointCloudReader), converted to the field's type when it has another. A file read and
+ * written without a change has the same point records, byte for byte.
+ *
+ * Otherwise it writes LAS 1.2 (1.4 beyond 2^32 - 1 points), point format 0, or 1, 2 or 3 when
+ * the input has a "GpsTime" array and/or a 3-component "RGB" array (8-bit colours are scaled
+ * to 16 bits), offsets at the lower corner of the bounds and the finest power-of-ten scales
+ * that keep the extent within the 32-bit records. Other arrays are not written.
+ *
+ * The bounds, point counts and counts by return of the header are computed from the points.
+ * The file is written under a temporary name and renamed, so a failed write leaves none.
+ * Errors (coordinates that do not fit the records, an unwritable file) are one line, also
+ * from GetErrorMessage().
+ *
+ * @sa
+ * vtkLASPointCloudReader vtkPointCloudFileIO
+ */
+#ifndef vtkLASPointCloudWriter_h
+#define vtkLASPointCloudWriter_h
+
+#include "vtkIOPointCloudBilateralModule.h" // For export macro
+#include "vtkWriter.h"
+
+#include <string> // For the error message
+
+class VTKIOPOINTCLOUDBILATERAL_EXPORT vtkLASPointCloudWriter : public vtkWriter
+{
+public:
+  static vtkLASPointCloudWriter* New();
+  vtkTypeMacro(vtkLASPointCloudWriter, vtkWriter);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The file to write.
+  vtkSetStringMacro(FileName);
+  vtkGetStringMacro(FileName);
+  ///@}
+
+  /// Why the last write failed; empty after a successful write.
+  const char* GetErrorMessage() const { return this->ErrorMessage.c_str(); }
+
+protected:
+  vtkLASPointCloudWriter();
+  ~vtkLASPointCloudWriter() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  void WriteData() override;
+
+  char* FileName = nullptr;
+  std::string ErrorMessage;
+
+private:
+  vtkLASPointCloudWriter(const vtkLASPointCloudWriter&) = delete;
+  void operator=(const vtkLASPointCloudWriter&) = delete;
+};
+
+#endif

@@ -1,0 +1,69 @@
+/**
+ * @class   vtkPointCloudTextReader
+ * @brief   read the ASCII point format of the bilateral filter's authors
+ *
+ * One point per line: "x y z", then "nx ny nz" when HasNormals is on (the authors' `-R`),
+ * then any further columns. Columns are separated by spaces or tabs; CR LF line ends, empty
+ * lines and lines starting with '#' are accepted. A first line that does not start with a
+ * number names the columns. Every data line must have the same number of columns.
+ *
+ * The output has the points (double), one vertex cell per point, the normals as the point
+ * normals ("Normals"), and each further column as a double point array, named by the header
+ * or "column4", "column5", ... by its position in the line. Columns named "name:0",
+ * "name:1", ... (as vtkPointCloudTextWriter names the components of an array) make one
+ * array "name" of as many components.
+ *
+ * Errors (missing file, a directory, a malformed line) name the file and the line; the
+ * message of the last one is also available from GetErrorMessage().
+ *
+ * @sa
+ * vtkPointCloudTextWriter vtkPointCloudBilateralFilter
+ */
+
+#ifndef vtkPointCloudTextReader_h
+#define vtkPointCloudTextReader_h
+
+#include "vtkIOPointCloudBilateralModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <string> // For the error message
+
+class VTKIOPOINTCLOUDBILATERAL_EXPORT vtkPointCloudTextReader : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkPointCloudTextReader* New();
+  vtkTypeMacro(vtkPointCloudTextReader, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The file to read.
+  vtkSetStringMacro(FileName);
+  vtkGetStringMacro(FileName);
+  ///@}
+
+  ///@{
+  /// Columns 4 to 6 are normals (default off).
+  vtkSetMacro(HasNormals, bool);
+  vtkGetMacro(HasNormals, bool);
+  vtkBooleanMacro(HasNormals, bool);
+  ///@}
+
+  /// Why the last read failed; empty after a successful read.
+  const char* GetErrorMessage() const { return this->ErrorMessage.c_str(); }
+
+protected:
+  vtkPointCloudTextReader();
+  ~vtkPointCloudTextReader() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  char* FileName = nullptr;
+  bool HasNormals = false;
+  std::string ErrorMessage;
+
+private:
+  vtkPointCloudTextReader(const vtkPointCloudTextReader&) = delete;
+  void operator=(const vtkPointCloudTextReader&) = delete;
+};
+
+#endif
