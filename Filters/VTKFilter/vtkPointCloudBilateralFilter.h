@@ -23,11 +23,11 @@
  * - NumberOfIterations N: more iterations denoise more and sharpen edges.
  * Each is automatic when 0 (the default), and each given value overrides only itself. With
  * AutomaticParameters MEASURED (the default) the filter first measures the cloud's point
- * spacing and noise sigma, then takes r = 5 spacings + 4 sigma, rn = 5 sigma, N = 2 (on a flat
- * cloud 1.5 times that r and N = 3; on a smooth cloud, no crease, with noise below half a
- * spacing, 1.25 times that r, rn = r and N = 1); README.md, "Automatic parameters", says where the
- * rule comes from. With PAPER it takes the paper's heuristic: r = sqrt(20 / number of points) times
- * the largest bounding-box extent, rn = r, N = 1.
+ * spacing and noise sigma, then applies the automatic rule, written once in the core
+ * (ChooseParameters and DescribeAutomaticRule in Filters/Core/Measurement/AutomaticRule.h;
+ * docs/parameters.md says where it comes from). With PAPER it takes the paper's heuristic
+ * (PaperRadius there: r = sqrt(20 / number of points) times the largest bounding-box extent,
+ * rn = r, N = 1).
  * The values actually used, and the measured scales, are readable after an update:
  * GetRadiusUsed(), GetNormalRadiusUsed(), GetNumberOfIterationsUsed(), GetPointSpacing(),
  * GetNoiseSigma().

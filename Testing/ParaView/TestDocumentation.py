@@ -1,12 +1,18 @@
 """The documentation behind ParaView's "?" button: the plugin's compiled Qt help file (built
 with XML_DOCUMENTATION ON and embedded in the plugin) has a page for each proxy, with the
-proxy's long help and its properties' documentation.
+proxy's long help and its properties' documentation. The filter's page states the automatic
+rule and the paper's heuristic in the words of the rule's own code (AutomaticRule.h), which the
+build tool prints.
 
-    python3 TestDocumentation.py PointCloudBilateral.qch
+    python3 TestDocumentation.py PointCloudBilateral.qch FILL_RULE_TEXT_PROGRAM
 """
 import sqlite3
+import subprocess
 import sys
 import zlib
+
+rules = subprocess.run([sys.argv[2], "--print"], check=True, capture_output=True,
+                       text=True).stdout.splitlines()
 
 pages = {}
 with sqlite3.connect(sys.argv[1]) as help_file:  # a .qch is an SQLite database
@@ -18,7 +24,7 @@ with sqlite3.connect(sys.argv[1]) as help_file:  # a .qch is an SQLite database
 failures = 0
 for page, expected in [
         ("filters.PointCloudBilateralFilter.html",
-         ["Digne and C. de Franchis", "Neighbourhood radius r", "Number of iterations N"]),
+         ["Digne and C. de Franchis", "Neighbourhood radius r", "Number of iterations N"] + rules),
         ("sources.PointCloudTextReader.html", ["Has Normals", "lines starting with #"]),
         ("writers.PointCloudTextWriter.html", ["one line per point"])]:
     text = " ".join(pages.get(page, "").split())

@@ -101,7 +101,9 @@ void SmallestEigenvector(const double covariance[6], double eigenvector[3])
   }
 }
 
-void TangentFrame(const double covariance[6], double normal[3], double tangentU[3],
+void TangentFrame(const double covariance[6],
+  double normal[3],
+  double tangentU[3],
   double tangentV[3])
 {
   SmallestEigenvector(covariance, normal);

@@ -24,7 +24,9 @@ constexpr double MeetingEigenvalueRoots = 1e-6;
 /// normal of a point set's least-squares plane, for a covariance) and whose tangents span that
 /// plane, in an orientation fixed by the normal alone (a fit of a polynomial in the tangent
 /// coordinates that spans all rotations of itself, a plane or a quadric, does not depend on it).
-void TangentFrame(const double covariance[6], double normal[3], double tangentU[3],
+void TangentFrame(const double covariance[6],
+  double normal[3],
+  double tangentU[3],
   double tangentV[3]);
 
 } // namespace pcbilateral

@@ -262,7 +262,8 @@ bool RunEdgeAwareIteration(PointState& state,
         {
           return;
         }
-        const SortedNeighbours neighbours = cache.Fetch(kernel, grid, radiusSquared, i, hood, normals.data());
+        const SortedNeighbours neighbours =
+          cache.Fetch(kernel, grid, radiusSquared, i, hood, normals.data());
         visited += neighbours.Count;
         const double p[3] = { grid.GetX()[i], grid.GetY()[i], grid.GetZ()[i] };
         double sum[3];
@@ -316,7 +317,8 @@ bool RunEdgeAwareIteration(PointState& state,
         isolated[i] = 1; // fewer than MinimumNeighbourCount neighbours
         return;
       }
-      const SortedNeighbours neighbours = cache.Fetch(kernel, grid, radiusSquared, i, hood, normals.data());
+      const SortedNeighbours neighbours =
+        cache.Fetch(kernel, grid, radiusSquared, i, hood, normals.data());
       visited += neighbours.Count;
       double total, weighted;
       kernel.HeightSums(p,

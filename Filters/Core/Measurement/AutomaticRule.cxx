@@ -61,12 +61,12 @@ std::string DescribeAutomaticRule(const AutomaticRule& rule)
 {
   std::ostringstream text;
   text << "r = " << rule.RadiusInSpacings << " spacings + " << rule.RadiusInSigmas
-       << " sigma, rn = " << rule.NormalRadiusInSigmas << " sigma, N = "
-       << rule.NumberOfIterations << "; on a flat cloud " << rule.FlatRadiusFactor
+       << " sigma, rn = " << rule.NormalRadiusInSigmas << " sigma, N = " << rule.NumberOfIterations
+       << "; on a flat cloud " << rule.FlatRadiusFactor
        << " times that r and N = " << rule.FlatIterations
        << "; on a smooth cloud (no crease) with noise below " << rule.ThinNoiseInSpacings
-       << " spacing, " << rule.SmoothRadiusFactor << " times that r, rn = r and N = "
-       << rule.SmoothIterations;
+       << " spacing, " << rule.SmoothRadiusFactor
+       << " times that r, rn = r and N = " << rule.SmoothIterations;
   return text.str();
 }
 

@@ -148,9 +148,10 @@ void GatherBall(const PointGrid& grid,
   const double* z = grid.GetZ();
   grid.ForEachInBall(centre,
     rho,
-    [&](std::size_t i) {
-      points.push_back({ (x[i] - centre[0]) / rho, (y[i] - centre[1]) / rho,
-        (z[i] - centre[2]) / rho });
+    [&](std::size_t i)
+    {
+      points.push_back(
+        { (x[i] - centre[0]) / rho, (y[i] - centre[1]) / rho, (z[i] - centre[2]) / rho });
     });
   std::sort(points.begin(), points.end());
 }
@@ -183,8 +184,7 @@ public:
   CloudScales Measure()
   {
     if (this->CheckCloud() && this->SortIntoLevels() && this->GuessDensity() &&
-        this->BuildGrids() && this->ChooseSamples() && this->FindNoise() &&
-        this->MeasureSpacing())
+        this->BuildGrids() && this->ChooseSamples() && this->FindNoise() && this->MeasureSpacing())
     {
       this->MeasureFlatness();
       this->Scales.Valid = true;
@@ -215,8 +215,8 @@ private:
     {
       this->Scales.Measurable = false;
       return this->Fail(this->N < 2 * FewestPointsToFit
-          ? "too few finite points to measure the cloud"
-          : "the cloud has no extent");
+                          ? "too few finite points to measure the cloud"
+                          : "the cloud has no extent");
     }
     return true;
   }
@@ -267,8 +267,9 @@ private:
   bool GuessDensity()
   {
     const CloudExtent& extent = this->Extent;
-    const double size[3] = { extent.Max[0] - extent.Min[0], extent.Max[1] - extent.Min[1],
-      extent.Max[2] - extent.Min[2] };
+    const double size[3] = {
+      extent.Max[0] - extent.Min[0], extent.Max[1] - extent.Min[1], extent.Max[2] - extent.Min[2]
+    };
     const double boxArea = 2.0 * (size[0] * size[1] + size[1] * size[2] + size[2] * size[0]);
     // (A flat box, e.g. points on a line, would give cells of no size.)
     const double largest = extent.LargestExtent();
@@ -398,8 +399,7 @@ private:
     std::sort(deviations.begin(), deviations.end());
     const double quantileDeviation =
       deviations[static_cast<std::size_t>(DeviationQuantile * (deviations.size() - 1))];
-    const double spread =
-      1.0 / std::sqrt(2.0 * std::max(Median(inlierCounts) - QuadricTerms, 1.0));
+    const double spread = 1.0 / std::sqrt(2.0 * std::max(Median(inlierCounts) - QuadricTerms, 1.0));
     deviation = quantileDeviation / (1.0 - DeviationQuantileScore * spread);
     sigma = SigmaFromBallVariance(deviation * deviation, rho);
     // The density, to size the next ball: the inliers of the well-fitted balls cover a disc of
@@ -413,7 +413,7 @@ private:
       if (fit.Fitted && std::sqrt(fit.Variance) <= 2.0 * deviation)
       {
         densities.push_back(static_cast<double>(fit.Inliers) /
-          (this->Fractions[this->LevelUsed[s]] * area * (1.0 - 0.0027)));
+                            (this->Fractions[this->LevelUsed[s]] * area * (1.0 - 0.0027)));
       }
     }
     this->Density = Median(densities);
@@ -446,8 +446,7 @@ private:
       const double wanted = std::max(std::sqrt(FewestPointsPerBall / (M_PI * this->Density)),
         std::isfinite(sigma) ? RadiusInSigmas * sigma : 2.0 * rho);
       this->Scales.NeighbourhoodRadius = rho;
-      if (std::abs(wanted - rho) <= 0.03 * rho || round == MaximumRounds ||
-          wanted > largestRadius)
+      if (std::abs(wanted - rho) <= 0.03 * rho || round == MaximumRounds || wanted > largestRadius)
       {
         break;
       }

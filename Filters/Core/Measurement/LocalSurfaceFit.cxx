@@ -206,8 +206,9 @@ LocalFit FitQuadric(const std::vector<std::array<double, 3>>& points,
   for (const auto& p : points)
   {
     const double d[3] = { p[0] - mean[0], p[1] - mean[1], p[2] - mean[2] };
-    const double products[6] = { d[0] * d[0], d[0] * d[1], d[0] * d[2], d[1] * d[1], d[1] * d[2],
-      d[2] * d[2] };
+    const double products[6] = {
+      d[0] * d[0], d[0] * d[1], d[0] * d[2], d[1] * d[1], d[1] * d[2], d[2] * d[2]
+    };
     for (int entry = 0; entry < 6; ++entry)
     {
       covariance[entry] += products[entry];

@@ -170,7 +170,9 @@ std::int64_t PointGrid::FindCell(const std::int64_t key[3]) const
   return -1;
 }
 
-bool PointGrid::CellRange(const double centre[3], double radius, std::int64_t low[3],
+bool PointGrid::CellRange(const double centre[3],
+  double radius,
+  std::int64_t low[3],
   std::int64_t high[3]) const
 {
   // (A ball beyond what the lattice can index holds none of its points.)

@@ -75,7 +75,9 @@ private:
   /// The cell with these coordinates, or -1.
   std::int64_t FindCell(const std::int64_t key[3]) const;
   /// The range of cells a ball spans along each axis; false when it is beyond the lattice.
-  bool CellRange(const double centre[3], double radius, std::int64_t low[3],
+  bool CellRange(const double centre[3],
+    double radius,
+    std::int64_t low[3],
     std::int64_t high[3]) const;
 
   std::vector<std::uint32_t> Ids;
