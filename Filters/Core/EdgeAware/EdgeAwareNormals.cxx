@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace pcbilateral
 {
@@ -172,102 +173,138 @@ private:
   std::atomic<std::uint64_t> Used{ 0 };
 };
 
-} // namespace
-
-bool RunEdgeAwareIteration(PointState& state,
-  const EdgeAwareSettings& settings,
-  std::uint64_t& evaluations)
+/// One edge-aware iteration's steps over the sorted points of its grid.
+class EdgeAwareIteration
 {
-  evaluations = 0;
-#ifdef _OPENMP
-  const int threads = std::max(1, settings.NumberOfThreads);
-#else
-  const int threads = 1;
-#endif
-  PointGrid grid;
-  if (!BuildNeighbourGrid(state, settings, threads, grid))
+public:
+  EdgeAwareIteration(PointState& state, const EdgeAwareSettings& settings, int threads)
+    : State(state)
+    , Settings(settings)
+    , Threads(threads)
+    , RadiusSquared(settings.Radius * settings.Radius)
+    , Constants(settings.Radius, settings.NormalRadius)
+    , Kernel(GetEdgeAwareKernel())
+    , AgreementScale(1.0 / (1.0 - std::cos(EdgeAwareNormalAngle * Pi / 180.0)))
+    , Scratch(static_cast<std::size_t>(threads))
+    , Counts(static_cast<std::size_t>(threads), 0)
   {
-    return false;
   }
-  const double radiusSquared = settings.Radius * settings.Radius;
-  const std::size_t n = grid.Size();
-  const KernelConstants constants(settings.Radius, settings.NormalRadius);
-  const EdgeAwareKernel kernel = GetEdgeAwareKernel();
-  const double agreementScale = 1.0 / (1.0 - std::cos(EdgeAwareNormalAngle * Pi / 180.0));
-  std::vector<Neighbourhood> scratch(static_cast<std::size_t>(threads));
-  std::vector<std::uint64_t> counts(static_cast<std::size_t>(threads), 0);
 
-  // The loop over sorted points of one step, in blocks, polling between them.
-  const int steps = EdgeAwareNormalPasses + 2;
-  int step = 0;
-  bool aborted = false;
-  auto forEachPoint = [&](std::size_t count, const auto& body)
+  /// The whole iteration; false if aborted (the positions are then unchanged).
+  bool Run(std::uint64_t& evaluations)
   {
-    for (std::size_t begin = 0; begin < count && !aborted; begin += PointsPerBlock)
+    evaluations = 0;
+    if (!BuildNeighbourGrid(this->State, this->Settings, this->Threads, this->Grid))
+    {
+      return false;
+    }
+    const std::size_t n = this->Grid.Size();
+    this->Cache = std::make_unique<NeighbourCache>(n);
+    this->Cache->Prepare();
+    this->EstimateNormals();
+    for (int pass = 0; pass < EdgeAwareNormalPasses; ++pass)
+    {
+      this->FilterNormals();
+    }
+    this->Displace();
+    if (this->Aborted)
+    {
+      return false;
+    }
+    for (const std::uint64_t count : this->Counts)
+    {
+      evaluations += count;
+    }
+    this->WriteBack();
+    return true;
+  }
+
+private:
+  /// Calls body(sorted index, the thread's neighbourhood, its visit count) for every point, in
+  /// blocks run in parallel, polling for abort and reporting progress between blocks.
+  template<typename Body>
+  void ForEachPoint(const Body& body)
+  {
+    constexpr int Steps = EdgeAwareNormalPasses + 2;
+    const std::size_t count = this->Grid.Size();
+    for (std::size_t begin = 0; begin < count && !this->Aborted; begin += PointsPerBlock)
     {
       const auto first = static_cast<std::int64_t>(begin);
       const auto last = static_cast<std::int64_t>(std::min(count, begin + PointsPerBlock));
-#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
+#pragma omp parallel for schedule(dynamic, 16) num_threads(this->Threads)
       for (std::int64_t i = first; i < last; ++i)
       {
         const int thread = CurrentThreadIndex();
-        body(static_cast<std::size_t>(i), scratch[thread], counts[thread]);
+        body(static_cast<std::size_t>(i), this->Scratch[thread], this->Counts[thread]);
       }
-      if (settings.ShouldAbort && settings.ShouldAbort())
+      if (this->Settings.ShouldAbort && this->Settings.ShouldAbort())
       {
-        aborted = true;
+        this->Aborted = true;
       }
-      else if (settings.Progress)
+      else if (this->Settings.Progress)
       {
-        settings.Progress((step + static_cast<double>(last) / static_cast<double>(count)) / steps);
+        this->Settings.Progress(
+          (this->Step + static_cast<double>(last) / static_cast<double>(count)) / Steps);
       }
     }
-    ++step;
-  };
+    ++this->Step;
+  }
 
-  NeighbourCache cache(n);
-  cache.Prepare();
-  // 1. The paper's regression-plane normals; zero for points with too few neighbours.
-  std::vector<double> normals(3 * n, 0.0);
-  forEachPoint(n,
-    [&](std::size_t i, Neighbourhood& hood, std::uint64_t& visited)
-    {
-      hood.Select(kernel, grid, radiusSquared, i);
-      cache.Keep(i, hood);
-      visited += hood.Count;
-      if (hood.Count < MinimumNeighbourCount)
-      {
-        return;
-      }
-      kernel.PlaneNormal(hood.Dx.data(),
-        hood.Dy.data(),
-        hood.Dz.data(),
-        hood.Count,
-        constants.DistanceScale,
-        hood.Weight.data(),
-        &normals[3 * i]);
-    });
-
-  // 2. Bilateral filtering of the normals, from one array into the other.
-  std::vector<double> filtered(3 * n, 0.0);
-  for (int pass = 0; pass < EdgeAwareNormalPasses; ++pass)
+  const double* Position(std::size_t i, double p[3]) const
   {
-    forEachPoint(n,
+    p[0] = this->Grid.GetX()[i];
+    p[1] = this->Grid.GetY()[i];
+    p[2] = this->Grid.GetZ()[i];
+    return p;
+  }
+
+  /// 1. The paper's regression-plane normals; zero for points with too few neighbours.
+  void EstimateNormals()
+  {
+    this->Normals.assign(3 * this->Grid.Size(), 0.0);
+    this->ForEachPoint(
       [&](std::size_t i, Neighbourhood& hood, std::uint64_t& visited)
       {
-        const double* own = &normals[3 * i];
+        hood.Select(this->Kernel, this->Grid, this->RadiusSquared, i);
+        this->Cache->Keep(i, hood);
+        visited += hood.Count;
+        if (hood.Count < MinimumNeighbourCount)
+        {
+          return;
+        }
+        this->Kernel.PlaneNormal(hood.Dx.data(),
+          hood.Dy.data(),
+          hood.Dz.data(),
+          hood.Count,
+          this->Constants.DistanceScale,
+          hood.Weight.data(),
+          &this->Normals[3 * i]);
+      });
+  }
+
+  /// 2. Bilateral filtering of the normals, from one array into the other.
+  void FilterNormals()
+  {
+    std::vector<double> filtered(3 * this->Grid.Size(), 0.0);
+    this->ForEachPoint(
+      [&](std::size_t i, Neighbourhood& hood, std::uint64_t& visited)
+      {
+        const double* own = &this->Normals[3 * i];
         double* out = &filtered[3 * i];
-        out[0] = out[1] = out[2] = 0.0;
         if (own[0] == 0.0 && own[1] == 0.0 && own[2] == 0.0)
         {
           return;
         }
-        const SortedNeighbours neighbours =
-          cache.Fetch(kernel, grid, radiusSquared, i, hood, normals.data());
+        const SortedNeighbours neighbours = this->Cache->Fetch(
+          this->Kernel, this->Grid, this->RadiusSquared, i, hood, this->Normals.data());
         visited += neighbours.Count;
-        const double p[3] = { grid.GetX()[i], grid.GetY()[i], grid.GetZ()[i] };
-        double sum[3];
-        kernel.NormalSum(p, neighbours, own, constants.DistanceScale, agreementScale, sum);
+        double p[3], sum[3];
+        this->Kernel.NormalSum(this->Position(i, p),
+          neighbours,
+          own,
+          this->Constants.DistanceScale,
+          this->AgreementScale,
+          sum);
         const double length = std::sqrt((sum[0] * sum[0] + sum[1] * sum[1]) + sum[2] * sum[2]);
         if (!(length > 0.0))
         {
@@ -279,90 +316,127 @@ bool RunEdgeAwareIteration(PointState& state,
           out[axis] = sum[axis] / length;
         }
       });
-    normals.swap(filtered);
+    this->Normals.swap(filtered);
   }
 
-  // 3. The paper's displacement along the filtered normal, the other side of an edge left out
-  // by the agreement of the filtered normals. Only this part's own points move.
-  std::vector<double> moved(3 * n);
-  std::vector<std::uint8_t> isolated(n, 0);
-  const bool keepNormals = !state.Normals.empty();
-  forEachPoint(n,
-    [&](std::size_t i, Neighbourhood& hood, std::uint64_t& visited)
+  /// Stores point `id`'s filtered normal m, turned to agree with its orientation normal if any.
+  void KeepNormal(std::uint32_t id, const double m[3])
+  {
+    double sign = 1.0;
+    if (this->State.OrientationNormals)
     {
-      const std::uint32_t id = grid.GetIds()[i];
-      const double p[3] = { grid.GetX()[i], grid.GetY()[i], grid.GetZ()[i] };
-      std::copy(p, p + 3, &moved[3 * i]);
-      if (id >= state.FirstGhost)
+      const double* reference = this->State.OrientationNormals + 3 * static_cast<std::size_t>(id);
+      sign = (m[0] * reference[0] + m[1] * reference[1]) + m[2] * reference[2] < 0.0 ? -1.0 : 1.0;
+    }
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      this->State.Normals[3 * static_cast<std::size_t>(id) + axis] = sign * m[axis];
+    }
+  }
+
+  /// 3. The paper's displacement along the filtered normal, the other side of an edge left out
+  /// by the agreement of the filtered normals. Only this part's own points move.
+  void Displace()
+  {
+    const std::size_t n = this->Grid.Size();
+    this->Moved.resize(3 * n);
+    this->Isolated.assign(n, 0);
+    this->ForEachPoint(
+      [&](std::size_t i, Neighbourhood& hood, std::uint64_t& visited)
       {
-        return;
-      }
-      const double* m = &normals[3 * i];
-      if (keepNormals)
-      {
-        double sign = 1.0;
-        if (state.OrientationNormals)
+        const std::uint32_t id = this->Grid.GetIds()[i];
+        double p[3];
+        std::copy_n(this->Position(i, p), 3, &this->Moved[3 * i]);
+        if (id >= this->State.FirstGhost)
         {
-          const double* reference = state.OrientationNormals + 3 * static_cast<std::size_t>(id);
-          sign =
-            (m[0] * reference[0] + m[1] * reference[1]) + m[2] * reference[2] < 0.0 ? -1.0 : 1.0;
+          return;
         }
+        const double* m = &this->Normals[3 * i];
+        if (!this->State.Normals.empty())
+        {
+          this->KeepNormal(id, m);
+        }
+        if (m[0] == 0.0 && m[1] == 0.0 && m[2] == 0.0)
+        {
+          this->Isolated[i] = 1; // fewer than MinimumNeighbourCount neighbours
+          return;
+        }
+        const SortedNeighbours neighbours = this->Cache->Fetch(
+          this->Kernel, this->Grid, this->RadiusSquared, i, hood, this->Normals.data());
+        visited += neighbours.Count;
+        double total, weighted;
+        this->Kernel.HeightSums(p,
+          neighbours,
+          m,
+          this->Constants.DistanceScale,
+          this->Constants.NormalScale,
+          this->AgreementScale,
+          total,
+          weighted);
+        if (!(total > 0.0))
+        {
+          this->Isolated[i] = 1;
+          return;
+        }
+        const double displacement = weighted / total;
         for (int axis = 0; axis < 3; ++axis)
         {
-          state.Normals[3 * static_cast<std::size_t>(id) + axis] = sign * m[axis];
+          this->Moved[3 * i + axis] = p[axis] + displacement * m[axis];
         }
-      }
-      if (m[0] == 0.0 && m[1] == 0.0 && m[2] == 0.0)
-      {
-        isolated[i] = 1; // fewer than MinimumNeighbourCount neighbours
-        return;
-      }
-      const SortedNeighbours neighbours =
-        cache.Fetch(kernel, grid, radiusSquared, i, hood, normals.data());
-      visited += neighbours.Count;
-      double total, weighted;
-      kernel.HeightSums(p,
-        neighbours,
-        m,
-        constants.DistanceScale,
-        constants.NormalScale,
-        agreementScale,
-        total,
-        weighted);
-      if (!(total > 0.0))
-      {
-        isolated[i] = 1;
-        return;
-      }
-      const double displacement = weighted / total;
-      for (int axis = 0; axis < 3; ++axis)
-      {
-        moved[3 * i + axis] = p[axis] + displacement * m[axis];
-      }
-    });
-  if (aborted)
-  {
-    return false;
+      });
   }
-  for (const std::uint64_t count : counts)
+
+  /// The moved positions (and removals) of this part's own points, by id.
+  void WriteBack()
   {
-    evaluations += count;
-  }
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const std::size_t id = grid.GetIds()[i];
-    if (id >= state.FirstGhost)
+    for (std::size_t i = 0; i < this->Grid.Size(); ++i)
     {
-      continue;
+      const std::size_t id = this->Grid.GetIds()[i];
+      if (id >= this->State.FirstGhost)
+      {
+        continue;
+      }
+      if (this->Isolated[i] && this->Settings.RemoveIsolatedPoints)
+      {
+        this->State.Removed[id] = 1;
+        continue;
+      }
+      std::copy_n(&this->Moved[3 * i], 3, this->State.Positions.data() + 3 * id);
     }
-    if (isolated[i] && settings.RemoveIsolatedPoints)
-    {
-      state.Removed[id] = 1;
-      continue;
-    }
-    std::copy_n(&moved[3 * i], 3, state.Positions.data() + 3 * id);
   }
-  return true;
+
+  PointState& State;
+  const EdgeAwareSettings& Settings;
+  const int Threads;
+  const double RadiusSquared;
+  const KernelConstants Constants;
+  const EdgeAwareKernel Kernel;
+  const double AgreementScale;
+  std::vector<Neighbourhood> Scratch;
+  std::vector<std::uint64_t> Counts;
+  PointGrid Grid;
+  std::unique_ptr<NeighbourCache> Cache;
+  /// By sorted index: the normals of the current step, the moved positions, the points left
+  /// where they are for want of neighbours.
+  std::vector<double> Normals;
+  std::vector<double> Moved;
+  std::vector<std::uint8_t> Isolated;
+  int Step = 0;
+  bool Aborted = false;
+};
+
+} // namespace
+
+bool RunEdgeAwareIteration(PointState& state,
+  const EdgeAwareSettings& settings,
+  std::uint64_t& evaluations)
+{
+#ifdef _OPENMP
+  const int threads = std::max(1, settings.NumberOfThreads);
+#else
+  const int threads = 1;
+#endif
+  return EdgeAwareIteration(state, settings, threads).Run(evaluations);
 }
 
 } // namespace pcbilateral

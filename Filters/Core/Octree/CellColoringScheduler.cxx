@@ -209,133 +209,178 @@ void CellColoringScheduler::CountProgress(ThreadScratch& scratch, std::size_t po
   }
 }
 
+/// The points a cell's run sends to each of the 27 cells around it (ProcessingOctree's
+/// neighbour slots), listed while the cell runs and handed over when it is done: the lists are
+/// linked through the octree without locks (the colouring invariant).
+struct CellColoringScheduler::CellPlacement
+{
+  CellPlacement(ProcessingOctree& octree, std::size_t cell)
+    : Octree(octree)
+    , Cell(octree.GetCellCoord(cell))
+  {
+    octree.GetNeighbourCells(cell, this->Neighbours);
+    std::fill(this->First, this->First + 27, -1);
+    std::fill(this->Last, this->Last + 27, -1);
+  }
+
+  void Place(std::uint32_t index, int slot, int localLeaf)
+  {
+    if (this->Last[slot] < 0)
+    {
+      this->Last[slot] = static_cast<std::int32_t>(index);
+    }
+    this->Octree.Link(index, localLeaf, this->First[slot]);
+  }
+
+  /// Places a moved point in its leaf if that lies in one of the 27 cells around and that cell
+  /// is stored; false otherwise (the caller defers it).
+  bool PlaceMoved(std::uint32_t index, const double moved[3])
+  {
+    const LatticeCoord leaf = this->Octree.LeafOf(moved);
+    const LatticeCoord destination = ProcessingOctree::CellOfLeaf(leaf);
+    const std::int64_t dx = destination.X - this->Cell.X;
+    const std::int64_t dy = destination.Y - this->Cell.Y;
+    const std::int64_t dz = destination.Z - this->Cell.Z;
+    if (std::abs(dx) > 1 || std::abs(dy) > 1 || std::abs(dz) > 1)
+    {
+      return false;
+    }
+    const int slot = ProcessingOctree::NeighbourSlot(
+      static_cast<int>(dx), static_cast<int>(dy), static_cast<int>(dz));
+    if (this->Neighbours[slot] == ProcessingOctree::NoCell)
+    {
+      return false;
+    }
+    this->Place(index, slot, ProcessingOctree::LocalLeafIndex(leaf));
+    return true;
+  }
+
+  void HandOver()
+  {
+    for (int slot = 0; slot < 27; ++slot)
+    {
+      if (this->First[slot] >= 0)
+      {
+        this->Octree.PlaceList(this->Neighbours[slot], this->First[slot], this->Last[slot]);
+      }
+    }
+  }
+
+  ProcessingOctree& Octree;
+  const LatticeCoord& Cell;
+  std::int32_t Neighbours[27];
+  std::int32_t First[27], Last[27];
+};
+
 void CellColoringScheduler::ProcessCell(std::size_t cell,
   PointState& state,
   ThreadScratch& scratch,
   bool isMaster)
 {
-  const LatticeCoord& cellCoord = this->Octree.GetCellCoord(cell);
-  std::int32_t neighbours[27];
-  this->Octree.GetNeighbourCells(cell, neighbours);
+  CellPlacement placement(this->Octree, cell);
+  for (std::uint64_t leaves = this->Octree.GetLeafMask(cell); leaves != 0; leaves &= leaves - 1)
+  {
+    const int localLeaf = CountTrailingZeros(leaves);
+    if (!this->ProcessLeaf(cell, localLeaf, placement, state, scratch, isMaster))
+    {
+      return;
+    }
+  }
+  placement.HandOver();
+}
+
+bool CellColoringScheduler::ProcessLeaf(std::size_t cell,
+  int localLeaf,
+  CellPlacement& placement,
+  PointState& state,
+  ThreadScratch& scratch,
+  bool isMaster)
+{
   const std::uint32_t* ids = this->Octree.GetIds();
   const double* x = this->Octree.GetX();
   const double* y = this->Octree.GetY();
   const double* z = this->Octree.GetZ();
-  double* movedX = this->Octree.GetMovedX();
-  double* movedY = this->Octree.GetMovedY();
-  double* movedZ = this->Octree.GetMovedZ();
-  const bool keepNormals = !state.Normals.empty();
-  // The points bound for each of the 27 cells around, listed here and handed over at the end.
-  std::int32_t first[27], last[27];
-  std::fill(first, first + 27, -1);
-  std::fill(last, last + 27, -1);
-  auto place = [&](std::uint32_t index, int slot, int localLeaf)
+  std::uint32_t begin, end;
+  this->Octree.GetLeafRange(cell, localLeaf, begin, end);
+  this->GatherCandidates(cell, placement.Neighbours, localLeaf, end - begin, scratch.Candidates);
+  // The leaf's points KernelLanes at a time: they share the candidates, and the kernel solves
+  // their eigenvectors side by side.
+  for (std::uint32_t next = begin; next < end;)
   {
-    if (last[slot] < 0)
+    if (this->StopRequested(isMaster))
     {
-      last[slot] = static_cast<std::int32_t>(index);
+      return false;
     }
-    this->Octree.Link(index, localLeaf, first[slot]);
-  };
-
-  for (std::uint64_t leaves = this->Octree.GetLeafMask(cell); leaves != 0; leaves &= leaves - 1)
-  {
-    const int localLeaf = CountTrailingZeros(leaves);
-    std::uint32_t begin, end;
-    this->Octree.GetLeafRange(cell, localLeaf, begin, end);
-    this->GatherCandidates(cell, neighbours, localLeaf, end - begin, scratch.Candidates);
-    // The leaf's points KernelLanes at a time: they share the candidates, and the kernel
-    // solves their eigenvectors side by side.
-    for (std::uint32_t next = begin; next < end;)
+    std::uint32_t batch[KernelLanes];
+    double points[KernelLanes][3];
+    std::size_t batchSize = 0;
+    const std::uint32_t batchBegin = next;
+    for (; next < end && batchSize < KernelLanes; ++next)
     {
-      if (this->StopRequested(isMaster))
+      if (ids[next] >= state.FirstGhost)
       {
-        return;
+        // Ghosts are neighbours only: they stay where they are.
+        this->Octree.GetMovedX()[next] = x[next];
+        this->Octree.GetMovedY()[next] = y[next];
+        this->Octree.GetMovedZ()[next] = z[next];
+        placement.Place(next, ProcessingOctree::CentreSlot, localLeaf);
+        continue;
       }
-      std::uint32_t batch[KernelLanes];
-      double points[KernelLanes][3];
-      std::size_t batchSize = 0;
-      const std::uint32_t batchBegin = next;
-      for (; next < end && batchSize < KernelLanes; ++next)
-      {
-        if (ids[next] >= state.FirstGhost)
-        {
-          // Ghosts are neighbours only: they stay where they are.
-          movedX[next] = x[next];
-          movedY[next] = y[next];
-          movedZ[next] = z[next];
-          place(next, ProcessingOctree::CentreSlot, localLeaf);
-          continue;
-        }
-        batch[batchSize] = next;
-        points[batchSize][0] = x[next];
-        points[batchSize][1] = y[next];
-        points[batchSize][2] = z[next];
-        ++batchSize;
-      }
-      // Progress within the leaf: with a radius as large as the cloud, one leaf may hold every
-      // point.
-      this->CountProgress(scratch, next - batchBegin, isMaster);
-      FilteredPoint filteredPoints[KernelLanes];
-      FilterPoints(points, batchSize, scratch.Candidates, this->Constants, filteredPoints);
-      scratch.EvaluationsSinceReport += batchSize * scratch.Candidates.Size();
-      for (std::size_t k = 0; k < batchSize; ++k)
-      {
-        const std::uint32_t i = batch[k];
-        const std::uint32_t id = ids[i];
-        const double* p = points[k];
-        const FilteredPoint& filtered = filteredPoints[k];
-        scratch.NeighbourEvaluations += filtered.NeighbourCount;
-        const double moved[3] = { p[0] + filtered.Displacement * filtered.Normal[0],
-          p[1] + filtered.Displacement * filtered.Normal[1],
-          p[2] + filtered.Displacement * filtered.Normal[2] };
-        if (keepNormals)
-        {
-          KeepNormal(state, id, filtered.Normal);
-        }
-        if (!filtered.Filtered && this->RemoveIsolatedPoints)
-        {
-          state.Removed[id] = 1;
-          if (state.Positions.empty())
-          {
-            scratch.Stopped.push_back(StoppedPoint{ id, { p[0], p[1], p[2] } });
-          }
-          else
-          {
-            std::copy(p, p + 3, state.Positions.data() + 3 * static_cast<std::size_t>(id));
-          }
-          continue;
-        }
-        movedX[i] = moved[0];
-        movedY[i] = moved[1];
-        movedZ[i] = moved[2];
-
-        const LatticeCoord leaf = this->Octree.LeafOf(moved);
-        const LatticeCoord destination = ProcessingOctree::CellOfLeaf(leaf);
-        const std::int64_t dx = destination.X - cellCoord.X;
-        const std::int64_t dy = destination.Y - cellCoord.Y;
-        const std::int64_t dz = destination.Z - cellCoord.Z;
-        const bool near = std::abs(dx) <= 1 && std::abs(dy) <= 1 && std::abs(dz) <= 1;
-        const int slot = near ? ProcessingOctree::NeighbourSlot(
-                                  static_cast<int>(dx), static_cast<int>(dy), static_cast<int>(dz))
-                              : -1;
-        if (near && neighbours[slot] != ProcessingOctree::NoCell)
-        {
-          place(i, slot, ProcessingOctree::LocalLeafIndex(leaf));
-        }
-        else
-        {
-          scratch.Deferred.push_back(i);
-        }
-      }
+      batch[batchSize] = next;
+      points[batchSize][0] = x[next];
+      points[batchSize][1] = y[next];
+      points[batchSize][2] = z[next];
+      ++batchSize;
+    }
+    // Progress within the leaf: with a radius as large as the cloud, one leaf may hold every
+    // point.
+    this->CountProgress(scratch, next - batchBegin, isMaster);
+    FilteredPoint filteredPoints[KernelLanes];
+    FilterPoints(points, batchSize, scratch.Candidates, this->Constants, filteredPoints);
+    scratch.EvaluationsSinceReport += batchSize * scratch.Candidates.Size();
+    for (std::size_t k = 0; k < batchSize; ++k)
+    {
+      this->StoreFilteredPoint(batch[k], points[k], filteredPoints[k], placement, state, scratch);
     }
   }
-  for (int slot = 0; slot < 27; ++slot)
+  return true;
+}
+
+void CellColoringScheduler::StoreFilteredPoint(std::uint32_t index,
+  const double p[3],
+  const FilteredPoint& filtered,
+  CellPlacement& placement,
+  PointState& state,
+  ThreadScratch& scratch)
+{
+  const std::uint32_t id = this->Octree.GetIds()[index];
+  scratch.NeighbourEvaluations += filtered.NeighbourCount;
+  if (!state.Normals.empty())
   {
-    if (first[slot] >= 0)
+    KeepNormal(state, id, filtered.Normal);
+  }
+  if (!filtered.Filtered && this->RemoveIsolatedPoints)
+  {
+    state.Removed[id] = 1;
+    if (state.Positions.empty())
     {
-      this->Octree.PlaceList(neighbours[slot], first[slot], last[slot]);
+      scratch.Stopped.push_back(StoppedPoint{ id, { p[0], p[1], p[2] } });
     }
+    else
+    {
+      std::copy(p, p + 3, state.Positions.data() + 3 * static_cast<std::size_t>(id));
+    }
+    return;
+  }
+  const double moved[3] = { p[0] + filtered.Displacement * filtered.Normal[0],
+    p[1] + filtered.Displacement * filtered.Normal[1],
+    p[2] + filtered.Displacement * filtered.Normal[2] };
+  this->Octree.GetMovedX()[index] = moved[0];
+  this->Octree.GetMovedY()[index] = moved[1];
+  this->Octree.GetMovedZ()[index] = moved[2];
+  if (!placement.PlaceMoved(index, moved))
+  {
+    scratch.Deferred.push_back(index);
   }
 }
 

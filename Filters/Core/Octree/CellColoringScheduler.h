@@ -68,7 +68,23 @@ private:
     std::uint64_t NeighbourEvaluations = 0;
   };
 
+  struct CellPlacement;
+  /// Filters the points of a cell, leaf by leaf, and places them for the next iteration.
   void ProcessCell(std::size_t cell, PointState& state, ThreadScratch& scratch, bool isMaster);
+  /// Filters the points of one leaf of a cell; false if the run was stopped.
+  bool ProcessLeaf(std::size_t cell,
+    int localLeaf,
+    CellPlacement& placement,
+    PointState& state,
+    ThreadScratch& scratch,
+    bool isMaster);
+  /// Writes a filtered point's move (or removal) and places it for the next iteration.
+  void StoreFilteredPoint(std::uint32_t index,
+    const double p[3],
+    const FilteredPoint& filtered,
+    CellPlacement& placement,
+    PointState& state,
+    ThreadScratch& scratch);
   /// Whether the run is to stop: aborted already, or (calling thread only) ShouldAbort says so.
   bool StopRequested(bool isMaster);
   /// Counts `points` done by a thread, and reports progress every so often (calling thread).

@@ -288,21 +288,7 @@ ProcessingOctree::ProcessingOctree(const double boundsMin[3],
 
 void ProcessingOctree::Load(const double* positions, std::size_t count, int numberOfThreads)
 {
-  this->CellCoords.clear();
-  this->CellIndex.Clear(count / 64);
-  this->NumberOfProcessingCells = 0;
-  this->NextHead.clear();
-  this->LeafMasks.clear();
-  this->CellBegins.assign(1, 0);
-  this->LeafSlots.clear();
-  this->LeafEnds.clear();
-  this->Ids.clear();
-  this->MovedX.clear();
-  this->MovedY.clear();
-  this->MovedZ.clear();
-  ReserveWithHugePages(count, this->Ids, this->CompactedIds, this->X, this->Y, this->Z);
-  ReserveWithHugePages(count, this->MovedX, this->MovedY, this->MovedZ);
-  ReserveWithHugePages(count, this->NextLink, this->NextLeaf);
+  this->Reset(count);
   for (std::size_t id = 0; id < count; ++id)
   {
     if (IsFinitePoint(positions + 3 * id))
@@ -310,40 +296,12 @@ void ProcessingOctree::Load(const double* positions, std::size_t count, int numb
       this->Ids.push_back(static_cast<std::uint32_t>(id));
     }
   }
-  const std::size_t n = this->Ids.size();
-  const auto signedCount = static_cast<std::int64_t>(n);
-
-  // Each point's cell (held in NextLink until the layout is made) and leaf, in parallel: the
-  // map is filled from a sample of the points first (cells hold tens of points, so the sample
-  // finds nearly all of them), then read by all threads; the few cells the sample missed are
-  // created after, serially. Cells are numbered in no meaningful order until sorted below.
-  this->NextLink.resize(n);
-  this->NextLeaf.resize(n);
-  auto positionOf = [this, positions](std::size_t i)
-  { return positions + 3 * static_cast<std::size_t>(this->Ids[i]); };
-  constexpr std::size_t SampleStep = 16;
-  for (std::size_t i = 0; i < n; i += SampleStep)
-  {
-    this->FindOrCreateCell(CellOfLeaf(this->LeafOf(positionOf(i))));
-  }
-#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
-  for (std::int64_t i = 0; i < signedCount; ++i)
-  {
-    const LatticeCoord leaf = this->LeafOf(positionOf(static_cast<std::size_t>(i)));
-    this->NextLink[i] = this->FindCell(CellOfLeaf(leaf));
-    this->NextLeaf[i] = static_cast<std::uint8_t>(LocalLeafIndex(leaf));
-  }
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    if (this->NextLink[i] == NoCell)
-    {
-      this->NextLink[i] = this->FindOrCreateCell(CellOfLeaf(this->LeafOf(positionOf(i))));
-    }
-  }
+  this->AssignCellsAndLeaves(positions, numberOfThreads);
 
   // The first layout, built here rather than by Compact (which would copy every position and
   // id a second time, beside the input: that copy was the peak memory of sparse clouds): the
   // cells in lattice order, each cell's points in layout order.
+  const std::size_t n = this->Ids.size();
   const std::size_t cells = this->CellCoords.size();
   std::vector<std::int32_t> kept(cells);
   std::iota(kept.begin(), kept.end(), 0);
@@ -364,49 +322,122 @@ void ProcessingOctree::Load(const double* positions, std::size_t count, int numb
   // whose points are not in spatial order (random, or shuffled by a previous tool) made a single
   // pass write each point to its own cell, one of hundreds of thousands: a cache and TLB miss
   // per array per point, 5.9 s of the 28 s that lidar20M took on one thread. First, each point
-  // goes to its bucket, a run of consecutive cells of about bucketPoints points; then each bucket
-  // is ordered in cache. Buckets fill in a fixed order (chunks of points, in order), but that
-  // order does not matter: the second pass orders every cell's points by geometry alone.
+  // goes to its bucket, a run of consecutive cells of about n / 1024 points; then each bucket is
+  // ordered in cache.
+  const LoadBuckets buckets = this->PlanBuckets(kept);
+  PointArray<std::uint32_t> codes(n);
+  this->ScatterToBuckets(positions, buckets, codes, numberOfThreads);
+  this->OrderBuckets(buckets, codes, numberOfThreads);
+  this->FinishCells(kept, n, numberOfThreads);
+}
+
+void ProcessingOctree::Reset(std::size_t count)
+{
+  this->CellCoords.clear();
+  this->CellIndex.Clear(count / 64);
+  this->NumberOfProcessingCells = 0;
+  this->NextHead.clear();
+  this->LeafMasks.clear();
+  this->CellBegins.assign(1, 0);
+  this->LeafSlots.clear();
+  this->LeafEnds.clear();
+  this->Ids.clear();
+  this->MovedX.clear();
+  this->MovedY.clear();
+  this->MovedZ.clear();
+  ReserveWithHugePages(count, this->Ids, this->CompactedIds, this->X, this->Y, this->Z);
+  ReserveWithHugePages(count, this->MovedX, this->MovedY, this->MovedZ);
+  ReserveWithHugePages(count, this->NextLink, this->NextLeaf);
+}
+
+void ProcessingOctree::AssignCellsAndLeaves(const double* positions, int numberOfThreads)
+{
+  // Each point's cell (held in NextLink until the layout is made) and leaf, in parallel: the
+  // map is filled from a sample of the points first (cells hold tens of points, so the sample
+  // finds nearly all of them), then read by all threads; the few cells the sample missed are
+  // created after, serially. Cells are numbered in no meaningful order until sorted.
+  const std::size_t n = this->Ids.size();
+  this->NextLink.resize(n);
+  this->NextLeaf.resize(n);
+  auto positionOf = [this, positions](std::size_t i)
+  { return positions + 3 * static_cast<std::size_t>(this->Ids[i]); };
+  constexpr std::size_t SampleStep = 16;
+  for (std::size_t i = 0; i < n; i += SampleStep)
+  {
+    this->FindOrCreateCell(CellOfLeaf(this->LeafOf(positionOf(i))));
+  }
+  const auto signedCount = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
+  for (std::int64_t i = 0; i < signedCount; ++i)
+  {
+    const LatticeCoord leaf = this->LeafOf(positionOf(static_cast<std::size_t>(i)));
+    this->NextLink[i] = this->FindCell(CellOfLeaf(leaf));
+    this->NextLeaf[i] = static_cast<std::uint8_t>(LocalLeafIndex(leaf));
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (this->NextLink[i] == NoCell)
+    {
+      this->NextLink[i] = this->FindOrCreateCell(CellOfLeaf(this->LeafOf(positionOf(i))));
+    }
+  }
+}
+
+ProcessingOctree::LoadBuckets ProcessingOctree::PlanBuckets(
+  const std::vector<std::int32_t>& kept) const
+{
+  // Buckets are runs of consecutive cells (in the new order) of about n / 1024 points, at least
+  // 4096.
+  const std::size_t n = this->Ids.size();
+  const std::size_t cells = kept.size();
   const std::size_t bucketPoints = std::max<std::size_t>(4096, n / 1024);
-  std::vector<std::uint32_t> bucketFirstCell;
-  // By old cell number: its bucket, and its new number within the bucket shifted left by 6 with
-  // room for a leaf index (a bucket holds at most bucketPoints cells, far below 2^26).
-  std::vector<std::uint32_t> bucketOfCell(cells), cellCode(cells);
+  LoadBuckets buckets;
+  buckets.BucketOfCell.resize(cells);
+  buckets.CellCode.resize(cells);
   for (std::size_t cell = 0, inBucket = 0; cell < cells; ++cell)
   {
     if (cell == 0 || inBucket >= bucketPoints)
     {
-      bucketFirstCell.push_back(static_cast<std::uint32_t>(cell));
+      buckets.FirstCell.push_back(static_cast<std::uint32_t>(cell));
       inBucket = 0;
     }
     const auto old = static_cast<std::size_t>(kept[cell]);
-    bucketOfCell[old] = static_cast<std::uint32_t>(bucketFirstCell.size() - 1);
-    cellCode[old] = static_cast<std::uint32_t>(cell - bucketFirstCell.back()) << 6;
+    buckets.BucketOfCell[old] = static_cast<std::uint32_t>(buckets.FirstCell.size() - 1);
+    buckets.CellCode[old] = static_cast<std::uint32_t>(cell - buckets.FirstCell.back()) << 6;
     inBucket += this->CellBegins[cell + 1] - this->CellBegins[cell];
   }
   static_assert(LeavesPerCell <= 64, "a leaf index takes 6 bits of a cell code");
-  const std::size_t buckets = bucketFirstCell.size();
-  bucketFirstCell.push_back(static_cast<std::uint32_t>(cells));
+  buckets.Count = buckets.FirstCell.size();
+  buckets.FirstCell.push_back(static_cast<std::uint32_t>(cells));
+  return buckets;
+}
 
-  // Pass 1: fixed chunks of points each count their points per bucket, then write them where
-  // the counts say (bucket by bucket, chunk by chunk), in parallel.
+void ProcessingOctree::ScatterToBuckets(const double* positions,
+  const LoadBuckets& buckets,
+  PointArray<std::uint32_t>& codes,
+  int numberOfThreads)
+{
+  // Fixed chunks of points each count their points per bucket, then write them where the
+  // counts say (bucket by bucket, chunk by chunk), in parallel. Buckets fill in a fixed order,
+  // but that order does not matter: OrderBuckets orders every cell's points by geometry alone.
+  const std::size_t n = this->Ids.size();
   constexpr std::size_t Chunks = 64;
-  std::vector<std::uint32_t> cursors(Chunks * buckets, 0);
+  std::vector<std::uint32_t> cursors(Chunks * buckets.Count, 0);
   auto chunkBegin = [n](std::size_t chunk) { return chunk * n / Chunks; };
 #pragma omp parallel for schedule(static) num_threads(numberOfThreads)
   for (std::int64_t chunk = 0; chunk < static_cast<std::int64_t>(Chunks); ++chunk)
   {
-    std::uint32_t* counts = cursors.data() + static_cast<std::size_t>(chunk) * buckets;
+    std::uint32_t* counts = cursors.data() + static_cast<std::size_t>(chunk) * buckets.Count;
     for (std::size_t i = chunkBegin(chunk); i < chunkBegin(chunk + 1); ++i)
     {
-      ++counts[bucketOfCell[static_cast<std::size_t>(this->NextLink[i])]];
+      ++counts[buckets.BucketOfCell[static_cast<std::size_t>(this->NextLink[i])]];
     }
   }
-  for (std::size_t bucket = 0, at = 0; bucket < buckets; ++bucket)
+  for (std::size_t bucket = 0, at = 0; bucket < buckets.Count; ++bucket)
   {
     for (std::size_t chunk = 0; chunk < Chunks; ++chunk)
     {
-      std::uint32_t& cursor = cursors[chunk * buckets + bucket];
+      std::uint32_t& cursor = cursors[chunk * buckets.Count + bucket];
       const std::uint32_t count = cursor;
       cursor = static_cast<std::uint32_t>(at);
       at += count;
@@ -416,86 +447,97 @@ void ProcessingOctree::Load(const double* positions, std::size_t count, int numb
   this->X.resize(n);
   this->Y.resize(n);
   this->Z.resize(n);
-  PointArray<std::uint32_t> codes(n);
 #pragma omp parallel for schedule(static) num_threads(numberOfThreads)
   for (std::int64_t chunk = 0; chunk < static_cast<std::int64_t>(Chunks); ++chunk)
   {
-    std::uint32_t* cursor = cursors.data() + static_cast<std::size_t>(chunk) * buckets;
+    std::uint32_t* cursor = cursors.data() + static_cast<std::size_t>(chunk) * buckets.Count;
     for (std::size_t i = chunkBegin(chunk); i < chunkBegin(chunk + 1); ++i)
     {
       const auto cell = static_cast<std::size_t>(this->NextLink[i]);
-      const std::uint32_t to = cursor[bucketOfCell[cell]]++;
-      const double* p = positionOf(i);
+      const std::uint32_t to = cursor[buckets.BucketOfCell[cell]]++;
+      const double* p = positions + 3 * static_cast<std::size_t>(this->Ids[i]);
       this->X[to] = p[0];
       this->Y[to] = p[1];
       this->Z[to] = p[2];
       this->CompactedIds[to] = this->Ids[i];
-      codes[to] = cellCode[cell] | this->NextLeaf[i];
+      codes[to] = buckets.CellCode[cell] | this->NextLeaf[i];
     }
   }
   this->Ids.swap(this->CompactedIds);
   // The ids of the finite points in input order are not needed again; Compact makes its own.
   PointArray<std::uint32_t>().swap(this->CompactedIds);
+}
 
-  // Pass 2: each bucket's points, copied aside, sorted by cell and written back in layout order.
-  const auto signedBuckets = static_cast<std::int64_t>(buckets);
+void ProcessingOctree::OrderBuckets(const LoadBuckets& buckets,
+  const PointArray<std::uint32_t>& codes,
+  int numberOfThreads)
+{
+  // Each bucket's points, copied aside, sorted by cell and written back in layout order.
+  const auto signedBuckets = static_cast<std::int64_t>(buckets.Count);
 #pragma omp parallel num_threads(numberOfThreads)
   {
-    std::vector<double> x, y, z;
-    std::vector<std::uint32_t> ids, bucketCodes, byCell, cellStarts, sorted;
+    BucketScratch scratch;
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t bucket = 0; bucket < signedBuckets; ++bucket)
     {
-      const std::uint32_t firstCell = bucketFirstCell[bucket];
-      const std::uint32_t endCell = bucketFirstCell[bucket + 1];
-      const std::uint32_t begin = this->CellBegins[firstCell];
-      const std::uint32_t end = this->CellBegins[endCell];
-      x.assign(this->X.begin() + begin, this->X.begin() + end);
-      y.assign(this->Y.begin() + begin, this->Y.begin() + end);
-      z.assign(this->Z.begin() + begin, this->Z.begin() + end);
-      ids.assign(this->Ids.begin() + begin, this->Ids.begin() + end);
-      bucketCodes.assign(codes.begin() + begin, codes.begin() + end);
-      // The copies' indices, grouped by cell.
-      cellStarts.assign(endCell - firstCell + 1, 0);
-      for (const std::uint32_t code : bucketCodes)
-      {
-        ++cellStarts[(code >> 6) + 1];
-      }
-      for (std::size_t cell = 0; cell + 1 < cellStarts.size(); ++cell)
-      {
-        cellStarts[cell + 1] += cellStarts[cell];
-      }
-      byCell.resize(bucketCodes.size());
-      for (std::uint32_t k = 0; k < bucketCodes.size(); ++k)
-      {
-        byCell[cellStarts[bucketCodes[k] >> 6]++] = k;
-      }
-      const LeafOrder order{ x.data(), y.data(), z.data(), ids.data() };
-      std::uint32_t listed = 0;
-      for (std::uint32_t cell = firstCell; cell < endCell; ++cell)
-      {
-        const std::uint32_t cellBegin = this->CellBegins[cell];
-        const std::uint32_t count = this->CellBegins[cell + 1] - cellBegin;
-        OrderCellPoints(
-          byCell.data() + listed,
-          count,
-          [&bucketCodes](std::uint32_t k) { return bucketCodes[k] & 63u; },
-          order,
-          cellBegin,
-          sorted,
-          this->LeafEnds.data() + this->LeafSlots[cell]);
-        listed += count;
-        for (std::uint32_t k = 0; k < count; ++k)
-        {
-          this->X[cellBegin + k] = x[sorted[k]];
-          this->Y[cellBegin + k] = y[sorted[k]];
-          this->Z[cellBegin + k] = z[sorted[k]];
-          this->Ids[cellBegin + k] = ids[sorted[k]];
-        }
-      }
+      this->OrderBucket(buckets.FirstCell[bucket], buckets.FirstCell[bucket + 1], codes, scratch);
     }
   }
-  this->FinishCells(kept, n, numberOfThreads);
+}
+
+void ProcessingOctree::OrderBucket(std::uint32_t firstCell,
+  std::uint32_t endCell,
+  const PointArray<std::uint32_t>& codes,
+  BucketScratch& scratch)
+{
+  const std::uint32_t begin = this->CellBegins[firstCell];
+  const std::uint32_t end = this->CellBegins[endCell];
+  scratch.X.assign(this->X.begin() + begin, this->X.begin() + end);
+  scratch.Y.assign(this->Y.begin() + begin, this->Y.begin() + end);
+  scratch.Z.assign(this->Z.begin() + begin, this->Z.begin() + end);
+  scratch.Ids.assign(this->Ids.begin() + begin, this->Ids.begin() + end);
+  scratch.Codes.assign(codes.begin() + begin, codes.begin() + end);
+  const std::vector<std::uint32_t>& bucketCodes = scratch.Codes;
+  // The copies' indices, grouped by cell.
+  std::vector<std::uint32_t>& cellStarts = scratch.CellStarts;
+  cellStarts.assign(endCell - firstCell + 1, 0);
+  for (const std::uint32_t code : bucketCodes)
+  {
+    ++cellStarts[(code >> 6) + 1];
+  }
+  for (std::size_t cell = 0; cell + 1 < cellStarts.size(); ++cell)
+  {
+    cellStarts[cell + 1] += cellStarts[cell];
+  }
+  scratch.ByCell.resize(bucketCodes.size());
+  for (std::uint32_t k = 0; k < bucketCodes.size(); ++k)
+  {
+    scratch.ByCell[cellStarts[bucketCodes[k] >> 6]++] = k;
+  }
+  const LeafOrder order{ scratch.X.data(), scratch.Y.data(), scratch.Z.data(), scratch.Ids.data() };
+  std::vector<std::uint32_t>& sorted = scratch.Sorted;
+  std::uint32_t listed = 0;
+  for (std::uint32_t cell = firstCell; cell < endCell; ++cell)
+  {
+    const std::uint32_t cellBegin = this->CellBegins[cell];
+    const std::uint32_t count = this->CellBegins[cell + 1] - cellBegin;
+    OrderCellPoints(
+      scratch.ByCell.data() + listed,
+      count,
+      [&bucketCodes](std::uint32_t k) { return bucketCodes[k] & 63u; },
+      order,
+      cellBegin,
+      sorted,
+      this->LeafEnds.data() + this->LeafSlots[cell]);
+    listed += count;
+    for (std::uint32_t k = 0; k < count; ++k)
+    {
+      this->X[cellBegin + k] = scratch.X[sorted[k]];
+      this->Y[cellBegin + k] = scratch.Y[sorted[k]];
+      this->Z[cellBegin + k] = scratch.Z[sorted[k]];
+      this->Ids[cellBegin + k] = scratch.Ids[sorted[k]];
+    }
+  }
 }
 
 std::int32_t ProcessingOctree::FindCell(const LatticeCoord& cell) const

@@ -310,6 +310,41 @@ private:
     return static_cast<int>((bits * 0x0101010101010101ULL) >> 56);
   }
 
+  /// Load's steps: empty tables with room for `count` points; each finite point's (Ids) cell
+  /// in NextLink and leaf in NextLeaf.
+  void Reset(std::size_t count);
+  void AssignCellsAndLeaves(const double* positions, int numberOfThreads);
+  /// Load places the points through buckets, runs of consecutive cells of the new layout:
+  /// FirstCell[b] to FirstCell[b + 1] - 1 make bucket b; by old cell number, its bucket and its
+  /// code, its number within the bucket shifted left by 6 with room for a leaf index.
+  struct LoadBuckets
+  {
+    std::size_t Count = 0;
+    std::vector<std::uint32_t> FirstCell;
+    std::vector<std::uint32_t> BucketOfCell;
+    std::vector<std::uint32_t> CellCode;
+  };
+  LoadBuckets PlanBuckets(const std::vector<std::int32_t>& kept) const;
+  /// Writes every point's position and id into its bucket's stretch of the layout, and its cell
+  /// code with its leaf index into `codes`.
+  void ScatterToBuckets(const double* positions,
+    const LoadBuckets& buckets,
+    PointArray<std::uint32_t>& codes,
+    int numberOfThreads);
+  /// One thread's copies of a bucket, kept from one bucket to the next.
+  struct BucketScratch
+  {
+    std::vector<double> X, Y, Z;
+    std::vector<std::uint32_t> Ids, Codes, ByCell, CellStarts, Sorted;
+  };
+  /// Orders every bucket's points into the layout (cell by cell, leaf by leaf, by coordinates).
+  void OrderBuckets(const LoadBuckets& buckets,
+    const PointArray<std::uint32_t>& codes,
+    int numberOfThreads);
+  void OrderBucket(std::uint32_t firstCell,
+    std::uint32_t endCell,
+    const PointArray<std::uint32_t>& codes,
+    BucketScratch& scratch);
   /// Sorts `kept` (cell numbers) into lattice order; the cells of the last layout, numbered
   /// below NumberOfProcessingCells in that order already, must come first.
   void SortCells(std::vector<std::int32_t>& kept, int numberOfThreads) const;
