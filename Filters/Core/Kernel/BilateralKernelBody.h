@@ -508,73 +508,6 @@ inline void AccumulateBilateralHeights(const double* dx,
 /// Algorithm 1 for `pointCount` points (at most Lanes) against the same candidates (see
 /// FilterPoints in BilateralKernel.h), the entry point of this build (declared in
 /// BilateralKernel.cxx): pass 1 for each point, their eigenvectors side by side, pass 2 for each.
-/// Pass 1 for one point: its neighbours among the candidates, packed and padded in `own`, their
-/// distance weights and the covariance of the weighted regression plane. Returns the padded
-/// number of neighbours, 0 when there are too few (or no plane: `planed` false).
-inline std::size_t RegressionPass(const double p[3],
-  const double* x,
-  const double* y,
-  const double* z,
-  std::size_t count,
-  const KernelConstants& constants,
-  const KernelScratch& own,
-  FilteredPoint& result,
-  double covariance[6],
-  bool& planed)
-{
-  const std::size_t neighbours = PackNeighbours<false>(
-    p, x, y, z, 0, count, constants.RadiusSquared, own.Dx, own.Dy, own.Dz, nullptr, 0);
-  result.NeighbourCount = static_cast<std::uint32_t>(neighbours);
-  planed = false;
-  if (neighbours < MinimumNeighbourCount)
-  {
-    return 0;
-  }
-  // Pad to whole vectors with neighbours so far away that their squared distance overflows to
-  // infinity: their weights are exp(-inf) = 0, and they add exact zeros to every sum (the
-  // offsets are finite, so no 0 x inf).
-  const std::size_t padded = (neighbours + Lanes - 1) / Lanes * Lanes;
-  for (std::size_t k = neighbours; k < padded; ++k)
-  {
-    own.Dx[k] = own.Dy[k] = own.Dz[k] = 1e300;
-  }
-  planed = RegressionCovariance(
-    AccumulateDistanceMoments(
-      own.Dx, own.Dy, own.Dz, padded, constants.DistanceScale, own.DistanceWeight),
-    covariance);
-  return padded;
-}
-
-/// Pass 2 for one point: the bilateral average of the heights h = <n, q - p> over the
-/// neighbours packed by pass 1, into `result` (left unmoved when every weight is zero).
-inline void DisplacementPass(const KernelScratch& own,
-  std::size_t padded,
-  const double n[3],
-  const KernelConstants& constants,
-  FilteredPoint& result)
-{
-  DoubleLanes bilateralWeightSum, weightedHeightSum;
-  AccumulateBilateralHeights(own.Dx,
-    own.Dy,
-    own.Dz,
-    own.DistanceWeight,
-    padded,
-    n,
-    constants.NormalScale,
-    bilateralWeightSum,
-    weightedHeightSum);
-  const double totalBilateralWeight = SumLanes(bilateralWeightSum);
-  if (!(totalBilateralWeight > 0.0))
-  {
-    return;
-  }
-  result.Displacement = SumLanes(weightedHeightSum) / totalBilateralWeight;
-  result.Normal[0] = n[0];
-  result.Normal[1] = n[1];
-  result.Normal[2] = n[2];
-  result.Filtered = true;
-}
-
 /// `results` arrive zeroed: a point does not move unless this says so.
 void FilterPoints(const double (*points)[3],
   std::size_t pointCount,
@@ -586,40 +519,86 @@ void FilterPoints(const double (*points)[3],
   const KernelScratch* scratch,
   FilteredPoint* results)
 {
-  // Pass 1, by lane. Lanes without a plane keep a zero matrix, which the eigensolver below
-  // flags (no spread) and which is never read.
+  // Pass 1 for each point: its neighbours, their distance weights and the covariance of the
+  // weighted regression plane, by lane. Lanes without a plane keep a zero matrix, which the
+  // eigensolver below flags (no spread) and which is never read.
   std::size_t padded[Lanes] = {};
   bool planed[Lanes] = {};
   double covariance[6][Lanes] = {};
   for (std::size_t point = 0; point < pointCount; ++point)
   {
-    double planeCovariance[6];
-    padded[point] = RegressionPass(points[point],
+    const KernelScratch& own = scratch[point];
+    const std::size_t neighbours = PackNeighbours<false>(points[point],
       x,
       y,
       z,
+      0,
       count,
-      constants,
-      scratch[point],
-      results[point],
-      planeCovariance,
-      planed[point]);
+      constants.RadiusSquared,
+      own.Dx,
+      own.Dy,
+      own.Dz,
+      nullptr,
+      0);
+    results[point].NeighbourCount = static_cast<std::uint32_t>(neighbours);
+    if (neighbours < MinimumNeighbourCount)
+    {
+      continue;
+    }
+    // Pad to whole vectors with neighbours so far away that their squared distance overflows
+    // to infinity: their weights are exp(-inf) = 0, and they add exact zeros to every sum (the
+    // offsets are finite, so no 0 x inf).
+    padded[point] = (neighbours + Lanes - 1) / Lanes * Lanes;
+    for (std::size_t k = neighbours; k < padded[point]; ++k)
+    {
+      own.Dx[k] = own.Dy[k] = own.Dz[k] = 1e300;
+    }
+    double planeCovariance[6];
+    planed[point] = RegressionCovariance(
+      AccumulateDistanceMoments(
+        own.Dx, own.Dy, own.Dz, padded[point], constants.DistanceScale, own.DistanceWeight),
+      planeCovariance);
     for (int entry = 0; entry < 6 && planed[point]; ++entry)
     {
       covariance[entry][point] = planeCovariance[entry];
     }
   }
+
   // The regression planes' normals, one point per lane.
   double normals[3][Lanes];
   SolveNormals(covariance, planed, normals);
-  // Pass 2, for the points with a plane.
+
+  // Pass 2 for each point: the bilateral average of the heights h = <n, q - p> over the same
+  // neighbours.
   for (std::size_t point = 0; point < pointCount; ++point)
   {
-    if (planed[point])
+    if (!planed[point])
     {
-      const double n[3] = { normals[0][point], normals[1][point], normals[2][point] };
-      DisplacementPass(scratch[point], padded[point], n, constants, results[point]);
+      continue;
     }
+    const double n[3] = { normals[0][point], normals[1][point], normals[2][point] };
+    const KernelScratch& own = scratch[point];
+    DoubleLanes bilateralWeightSum, weightedHeightSum;
+    AccumulateBilateralHeights(own.Dx,
+      own.Dy,
+      own.Dz,
+      own.DistanceWeight,
+      padded[point],
+      n,
+      constants.NormalScale,
+      bilateralWeightSum,
+      weightedHeightSum);
+    const double totalBilateralWeight = SumLanes(bilateralWeightSum);
+    if (!(totalBilateralWeight > 0.0))
+    {
+      continue;
+    }
+    FilteredPoint& result = results[point];
+    result.Displacement = SumLanes(weightedHeightSum) / totalBilateralWeight;
+    result.Normal[0] = n[0];
+    result.Normal[1] = n[1];
+    result.Normal[2] = n[2];
+    result.Filtered = true;
   }
 }
 

@@ -209,14 +209,22 @@ void CellColoringScheduler::CountProgress(ThreadScratch& scratch, std::size_t po
   }
 }
 
-/// The points a cell's run sends to each of the 27 cells around it (ProcessingOctree's
-/// neighbour slots), listed while the cell runs and handed over when it is done: the lists are
-/// linked through the octree without locks (the colouring invariant).
+/// A cell's run: the octree's layout arrays it reads and writes, and the points it sends to each
+/// of the 27 cells around it (ProcessingOctree's neighbour slots), listed while the cell runs and
+/// handed over when it is done: the lists are linked through the octree without locks (the
+/// colouring invariant).
 struct CellColoringScheduler::CellPlacement
 {
   CellPlacement(ProcessingOctree& octree, std::size_t cell)
     : Octree(octree)
     , Cell(octree.GetCellCoord(cell))
+    , Ids(octree.GetIds())
+    , X(octree.GetX())
+    , Y(octree.GetY())
+    , Z(octree.GetZ())
+    , MovedX(octree.GetMovedX())
+    , MovedY(octree.GetMovedY())
+    , MovedZ(octree.GetMovedZ())
   {
     octree.GetNeighbourCells(cell, this->Neighbours);
     std::fill(this->First, this->First + 27, -1);
@@ -268,6 +276,13 @@ struct CellColoringScheduler::CellPlacement
 
   ProcessingOctree& Octree;
   const LatticeCoord& Cell;
+  const std::uint32_t* const Ids;
+  const double* const X;
+  const double* const Y;
+  const double* const Z;
+  double* const MovedX;
+  double* const MovedY;
+  double* const MovedZ;
   std::int32_t Neighbours[27];
   std::int32_t First[27], Last[27];
 };
@@ -296,10 +311,10 @@ bool CellColoringScheduler::ProcessLeaf(std::size_t cell,
   ThreadScratch& scratch,
   bool isMaster)
 {
-  const std::uint32_t* ids = this->Octree.GetIds();
-  const double* x = this->Octree.GetX();
-  const double* y = this->Octree.GetY();
-  const double* z = this->Octree.GetZ();
+  const std::uint32_t* ids = placement.Ids;
+  const double* x = placement.X;
+  const double* y = placement.Y;
+  const double* z = placement.Z;
   std::uint32_t begin, end;
   this->Octree.GetLeafRange(cell, localLeaf, begin, end);
   this->GatherCandidates(cell, placement.Neighbours, localLeaf, end - begin, scratch.Candidates);
@@ -320,9 +335,9 @@ bool CellColoringScheduler::ProcessLeaf(std::size_t cell,
       if (ids[next] >= state.FirstGhost)
       {
         // Ghosts are neighbours only: they stay where they are.
-        this->Octree.GetMovedX()[next] = x[next];
-        this->Octree.GetMovedY()[next] = y[next];
-        this->Octree.GetMovedZ()[next] = z[next];
+        placement.MovedX[next] = x[next];
+        placement.MovedY[next] = y[next];
+        placement.MovedZ[next] = z[next];
         placement.Place(next, ProcessingOctree::CentreSlot, localLeaf);
         continue;
       }
@@ -353,7 +368,7 @@ void CellColoringScheduler::StoreFilteredPoint(std::uint32_t index,
   PointState& state,
   ThreadScratch& scratch)
 {
-  const std::uint32_t id = this->Octree.GetIds()[index];
+  const std::uint32_t id = placement.Ids[index];
   scratch.NeighbourEvaluations += filtered.NeighbourCount;
   if (!state.Normals.empty())
   {
@@ -375,9 +390,9 @@ void CellColoringScheduler::StoreFilteredPoint(std::uint32_t index,
   const double moved[3] = { p[0] + filtered.Displacement * filtered.Normal[0],
     p[1] + filtered.Displacement * filtered.Normal[1],
     p[2] + filtered.Displacement * filtered.Normal[2] };
-  this->Octree.GetMovedX()[index] = moved[0];
-  this->Octree.GetMovedY()[index] = moved[1];
-  this->Octree.GetMovedZ()[index] = moved[2];
+  placement.MovedX[index] = moved[0];
+  placement.MovedY[index] = moved[1];
+  placement.MovedZ[index] = moved[2];
   if (!placement.PlaceMoved(index, moved))
   {
     scratch.Deferred.push_back(index);
