@@ -8,9 +8,10 @@
 // the cloud again. This grid serves what the octree cannot: balls of any radius (the
 // measurement's fits, a radius per point), cell sizes chosen by the caller, and searches
 // whose visiting order must follow the coordinates (the edge-aware mode). Built for one
-// iteration, it costs a sort of the cloud; measured on sphere10M (2 threads): Build
-// @GRID_BUILD_TIME@ against @OCTREE_COMPACT_TIME@ for the octree's own re-layout between
-// iterations, of an iteration of @ITERATION_TIME@.
+// iteration, it costs a sort of the cloud. Measured on a noisy sphere of 1M points at the
+// paper's radius, 2 threads: Build 0.28-0.31 s and the 27-cell neighbour runs 0.67-0.74 s,
+// against 0.14 s for the octree's own re-layout between iterations (Compact), of 1.2 s for a
+// whole iteration: in place of the octree, the grid would add most of an iteration's time.
 #ifndef pcbilateral_PointGrid_h
 #define pcbilateral_PointGrid_h
 
