@@ -46,7 +46,11 @@ bool BuildNeighbourGrid(const PointState& state,
       ids.push_back(static_cast<std::uint32_t>(id));
     }
   }
-  if (!grid.Build(state.Positions.data(), ids, settings.Origin, cellSize))
+  if (!grid.Build(state.Positions.data(),
+        ids,
+        settings.Origin,
+        cellSize,
+        PointGrid::PointOrder::ByCoordinates))
   {
     return false;
   }

@@ -289,10 +289,12 @@ private:
     for (std::size_t l = 0; l < this->Levels.size(); ++l)
     {
       const double levelDensity = this->Density * this->Fractions[l];
+      // (Any order: GatherBall sorts what it gathers, and the disc only counts.)
       if (!this->Grids[l].Build(this->Cloud.Positions,
             this->Levels[l],
             this->Extent.Min,
-            2.0 / std::sqrt(levelDensity)))
+            2.0 / std::sqrt(levelDensity),
+            PointGrid::PointOrder::Any))
       {
         // (A cloud so spread out that its cells cannot be numbered, e.g. a few points far
         // from a dense part: the filter refuses such clouds too.)

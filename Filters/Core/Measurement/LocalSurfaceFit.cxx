@@ -17,10 +17,12 @@ constexpr double ClipInDeviations = 3.0;
 constexpr double ClippedVariance = 0.97334;
 
 /// Solves the symmetric positive system m x = b (n x n, n <= 6) by Cholesky; false if singular.
+/// (n is a template parameter, as is the number of terms of the fits below: with it known, the
+/// compiler unrolls the small loops, which a fit runs for every point of every ball.)
+template<int n>
 bool SolveCholesky(double m[QuadricTerms][QuadricTerms],
   double b[QuadricTerms],
-  double x[QuadricTerms],
-  int n)
+  double x[QuadricTerms])
 {
   double l[QuadricTerms][QuadricTerms] = {};
   for (int i = 0; i < n; ++i)
@@ -70,9 +72,9 @@ bool SolveCholesky(double m[QuadricTerms][QuadricTerms],
 
 /// The height function's least-squares coefficients over the inliers (local x, y, z), with
 /// `terms` terms; false when the system is singular.
+template<int terms>
 bool SolveHeightFunction(const std::vector<std::array<double, 3>>& local,
   const std::vector<std::uint8_t>& inlier,
-  int terms,
   double coefficients[QuadricTerms])
 {
   double normal[QuadricTerms][QuadricTerms] = {}, rhs[QuadricTerms] = {};
@@ -101,14 +103,14 @@ bool SolveHeightFunction(const std::vector<std::array<double, 3>>& local,
       normal[r][c] = normal[c][r];
     }
   }
-  return SolveCholesky(normal, rhs, coefficients, terms);
+  return SolveCholesky<terms>(normal, rhs, coefficients);
 }
 
 /// The robust fit of the height function: fitted, residuals to the fit, points further than
 /// ClipInDeviations robust deviations left out, fitted again, twice. Fills the coefficients,
 /// every point's residual and whether it is an inlier; false when it could not be fitted.
+template<int terms>
 bool FitHeightFunctionRobustly(const std::vector<std::array<double, 3>>& local,
-  int terms,
   double coefficients[QuadricTerms],
   std::vector<double>& residual,
   std::vector<std::uint8_t>& inlier,
@@ -121,11 +123,13 @@ bool FitHeightFunctionRobustly(const std::vector<std::array<double, 3>>& local,
   std::vector<double> magnitude;
   for (int pass = 0; pass < 3; ++pass)
   {
-    if (!SolveHeightFunction(local, inlier, terms, coefficients))
+    if (!SolveHeightFunction<terms>(local, inlier, coefficients))
     {
       return false;
     }
-    const double* c = coefficients;
+    // A copy, which the stores to residual cannot alias.
+    double c[QuadricTerms];
+    std::copy_n(coefficients, QuadricTerms, c);
     magnitude.clear();
     for (std::size_t i = 0; i < m; ++i)
     {
@@ -178,10 +182,13 @@ void LocalFit::Local(const double* p, double local[3]) const
   local[2] = Dot(d, this->Normal);
 }
 
-LocalFit FitQuadric(const std::vector<std::array<double, 3>>& points,
+namespace
+{
+/// FitQuadric with the number of terms known at compile time.
+template<int terms>
+LocalFit FitHeightFunction(const std::vector<std::array<double, 3>>& points,
   const double centre[3],
-  double radius,
-  int terms)
+  double radius)
 {
   LocalFit fit;
   const std::size_t m = points.size();
@@ -214,7 +221,13 @@ LocalFit FitQuadric(const std::vector<std::array<double, 3>>& points,
       covariance[entry] += products[entry];
     }
   }
-  TangentFrame(covariance, fit.Normal, fit.TangentU, fit.TangentV);
+  // The frame and the coefficients in local arrays, copied into the fit once: written through
+  // the fit, the per-point loops would reload them after every store (they might alias).
+  double normal[3], tangentU[3], tangentV[3];
+  TangentFrame(covariance, normal, tangentU, tangentV);
+  std::copy_n(normal, 3, fit.Normal);
+  std::copy_n(tangentU, 3, fit.TangentU);
+  std::copy_n(tangentV, 3, fit.TangentV);
   fit.Scale = radius;
   for (int axis = 0; axis < 3; ++axis)
   {
@@ -225,15 +238,17 @@ LocalFit FitQuadric(const std::vector<std::array<double, 3>>& points,
   for (std::size_t i = 0; i < m; ++i)
   {
     const double d[3] = { points[i][0] - mean[0], points[i][1] - mean[1], points[i][2] - mean[2] };
-    local[i] = { Dot(d, fit.TangentU), Dot(d, fit.TangentV), Dot(d, fit.Normal) };
+    local[i] = { Dot(d, tangentU), Dot(d, tangentV), Dot(d, normal) };
   }
   std::vector<double> residual;
   std::vector<std::uint8_t> inlier;
   std::size_t inliers = 0;
-  if (!FitHeightFunctionRobustly(local, terms, fit.Coefficients, residual, inlier, inliers))
+  double coefficients[QuadricTerms] = {};
+  if (!FitHeightFunctionRobustly<terms>(local, coefficients, residual, inlier, inliers))
   {
     return fit;
   }
+  std::copy_n(coefficients, QuadricTerms, fit.Coefficients);
   double sum = 0.0;
   for (std::size_t i = 0; i < m; ++i)
   {
@@ -257,6 +272,16 @@ LocalFit FitQuadric(const std::vector<std::array<double, 3>>& points,
                std::isfinite(fit.SurfacePoint[0]) && std::isfinite(fit.SurfacePoint[1]) &&
                std::isfinite(fit.SurfacePoint[2]);
   return fit;
+}
+} // namespace
+
+LocalFit FitQuadric(const std::vector<std::array<double, 3>>& points,
+  const double centre[3],
+  double radius,
+  int terms)
+{
+  return terms == 3 ? FitHeightFunction<3>(points, centre, radius)
+                    : FitHeightFunction<QuadricTerms>(points, centre, radius);
 }
 
 namespace

@@ -59,8 +59,8 @@ struct LocalFit
   void Local(const double* p, double local[3]) const;
 };
 
-/// Robust quadric fit (or plane fit, with 3 terms) of the given points (coordinates relative to
-/// centre, in units of radius for conditioning).
+/// Robust quadric fit (terms 6), or plane fit (terms 3), of the given points (coordinates
+/// relative to centre, in units of radius for conditioning).
 LocalFit FitQuadric(const std::vector<std::array<double, 3>>& points,
   const double centre[3],
   double radius,

@@ -12,7 +12,7 @@ namespace
 /// (Within 2^53 they would be exact; 1e15 leaves room for the range of a ball around them.)
 constexpr double LargestCellCoordinate = 1e15;
 
-/// A point with its cell, sorted by cell and then by coordinates.
+/// A point with its cell, sorted by cell and then by coordinates (the ByCoordinates layout).
 struct GridEntry
 {
   std::int64_t Key[3];
@@ -39,6 +39,15 @@ bool EntryBefore(const GridEntry& a, const GridEntry& b)
   return false;
 }
 
+/// SplitMix64's finaliser: spreads the cells' hashes over the buckets.
+std::uint64_t MixBits(std::uint64_t x)
+{
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
 bool KeyLess(const std::int64_t* a, const std::int64_t* b)
 {
   return a[0] != b[0] ? a[0] < b[0] : (a[1] != b[1] ? a[1] < b[1] : a[2] < b[2]);
@@ -60,51 +69,141 @@ bool CellCoordinate(double value, double origin, double cellSize, std::int64_t& 
 bool PointGrid::Build(const double* positions,
   const std::vector<std::uint32_t>& ids,
   const double origin[3],
-  double cellSize)
+  double cellSize,
+  PointOrder order)
 {
   *this = PointGrid();
   std::copy(origin, origin + 3, this->Origin);
   this->CellSize = cellSize;
-  std::vector<GridEntry> entries(ids.size());
-  for (std::size_t k = 0; k < ids.size(); ++k)
+  this->Order = order;
+  const std::size_t n = ids.size();
+  PointArray<std::int64_t> keys(3 * n);
+  for (std::size_t k = 0; k < n; ++k)
   {
-    GridEntry& entry = entries[k];
     const double* p = positions + 3 * static_cast<std::size_t>(ids[k]);
     for (int axis = 0; axis < 3; ++axis)
     {
-      if (!CellCoordinate(p[axis], origin[axis], cellSize, entry.Key[axis]))
+      if (!CellCoordinate(p[axis], origin[axis], cellSize, keys[3 * k + axis]))
       {
         *this = PointGrid();
         return false;
       }
-      entry.P[axis] = p[axis];
     }
-    entry.Id = ids[k];
   }
-  std::sort(entries.begin(), entries.end(), EntryBefore);
-  const std::size_t n = entries.size();
   this->Ids.resize(n);
   this->X.resize(n);
   this->Y.resize(n);
   this->Z.resize(n);
   this->CellOfPoint.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
+  // (At most a cell per point; the first layout of a sparse cloud has nearly that many.)
+  this->CellKey.reserve(3 * n);
+  this->CellBegin.reserve(n + 1);
+  if (order == PointOrder::ByCoordinates)
   {
-    const GridEntry& entry = entries[i];
-    this->Ids[i] = entry.Id;
-    this->X[i] = entry.P[0];
-    this->Y[i] = entry.P[1];
-    this->Z[i] = entry.P[2];
-    const std::size_t cells = this->CellBegin.size();
-    if (cells == 0 || !std::equal(entry.Key, entry.Key + 3, &this->CellKey[3 * (cells - 1)]))
-    {
-      this->CellKey.insert(this->CellKey.end(), entry.Key, entry.Key + 3);
-      this->CellBegin.push_back(static_cast<std::uint32_t>(i));
-    }
-    this->CellOfPoint[i] = static_cast<std::uint32_t>(this->CellBegin.size() - 1);
+    this->LayOutByCoordinates(positions, ids, keys);
+  }
+  else
+  {
+    this->LayOutInBuckets(positions, ids, keys);
   }
   this->CellBegin.push_back(static_cast<std::uint32_t>(n));
   return true;
+}
+
+void PointGrid::LayOutByCoordinates(const double* positions,
+  const std::vector<std::uint32_t>& ids,
+  const PointArray<std::int64_t>& keys)
+{
+  PointArray<GridEntry> entries(ids.size());
+  for (std::size_t k = 0; k < ids.size(); ++k)
+  {
+    GridEntry& entry = entries[k];
+    std::copy_n(&keys[3 * k], 3, entry.Key);
+    std::copy_n(positions + 3 * static_cast<std::size_t>(ids[k]), 3, entry.P);
+    entry.Id = ids[k];
+  }
+  std::sort(entries.begin(), entries.end(), EntryBefore);
+  for (std::size_t at = 0; at < entries.size(); ++at)
+  {
+    this->Place(at, entries[at].Id, entries[at].P, entries[at].Key);
+  }
+}
+
+void PointGrid::LayOutInBuckets(const double* positions,
+  const std::vector<std::uint32_t>& ids,
+  const PointArray<std::int64_t>& keys)
+{
+  const std::size_t n = ids.size();
+  std::size_t buckets = 1;
+  while (buckets < n)
+  {
+    buckets *= 2;
+  }
+  this->BucketFirstCell.assign(buckets + 1, 0);
+  PointArray<std::uint32_t> bucketOf(n);
+  std::vector<std::uint32_t> starts(buckets + 1, 0);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    bucketOf[k] = static_cast<std::uint32_t>(this->BucketOf(&keys[3 * k]));
+    ++starts[bucketOf[k] + 1];
+  }
+  for (std::size_t b = 0; b < buckets; ++b)
+  {
+    starts[b + 1] += starts[b];
+  }
+  PointArray<std::uint32_t> grouped(n);
+  std::vector<std::uint32_t> next(starts.begin(), starts.end() - 1);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    grouped[next[bucketOf[k]]++] = static_cast<std::uint32_t>(k);
+  }
+  for (std::size_t b = 0; b < buckets; ++b)
+  {
+    // The cells that share a bucket: its points grouped by cell.
+    const auto first = grouped.begin() + starts[b], last = grouped.begin() + starts[b + 1];
+    if (last - first > 1)
+    {
+      std::sort(first,
+        last,
+        [&](std::uint32_t a, std::uint32_t c) { return KeyLess(&keys[3 * a], &keys[3 * c]); });
+    }
+    this->BucketFirstCell[b] = static_cast<std::uint32_t>(this->CellBegin.size());
+    for (std::uint32_t at = starts[b]; at < starts[b + 1]; ++at)
+    {
+      // (Equal keys share a bucket, so a bucket never continues the previous one's last cell.)
+      const std::uint32_t k = grouped[at];
+      this->Place(at, ids[k], positions + 3 * static_cast<std::size_t>(ids[k]), &keys[3 * k]);
+    }
+  }
+  this->BucketFirstCell[buckets] = static_cast<std::uint32_t>(this->CellBegin.size());
+}
+
+void PointGrid::Place(std::size_t at,
+  std::uint32_t id,
+  const double p[3],
+  const std::int64_t key[3])
+{
+  const std::size_t cells = this->CellBegin.size();
+  if (cells == 0 || !std::equal(key, key + 3, &this->CellKey[3 * (cells - 1)]))
+  {
+    this->CellKey.push_back(key[0]);
+    this->CellKey.push_back(key[1]);
+    this->CellKey.push_back(key[2]);
+    this->CellBegin.push_back(static_cast<std::uint32_t>(at));
+  }
+  this->Ids[at] = id;
+  this->X[at] = p[0];
+  this->Y[at] = p[1];
+  this->Z[at] = p[2];
+  this->CellOfPoint[at] = static_cast<std::uint32_t>(this->CellBegin.size() - 1);
+}
+
+std::size_t PointGrid::BucketOf(const std::int64_t key[3]) const
+{
+  const std::uint64_t hash = static_cast<std::uint64_t>(key[0]) * 73856093ull ^
+                             static_cast<std::uint64_t>(key[1]) * 19349663ull ^
+                             static_cast<std::uint64_t>(key[2]) * 83492791ull;
+  return static_cast<std::size_t>(MixBits(hash) & (this->BucketFirstCell.size() - 2));
 }
 
 void PointGrid::ComputeNeighbourRuns(int threads)
@@ -162,6 +261,20 @@ std::size_t PointGrid::LowerBound(const std::int64_t key[3]) const
 
 std::int64_t PointGrid::FindCell(const std::int64_t key[3]) const
 {
+  if (this->Order == PointOrder::Any)
+  {
+    const std::size_t bucket = this->BucketOf(key);
+    for (std::uint32_t cell = this->BucketFirstCell[bucket];
+         cell < this->BucketFirstCell[bucket + 1];
+         ++cell)
+    {
+      if (std::equal(key, key + 3, &this->CellKey[3 * static_cast<std::size_t>(cell)]))
+      {
+        return cell;
+      }
+    }
+    return -1;
+  }
   const std::size_t cell = this->LowerBound(key);
   if (cell < this->CellBegin.size() - 1 && std::equal(key, key + 3, &this->CellKey[3 * cell]))
   {

@@ -3,6 +3,8 @@
 #ifndef pcbilateral_ProcessingOctree_h
 #define pcbilateral_ProcessingOctree_h
 
+#include "PointArray.h"
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -28,42 +30,6 @@ struct LatticeCoord
     return X == other.X && Y == other.Y && Z == other.Z;
   }
 };
-
-/**
- * std::allocator, except that resize() leaves new elements of the octree's per-point arrays
- * uninitialised instead of zeroing them: every element is written before it is read, and the
- * zeroing was a serial pass over fresh memory (its page faults included) of some 30 bytes per
- * point, 1.4 s of lidar20M's 2-thread Load and as much of its first layout. Now the pages are
- * first touched where the arrays are filled, in parallel.
- */
-template<typename T>
-struct UninitializedAllocator : std::allocator<T>
-{
-  template<typename U>
-  struct rebind
-  {
-    using other = UninitializedAllocator<U>;
-  };
-  UninitializedAllocator() = default;
-  template<typename U>
-  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept
-  {
-  }
-  template<typename U>
-  void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value)
-  {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template<typename U, typename... Arguments>
-  void construct(U* p, Arguments&&... arguments)
-  {
-    ::new (static_cast<void*>(p)) U(std::forward<Arguments>(arguments)...);
-  }
-};
-
-/// A per-point array of the octree (see UninitializedAllocator).
-template<typename T>
-using PointArray = std::vector<T, UninitializedAllocator<T>>;
 
 struct LatticeCoordHash
 {
