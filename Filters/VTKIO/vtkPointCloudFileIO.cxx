@@ -5,6 +5,8 @@
 #include "vtkPointCloudTextReader.h"
 #include "vtkPointCloudTextWriter.h"
 
+#include "ReplacingPath.h"
+
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -55,6 +57,13 @@ bool IsText(const std::string& extension)
 bool IsLAS(const std::string& extension)
 {
   return extension == ".las" || extension == ".laz";
+}
+
+/// "PATH: unsupported file type '.ext' (use ...)".
+std::string UnsupportedType(const char* path)
+{
+  return std::string(path ? path : "") + ": unsupported file type '" + Extension(path) + "' (use " +
+         vtkPointCloudFileIO::GetSupportedExtensions() + ")";
 }
 
 /// Up to `count` bytes of a file from `offset`.
@@ -310,6 +319,66 @@ struct MessageCatcher
     return message;
   }
 };
+
+/// The cloud as the PLY writer stores it: float normals (the only ones PLY stores), and the
+/// 8-bit colours named to the writer.
+vtkSmartPointer<vtkPolyData> InputForPLY(vtkPolyData* data, vtkPLYWriter* ply)
+{
+  vtkSmartPointer<vtkPolyData> input = data;
+  vtkDataArray* normals = data->GetPointData()->GetNormals();
+  if (normals && normals->GetDataType() != VTK_FLOAT)
+  {
+    input = vtkSmartPointer<vtkPolyData>::New();
+    input->ShallowCopy(data);
+    vtkNew<vtkFloatArray> floatNormals;
+    floatNormals->DeepCopy(normals);
+    input->GetPointData()->SetNormals(floatNormals);
+  }
+  // 8-bit colours only; a LAS file's 16-bit "RGB" has 8-bit "Colors" beside it.
+  for (const char* colours : { "Colors", "RGBA", "RGB" })
+  {
+    vtkDataArray* array = input->GetPointData()->GetArray(colours);
+    if (array && array->GetDataType() == VTK_UNSIGNED_CHAR)
+    {
+      ply->SetArrayName(colours);
+    }
+  }
+  return input;
+}
+
+/// Runs a writer of NewWriter(): whether it reported success.
+bool RunWriter(vtkAlgorithm* writer)
+{
+  if (auto* xml = vtkXMLWriter::SafeDownCast(writer))
+  {
+    return xml->Write() == 1;
+  }
+  return vtkWriter::SafeDownCast(writer)->Write() == 1;
+}
+
+/// Runs VTK's PLY or XML writer on a temporary file beside `path`, moved onto it only when the
+/// writer succeeded. Returns an empty string or one line naming `path` (VTK's messages name the
+/// temporary file).
+std::string WriteReplacing(vtkAlgorithm* writer,
+  const std::string& path,
+  const MessageCatcher& messages)
+{
+  // The PLY writer appends ".ply" to a name without it: the extension stays last.
+  pcbilateral::ReplacingPath destination(
+    path, pcbilateral::ReplacingPath::TemporaryName::ExtensionLast);
+  const char* temporary = destination.GetTemporaryPath().c_str();
+  if (auto* ply = vtkPLYWriter::SafeDownCast(writer))
+  {
+    ply->SetFileName(temporary);
+  }
+  else
+  {
+    vtkXMLWriter::SafeDownCast(writer)->SetFileName(temporary);
+  }
+  errno = 0;
+  const bool written = RunWriter(writer) && messages.Error.empty();
+  return destination.Commit(written, errno);
+}
 } // namespace
 
 vtkPointCloudFileIO::vtkPointCloudFileIO() = default;
@@ -384,8 +453,7 @@ std::string vtkPointCloudFileIO::CheckFileName(const char* path, bool forWriting
   const std::string name = path ? path : "";
   if (!IsSupported(path))
   {
-    return name + ": unsupported file type '" + Extension(path) + "' (use " +
-           GetSupportedExtensions() + ")";
+    return UnsupportedType(path);
   }
   if (forWriting && Extension(path) == ".laz")
   {
@@ -447,8 +515,7 @@ std::string vtkPointCloudFileIO::CheckInputFile(const char* path)
   const std::string extension = Extension(path);
   if (!IsSupported(path))
   {
-    return name + ": unsupported file type '" + extension + "' (use " + GetSupportedExtensions() +
-           ")";
+    return UnsupportedType(path);
   }
   const std::uintmax_t size = std::filesystem::file_size(name, error);
   if (error)
@@ -501,77 +568,32 @@ bool vtkPointCloudFileIO::Read(const char* path, vtkPolyData* output)
 bool vtkPointCloudFileIO::Write(vtkPolyData* data, const char* path)
 {
   const std::string name = path ? path : "";
-  const std::string extension = Extension(path);
   vtkSmartPointer<vtkAlgorithm> writer = vtkSmartPointer<vtkAlgorithm>::Take(NewWriter(path));
   if (!writer)
   {
-    this->ErrorMessage =
-      name + ": unsupported file type '" + extension + "' (use " + GetSupportedExtensions() + ")";
+    this->ErrorMessage = UnsupportedType(path);
     return false;
   }
   MessageCatcher messages;
   messages.Path = name;
   messages.Observe(writer);
   vtkSmartPointer<vtkPolyData> input = data;
-  // The text and LAS writers write under a temporary name themselves; PLY and VTP are written
-  // under one here. The PLY writer appends ".ply" to a name without it: the extension stays last.
-  std::string temporary = name;
   if (auto* text = vtkPointCloudTextWriter::SafeDownCast(writer))
   {
     text->SetWriteNormals(this->OrientedNormals);
   }
   else if (auto* ply = vtkPLYWriter::SafeDownCast(writer))
   {
-    temporary = name.substr(0, name.size() - extension.size()) + ".partial" + extension;
-    ply->SetFileName(temporary.c_str());
-    // PLY stores float normals only.
-    vtkDataArray* normals = data->GetPointData()->GetNormals();
-    if (normals && normals->GetDataType() != VTK_FLOAT)
-    {
-      input = vtkSmartPointer<vtkPolyData>::New();
-      input->ShallowCopy(data);
-      vtkNew<vtkFloatArray> floatNormals;
-      floatNormals->DeepCopy(normals);
-      input->GetPointData()->SetNormals(floatNormals);
-    }
-    // 8-bit colours only; a LAS file's 16-bit "RGB" has 8-bit "Colors" beside it.
-    for (const char* colours : { "Colors", "RGBA", "RGB" })
-    {
-      vtkDataArray* array = input->GetPointData()->GetArray(colours);
-      if (array && array->GetDataType() == VTK_UNSIGNED_CHAR)
-      {
-        ply->SetArrayName(colours);
-      }
-    }
-  }
-  else if (auto* xml = vtkXMLPolyDataWriter::SafeDownCast(writer))
-  {
-    temporary = name.substr(0, name.size() - extension.size()) + ".partial" + extension;
-    xml->SetFileName(temporary.c_str());
+    input = InputForPLY(data, ply);
   }
   writer->SetInputDataObject(input);
-  errno = 0;
-  int written = 0;
-  if (auto* xml = vtkXMLWriter::SafeDownCast(writer))
+  if (vtkPLYWriter::SafeDownCast(writer) || vtkXMLWriter::SafeDownCast(writer))
   {
-    written = xml->Write();
+    this->ErrorMessage = WriteReplacing(writer, name, messages);
+    return this->ErrorMessage.empty();
   }
-  else
-  {
-    written = vtkWriter::SafeDownCast(writer)->Write();
-  }
-  if (temporary != name)
-  {
-    // VTK's messages name the temporary file: this one names the file asked for.
-    if (written != 1 || !messages.Error.empty() ||
-        std::rename(temporary.c_str(), name.c_str()) != 0)
-    {
-      messages.Error =
-        name + ": cannot be written (" + (errno ? std::strerror(errno) : "the writer failed") + ")";
-    }
-    std::remove(temporary.c_str());
-  }
-  else if (written != 1 && messages.Error.empty())
+  // The text and LAS writers replace the file themselves (pcbilateral::ReplacingFile).
+  if (!RunWriter(writer) && messages.Error.empty())
   {
     messages.Error = name + ": cannot be written";
   }
