@@ -12,6 +12,7 @@
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkErrorCode.h"
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -164,8 +165,8 @@ bool RunWriter(vtkAlgorithm* writer)
 }
 
 /// Runs VTK's PLY or XML writer on a temporary file beside `path`, moved onto it only when the
-/// writer succeeded. Returns an empty string or one line naming `path` (VTK's messages name the
-/// temporary file).
+/// whole file was written. Returns an empty string or one line naming `path` (VTK's messages name
+/// the temporary file).
 std::string WriteReplacing(vtkAlgorithm* writer,
   const std::string& path,
   const MessageCatcher& messages)
@@ -183,8 +184,17 @@ std::string WriteReplacing(vtkAlgorithm* writer,
     vtkXMLWriter::SafeDownCast(writer)->SetFileName(temporary);
   }
   errno = 0;
-  const bool written = RunWriter(writer) && messages.Error.empty();
-  return destination.Commit(written, errno);
+  // The XML writer runs out of disk space with a success and an error code alone.
+  bool written =
+    RunWriter(writer) && writer->GetErrorCode() == vtkErrorCode::NoError && messages.Error.empty();
+  const int failure = errno;
+  // The PLY writer does not check its writes at all (a cut file and a success): its file is
+  // checked as a reader would check it.
+  if (written && vtkPLYWriter::SafeDownCast(writer))
+  {
+    written = pcbilateral::CheckPLYFile(destination.GetTemporaryPath()).empty();
+  }
+  return destination.Commit(written, failure);
 }
 } // namespace
 

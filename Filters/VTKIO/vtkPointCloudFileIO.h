@@ -89,7 +89,8 @@ public:
   bool Read(const char* path, vtkPolyData* output);
 
   /// Writes `data` to `path` with the writer of NewWriter(). Returns false with one line in
-  /// GetErrorMessage() on failure, leaving no file.
+  /// GetErrorMessage() on failure (a full disk too), leaving no file, or the file that was
+  /// there as it was.
   bool Write(vtkPolyData* data, const char* path);
 
   /**
