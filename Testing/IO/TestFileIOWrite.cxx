@@ -4,8 +4,11 @@
 #include "CoreTesting.h"
 #include "VTKTesting.h"
 
+#include "vtkLASPointCloudWriter.h"
 #include "vtkPointCloudFileIO.h"
 
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
 
@@ -118,6 +121,26 @@ void WriteBeyondLimit()
   const std::set<std::string> expected(std::begin(Names), std::end(Names));
   PCB_CHECK(Files() == expected, "a failed write left a file behind");
 }
+
+/// The LAS writer without a file name, null or empty: one message, no file.
+void NoFileName()
+{
+  RemoveFiles();
+  vtkSmartPointer<vtkPolyData> cloud = MakePlane(10);
+  vtkNew<vtkCallbackCommand> quiet; // the message is read from the writer, not printed
+  for (const char* name : { static_cast<const char*>(nullptr), "" })
+  {
+    vtkNew<vtkLASPointCloudWriter> writer;
+    writer->AddObserver(vtkCommand::ErrorEvent, quiet);
+    writer->SetFileName(name);
+    writer->SetInputData(cloud);
+    writer->Write();
+    PCB_CHECK(std::string(writer->GetErrorMessage()) == "no file name was given",
+      "\"%s\" instead of \"no file name was given\"",
+      writer->GetErrorMessage());
+  }
+  PCB_CHECK(Files().empty(), "a file was written");
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -125,5 +148,6 @@ int main(int argc, char* argv[])
   return RunNamedCase(argc,
     argv,
     { { "upper-case-extensions", UpperCaseExtensions },
-      { "beyond-size-limit", WriteBeyondLimit } });
+      { "beyond-size-limit", WriteBeyondLimit },
+      { "no-file-name", NoFileName } });
 }
