@@ -94,7 +94,7 @@ Algorithm* WithFileName(Algorithm* algorithm, const char* path)
   return algorithm;
 }
 
-/// Keeps the first error (and warning) an algorithm reports, without VTK's object prefix.
+/// Keeps the first error an algorithm reports, without VTK's object prefix.
 struct MessageCatcher
 {
   std::string Error;
