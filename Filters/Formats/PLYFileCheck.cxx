@@ -106,6 +106,7 @@ std::string ReadProperty(std::istringstream& words, std::vector<PLYElement>& ele
 /// The header's lines up to end_header, within the file's first 64 KB.
 std::string ReadHeader(const std::string& head, PLYHeader& header)
 {
+  const std::string noEnd = "the PLY header has no end_header line in its first 64 KB";
   std::istringstream lines(head);
   std::string line;
   while (std::getline(lines, line))
@@ -120,8 +121,7 @@ std::string ReadHeader(const std::string& head, PLYHeader& header)
     words >> keyword;
     if (keyword == "end_header")
     {
-      return lines.eof() ? "the PLY header has no end_header line in its first 64 KB"
-                         : std::string();
+      return lines.eof() ? noEnd : std::string();
     }
     std::string problem;
     if (keyword == "format")
@@ -141,7 +141,7 @@ std::string ReadHeader(const std::string& head, PLYHeader& header)
       return problem;
     }
   }
-  return "the PLY header has no end_header line in its first 64 KB";
+  return noEnd;
 }
 
 /// A known format, and vertices with x, y and z.

@@ -31,9 +31,6 @@ public:
   ReplacingPath(const ReplacingPath&) = delete;
   ReplacingPath& operator=(const ReplacingPath&) = delete;
 
-  /// The destination, as given.
-  const std::string& GetPath() const { return this->Path; }
-
   /// Where the writer writes until Commit().
   const std::string& GetTemporaryPath() const { return this->Temporary; }
 
