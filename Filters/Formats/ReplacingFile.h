@@ -1,11 +1,13 @@
 // A file written beside its destination and moved onto it only once every write went well, so
-// that a failed or interrupted write leaves no partial file (the text and LAS writers).
+// that a failed or interrupted write leaves no partial file (the text and LAS writers, which
+// write through a FILE*; see ReplacingPath for writers that open the file themselves).
 #ifndef pcbilateral_ReplacingFile_h
 #define pcbilateral_ReplacingFile_h
 
+#include "ReplacingPath.h"
+
 #include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <string>
 
 namespace pcbilateral
@@ -18,20 +20,18 @@ public:
   /// which needs a descriptor open for reading); Get() is null when that failed (see
   /// OpenError()).
   explicit ReplacingFile(const std::string& path)
-    : Path(path)
-    , Temporary(path + ".partial")
-    , File(std::fopen(this->Temporary.c_str(), "w+b"))
+    : Destination(path)
+    , File(std::fopen(this->Destination.GetTemporaryPath().c_str(), "w+b"))
     , OpenErrno(errno)
   {
   }
 
-  /// Closes and removes the temporary file unless Commit() moved it.
+  /// Closes the file; the temporary file is removed unless Commit() moved it.
   ~ReplacingFile()
   {
     if (this->File)
     {
       std::fclose(this->File);
-      std::remove(this->Temporary.c_str());
     }
   }
 
@@ -41,10 +41,7 @@ public:
   std::FILE* Get() const { return this->File; }
 
   /// "PATH: cannot be written (reason)", for a file that could not be opened.
-  std::string OpenError() const
-  {
-    return this->Path + ": cannot be written (" + std::strerror(this->OpenErrno) + ")";
-  }
+  std::string OpenError() const { return this->Destination.OpenError(this->OpenErrno); }
 
   /// Closes the file and, when `ok` (every write succeeded), moves it onto the path; otherwise
   /// removes it. Returns an empty string or "PATH: write failed (reason)", the reason that of
@@ -53,18 +50,12 @@ public:
   {
     ok = (std::fclose(this->File) == 0) && ok;
     this->File = nullptr;
-    if (!ok || std::rename(this->Temporary.c_str(), this->Path.c_str()) != 0)
-    {
-      const std::string reason = std::strerror(failure ? failure : errno);
-      std::remove(this->Temporary.c_str());
-      return this->Path + ": write failed (" + reason + ")";
-    }
-    return std::string();
+    return this->Destination.Commit(ok, failure);
   }
 
 private:
-  std::string Path;
-  std::string Temporary;
+  // Declared first: destroyed last, after the destructor closed the file.
+  ReplacingPath Destination;
   std::FILE* File;
   int OpenErrno;
 };

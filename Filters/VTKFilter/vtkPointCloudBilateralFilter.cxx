@@ -21,7 +21,9 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <sstream>
 #include <utility>
@@ -90,6 +92,140 @@ bool HasCellsOtherThanVertices(vtkPointSet* input)
     }
   }
   return false;
+}
+
+/// The output of an input without points: none, of the input's point type, with the input's
+/// (empty) arrays and field data.
+void PassEmptyInput(vtkPointSet* input, vtkPolyData* output)
+{
+  if (input->GetPoints())
+  {
+    vtkNew<vtkPoints> none;
+    none->SetDataType(input->GetPoints()->GetDataType());
+    output->SetPoints(none);
+  }
+  output->GetPointData()->PassData(input->GetPointData());
+  output->GetFieldData()->PassData(input->GetFieldData());
+}
+
+/// The ids of the input's points that the run kept, in order.
+std::vector<vtkIdType> KeptPointIds(const std::vector<std::uint8_t>& removed, vtkIdType count)
+{
+  std::vector<vtkIdType> kept;
+  kept.reserve(static_cast<std::size_t>(count));
+  for (vtkIdType id = 0; id < count; ++id)
+  {
+    if (!removed[id])
+    {
+      kept.push_back(id);
+    }
+  }
+  return kept;
+}
+
+/// The kept points' filtered positions, as points of the input's type.
+vtkSmartPointer<vtkPoints> KeptPoints(int dataType,
+  const std::vector<double>& positions,
+  const std::vector<vtkIdType>& kept)
+{
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataType(dataType);
+  points->SetNumberOfPoints(static_cast<vtkIdType>(kept.size()));
+  using Dispatcher = vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>;
+  CopyKeptPositions worker;
+  if (!Dispatcher::Execute(points->GetData(), worker, positions, kept))
+  {
+    worker(points->GetData(), positions, kept);
+  }
+  return points;
+}
+
+/// One-value arrays of the radii and iterations used, and of the measured scales when the
+/// cloud was measured.
+void AddParametersUsed(const pcbilateral::BilateralResult& result, vtkFieldData* fieldData)
+{
+  std::vector<std::pair<const char*, double>> used = { { "BilateralRadius", result.RadiusUsed },
+    { "BilateralNormalRadius", result.NormalRadiusUsed },
+    { "BilateralNumberOfIterations", result.NumberOfIterationsUsed } };
+  if (result.Measured)
+  {
+    used.emplace_back("BilateralPointSpacing", result.PointSpacing);
+    used.emplace_back("BilateralNoiseSigma", result.NoiseSigma);
+  }
+  for (const auto& [name, number] : used)
+  {
+    vtkNew<vtkDoubleArray> value;
+    value->SetName(name);
+    value->InsertNextValue(number);
+    fieldData->AddArray(value);
+  }
+}
+
+/// The input's point arrays (of `count` points), for the kept points.
+void CopyKeptPointData(vtkPointData* inPD,
+  vtkIdType count,
+  const std::vector<vtkIdType>& kept,
+  vtkPointData* outPD)
+{
+  const auto outputCount = static_cast<vtkIdType>(kept.size());
+  if (outputCount == count)
+  {
+    outPD->PassData(inPD);
+    return;
+  }
+  vtkNew<vtkIdList> from;
+  from->SetNumberOfIds(outputCount);
+  std::copy(kept.begin(), kept.end(), from->GetPointer(0));
+  vtkNew<vtkIdList> to;
+  to->SetNumberOfIds(outputCount);
+  std::iota(to->GetPointer(0), to->GetPointer(0) + outputCount, vtkIdType(0));
+  outPD->CopyAllocate(inPD, outputCount);
+  outPD->CopyData(inPD, from, to);
+}
+
+/// "vtkOriginalPointIds": each output point's id in the input.
+vtkSmartPointer<vtkIdTypeArray> OriginalIds(const std::vector<vtkIdType>& kept)
+{
+  auto originalIds = vtkSmartPointer<vtkIdTypeArray>::New();
+  originalIds->SetName("vtkOriginalPointIds");
+  originalIds->SetNumberOfValues(static_cast<vtkIdType>(kept.size()));
+  std::copy(kept.begin(), kept.end(), originalIds->GetPointer(0));
+  return originalIds;
+}
+
+/// "EstimatedNormals": the kept points' normals of the last iteration.
+vtkSmartPointer<vtkDoubleArray> EstimatedNormals(const std::vector<double>& normals,
+  const std::vector<vtkIdType>& kept)
+{
+  auto estimated = vtkSmartPointer<vtkDoubleArray>::New();
+  estimated->SetName("EstimatedNormals");
+  estimated->SetNumberOfComponents(3);
+  estimated->SetNumberOfTuples(static_cast<vtkIdType>(kept.size()));
+  for (std::size_t out = 0; out < kept.size(); ++out)
+  {
+    estimated->SetTypedTuple(static_cast<vtkIdType>(out), normals.data() + 3 * kept[out]);
+  }
+  return estimated;
+}
+
+/// "DisplacementLength": how far each kept point moved (0 for a non-finite one).
+vtkSmartPointer<vtkDoubleArray> DisplacementLengths(const std::vector<double>& before,
+  const std::vector<double>& after,
+  const std::vector<vtkIdType>& kept)
+{
+  auto lengths = vtkSmartPointer<vtkDoubleArray>::New();
+  lengths->SetName("DisplacementLength");
+  lengths->SetNumberOfValues(static_cast<vtkIdType>(kept.size()));
+  for (std::size_t out = 0; out < kept.size(); ++out)
+  {
+    const double* from = before.data() + 3 * kept[out];
+    const double* to = after.data() + 3 * kept[out];
+    const double length =
+      std::sqrt((to[0] - from[0]) * (to[0] - from[0]) + (to[1] - from[1]) * (to[1] - from[1]) +
+                (to[2] - from[2]) * (to[2] - from[2]));
+    lengths->SetValue(static_cast<vtkIdType>(out), std::isfinite(length) ? length : 0.0);
+  }
+  return lengths;
 }
 } // namespace
 
@@ -280,19 +416,9 @@ void vtkPointCloudBilateralFilter::BuildOutput(vtkPointSet* input,
   const pcbilateral::BilateralResult& result,
   vtkPolyData* output)
 {
-  vtkPointData* inPD = input->GetPointData();
-  const vtkIdType numberOfPoints = input->GetNumberOfPoints();
-  if (numberOfPoints == 0)
+  if (input->GetNumberOfPoints() == 0)
   {
-    // Nothing to filter; the output still has the input's (empty) arrays and field data.
-    if (input->GetPoints())
-    {
-      vtkNew<vtkPoints> none;
-      none->SetDataType(input->GetPoints()->GetDataType());
-      output->SetPoints(none);
-    }
-    output->GetPointData()->PassData(inPD);
-    output->GetFieldData()->PassData(input->GetFieldData());
+    PassEmptyInput(input, output);
     return;
   }
   if (HasCellsOtherThanVertices(input))
@@ -300,101 +426,28 @@ void vtkPointCloudBilateralFilter::BuildOutput(vtkPointSet* input,
     vtkWarningMacro(<< "the input's cells (lines, polygons, volumes) are not carried to the "
                        "output, which is a point cloud");
   }
-
-  std::vector<vtkIdType> kept;
-  kept.reserve(static_cast<std::size_t>(numberOfPoints));
-  for (vtkIdType id = 0; id < numberOfPoints; ++id)
-  {
-    if (!result.Removed[id])
-    {
-      kept.push_back(id);
-    }
-  }
+  const std::vector<vtkIdType> kept = KeptPointIds(result.Removed, input->GetNumberOfPoints());
   const auto outputCount = static_cast<vtkIdType>(kept.size());
-
-  vtkNew<vtkPoints> points;
-  points->SetDataType(input->GetPoints()->GetDataType());
-  points->SetNumberOfPoints(outputCount);
-  {
-    using Dispatcher = vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>;
-    CopyKeptPositions worker;
-    if (!Dispatcher::Execute(points->GetData(), worker, result.Positions, kept))
-    {
-      worker(points->GetData(), result.Positions, kept);
-    }
-  }
-  output->SetPoints(points);
+  output->SetPoints(KeptPoints(input->GetPoints()->GetDataType(), result.Positions, kept));
   output->SetVerts(vtkPointCloudVertices(outputCount));
   // The parameters used and the scales they came from travel with the data (ParaView's
   // Information panel shows them).
   output->GetFieldData()->PassData(input->GetFieldData());
-  std::vector<std::pair<const char*, double>> used = { { "BilateralRadius", this->RadiusUsed },
-    { "BilateralNormalRadius", this->NormalRadiusUsed },
-    { "BilateralNumberOfIterations", this->NumberOfIterationsUsed } };
-  if (result.Measured)
-  {
-    used.emplace_back("BilateralPointSpacing", this->PointSpacing);
-    used.emplace_back("BilateralNoiseSigma", this->NoiseSigma);
-  }
-  for (const auto& [name, number] : used)
-  {
-    vtkNew<vtkDoubleArray> value;
-    value->SetName(name);
-    value->InsertNextValue(number);
-    output->GetFieldData()->AddArray(value);
-  }
+  AddParametersUsed(result, output->GetFieldData());
 
   vtkPointData* outPD = output->GetPointData();
-  if (outputCount == numberOfPoints)
-  {
-    outPD->PassData(inPD);
-  }
-  else
-  {
-    vtkNew<vtkIdList> from;
-    from->SetNumberOfIds(outputCount);
-    std::copy(kept.begin(), kept.end(), from->GetPointer(0));
-    vtkNew<vtkIdList> to;
-    to->SetNumberOfIds(outputCount);
-    std::iota(to->GetPointer(0), to->GetPointer(0) + outputCount, vtkIdType(0));
-    outPD->CopyAllocate(inPD, outputCount);
-    outPD->CopyData(inPD, from, to);
-  }
+  CopyKeptPointData(input->GetPointData(), input->GetNumberOfPoints(), kept, outPD);
   if (this->RemoveIsolatedPoints)
   {
-    vtkNew<vtkIdTypeArray> originalIds;
-    originalIds->SetName("vtkOriginalPointIds");
-    originalIds->SetNumberOfValues(outputCount);
-    std::copy(kept.begin(), kept.end(), originalIds->GetPointer(0));
-    outPD->AddArray(originalIds);
+    outPD->AddArray(OriginalIds(kept));
   }
   if (this->GenerateEstimatedNormals)
   {
-    vtkNew<vtkDoubleArray> normals;
-    normals->SetName("EstimatedNormals");
-    normals->SetNumberOfComponents(3);
-    normals->SetNumberOfTuples(outputCount);
-    for (vtkIdType out = 0; out < outputCount; ++out)
-    {
-      normals->SetTypedTuple(out, result.Normals.data() + 3 * kept[out]);
-    }
-    outPD->AddArray(normals);
+    outPD->AddArray(EstimatedNormals(result.Normals, kept));
   }
   if (this->GenerateDisplacementLength)
   {
-    vtkNew<vtkDoubleArray> lengths;
-    lengths->SetName("DisplacementLength");
-    lengths->SetNumberOfValues(outputCount);
-    for (vtkIdType out = 0; out < outputCount; ++out)
-    {
-      const double* before = cloud.Positions.data() + 3 * kept[out];
-      const double* after = result.Positions.data() + 3 * kept[out];
-      const double length = std::sqrt((after[0] - before[0]) * (after[0] - before[0]) +
-                                      (after[1] - before[1]) * (after[1] - before[1]) +
-                                      (after[2] - before[2]) * (after[2] - before[2]));
-      lengths->SetValue(out, std::isfinite(length) ? length : 0.0);
-    }
-    outPD->AddArray(lengths);
+    outPD->AddArray(DisplacementLengths(cloud.Positions, result.Positions, kept));
   }
 }
 

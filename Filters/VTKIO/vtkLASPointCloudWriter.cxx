@@ -12,10 +12,13 @@
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
+#include "vtkSmartPointer.h"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkLASPointCloudWriter);
@@ -94,6 +97,93 @@ const void* Column(vtkDataArray* array,
   }
   return buffer.data();
 }
+
+/// The header of a cloud without one in its field data: its point count and bounds, and the
+/// point format its arrays ask for (GPS time, RGB).
+pcbilateral::LASFileInfo DefaultFileInfo(vtkPointSet* input)
+{
+  const vtkIdType count = input->GetNumberOfPoints();
+  double bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  if (count > 0)
+  {
+    double vtkBounds[6];
+    input->GetBounds(vtkBounds);
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      bounds[axis] = vtkBounds[2 * axis];
+      bounds[3 + axis] = vtkBounds[2 * axis + 1];
+    }
+  }
+  vtkPointData* pointData = input->GetPointData();
+  vtkDataArray* rgb = pointData->GetArray("RGB");
+  return pcbilateral::DefaultLASFileInfo(static_cast<std::size_t>(count),
+    bounds,
+    pointData->GetArray("GpsTime") != nullptr,
+    rgb && rgb->GetNumberOfComponents() == 3);
+}
+
+/// The header to write: the one a LAS reader kept in the input's field data, else a default
+/// one. Returns an empty string or one line naming the file.
+std::string LoadFileInfo(const char* fileName, vtkPointSet* input, pcbilateral::LASFileInfo& info)
+{
+  if (!fileName || !*fileName)
+  {
+    return "no file name was given";
+  }
+  if (!input)
+  {
+    return std::string(fileName) + ": the input is not a point set";
+  }
+  std::string problem;
+  if (vtkLASLoadFileInfo(input->GetFieldData(), info, problem))
+  {
+    return std::string();
+  }
+  if (!problem.empty())
+  {
+    return std::string(fileName) + ": " + problem;
+  }
+  info = DefaultFileInfo(input);
+  return std::string();
+}
+
+/// The points in double precision, without a copy when they already are; null without points.
+vtkSmartPointer<vtkDataArray> DoublePositions(vtkPointSet* input)
+{
+  if (input->GetNumberOfPoints() == 0)
+  {
+    return nullptr;
+  }
+  vtkSmartPointer<vtkDataArray> positions = input->GetPoints()->GetData();
+  if (positions->GetDataType() != VTK_DOUBLE || !positions->HasStandardMemoryLayout())
+  {
+    auto copy = vtkSmartPointer<vtkDoubleArray>::New();
+    copy->DeepCopy(positions);
+    positions = copy;
+  }
+  return positions;
+}
+
+/// Each record field's column: the point array of its name when it has the field's components
+/// and a value per point (converted into `buffers` when needed), else null (the field is 0).
+std::vector<const void*> Columns(const pcbilateral::LASFileInfo& info,
+  vtkPointData* pointData,
+  vtkIdType count,
+  std::vector<std::vector<std::uint8_t>>& buffers)
+{
+  std::vector<const void*> columns(info.Dimensions.size(), nullptr);
+  for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+  {
+    const pcbilateral::LASDimension& dimension = info.Dimensions[d];
+    vtkDataArray* array = pointData->GetArray(dimension.Name.c_str());
+    if (count > 0 && array && array->GetNumberOfComponents() == dimension.Components &&
+        array->GetNumberOfTuples() == count)
+    {
+      columns[d] = Column(array, dimension, buffers[d]);
+    }
+  }
+  return columns;
+}
 } // namespace
 
 vtkLASPointCloudWriter::vtkLASPointCloudWriter() = default;
@@ -111,81 +201,24 @@ int vtkLASPointCloudWriter::FillInputPortInformation(int, vtkInformation* info)
 
 void vtkLASPointCloudWriter::WriteData()
 {
-  this->ErrorMessage.clear();
   vtkPointSet* input = vtkPointSet::SafeDownCast(this->GetInput());
-  if (!this->FileName || !*this->FileName)
-  {
-    this->ErrorMessage = "no file name was given";
-  }
-  else if (!input)
-  {
-    this->ErrorMessage = std::string(this->FileName) + ": the input is not a point set";
-  }
-  const vtkIdType count = input ? input->GetNumberOfPoints() : 0;
-  vtkPointData* pointData = input ? input->GetPointData() : nullptr;
-
   pcbilateral::LASFileInfo info;
-  if (this->ErrorMessage.empty() &&
-      !vtkLASLoadFileInfo(input->GetFieldData(), info, this->ErrorMessage) &&
-      this->ErrorMessage.empty())
-  {
-    double bounds[6] = { 0, 0, 0, 0, 0, 0 };
-    if (count > 0)
-    {
-      double vtkBounds[6];
-      input->GetBounds(vtkBounds);
-      for (int axis = 0; axis < 3; ++axis)
-      {
-        bounds[axis] = vtkBounds[2 * axis];
-        bounds[3 + axis] = vtkBounds[2 * axis + 1];
-      }
-    }
-    vtkDataArray* rgb = pointData->GetArray("RGB");
-    info = pcbilateral::DefaultLASFileInfo(static_cast<std::size_t>(count),
-      bounds,
-      pointData->GetArray("GpsTime") != nullptr,
-      rgb && rgb->GetNumberOfComponents() == 3);
-  }
-  else if (!this->ErrorMessage.empty() && this->FileName)
-  {
-    this->ErrorMessage = std::string(this->FileName) + ": " + this->ErrorMessage;
-  }
+  this->ErrorMessage = LoadFileInfo(this->FileName, input, info);
   if (!this->ErrorMessage.empty())
   {
     vtkErrorMacro(<< this->ErrorMessage);
     this->SetErrorCode(vtkErrorCode::UnknownError);
     return;
   }
-
-  // The points in double precision, without a copy when they already are.
-  vtkSmartPointer<vtkDataArray> positions;
-  if (count > 0)
-  {
-    positions = input->GetPoints()->GetData();
-    if (positions->GetDataType() != VTK_DOUBLE || !positions->HasStandardMemoryLayout())
-    {
-      auto copy = vtkSmartPointer<vtkDoubleArray>::New();
-      copy->DeepCopy(positions);
-      positions = copy;
-    }
-  }
+  const vtkIdType count = input->GetNumberOfPoints();
+  const vtkSmartPointer<vtkDataArray> positions = DoublePositions(input);
   std::vector<std::vector<std::uint8_t>> buffers(info.Dimensions.size());
-  std::vector<const void*> columns(info.Dimensions.size(), nullptr);
-  for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
-  {
-    const pcbilateral::LASDimension& dimension = info.Dimensions[d];
-    vtkDataArray* array = pointData->GetArray(dimension.Name.c_str());
-    if (count > 0 && array && array->GetNumberOfComponents() == dimension.Components &&
-        array->GetNumberOfTuples() == count)
-    {
-      columns[d] = Column(array, dimension, buffers[d]);
-    }
-  }
+  const std::vector<const void*> columns = Columns(info, input->GetPointData(), count, buffers);
   const double none[3] = { 0, 0, 0 };
   this->ErrorMessage = pcbilateral::WriteLAS(this->FileName,
     info,
     static_cast<std::size_t>(count),
-    count > 0 ? static_cast<const double*>(positions->GetVoidPointer(0)) : none,
+    positions ? static_cast<const double*>(positions->GetVoidPointer(0)) : none,
     columns.data());
   if (!this->ErrorMessage.empty())
   {

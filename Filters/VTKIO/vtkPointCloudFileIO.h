@@ -12,10 +12,12 @@
  * warnings; one announcing more vertices than it holds aborts the program): the PLY header
  * must name x, y and z vertex properties and the data after it must hold as many vertices as
  * it announces (bytes for binary files, lines and values for ASCII ones); a VTP file must be a
- * VTK XML file that ends with its closing tag. Every failure is one line naming the file and
- * the problem, from GetErrorMessage(); nothing is printed.
+ * VTK XML file that ends with its closing tag (pcbilateral::CheckPLYFile and CheckVTPFile, in
+ * the formats library). Every failure is one line naming the file and the problem, from
+ * GetErrorMessage(); nothing is printed.
  *
- * Write() writes under a temporary name and renames, so a failed write leaves no file.
+ * Write() writes under a temporary name and renames (pcbilateral::ReplacingPath), so a failed
+ * write leaves no file.
  *
  * @sa
  * vtkLASPointCloudReader vtkPointCloudTextReader
@@ -87,7 +89,8 @@ public:
   bool Read(const char* path, vtkPolyData* output);
 
   /// Writes `data` to `path` with the writer of NewWriter(). Returns false with one line in
-  /// GetErrorMessage() on failure, leaving no file.
+  /// GetErrorMessage() on failure (a full disk too), leaving no file, or the file that was
+  /// there as it was.
   bool Write(vtkPolyData* data, const char* path);
 
   /**
