@@ -220,39 +220,33 @@ void CheckSameBitsAsOneRun(const BilateralParameters& parameters, int parts, uns
     moved,
     differing);
 }
+
+/// Given parameters on 1, 2, 3 and 5 parts (seeds seed + parts), then the automatic ones,
+/// chosen from the whole cloud's measured scales, with removal of isolated points on 3 parts.
+void CheckGivenAndAutomatic(bool edgeAware, int iterations, unsigned seed, unsigned automaticSeed)
+{
+  BilateralParameters parameters;
+  parameters.EdgeAware = edgeAware;
+  parameters.Radius = 0.05;
+  parameters.NormalRadius = 0.02;
+  parameters.NumberOfIterations = iterations;
+  for (const int parts : { 1, 2, 3, 5 })
+  {
+    CheckSameBitsAsOneRun(parameters, parts, seed + static_cast<unsigned>(parts));
+  }
+  parameters.Radius = 0.0;
+  parameters.NormalRadius = 0.0;
+  parameters.NumberOfIterations = 2;
+  parameters.RemoveIsolatedPoints = true;
+  CheckSameBitsAsOneRun(parameters, 3, automaticSeed);
+}
 } // namespace
 
 int main()
 {
-  BilateralParameters parameters;
-  parameters.Radius = 0.05;
-  parameters.NormalRadius = 0.02;
-  parameters.NumberOfIterations = 3;
-  for (const int parts : { 1, 2, 3, 5 })
-  {
-    CheckSameBitsAsOneRun(parameters, parts, 7u + static_cast<unsigned>(parts));
-  }
-  // The automatic parameters, chosen from the whole cloud's measured scales, and removal of
-  // isolated points.
-  parameters.Radius = 0.0;
-  parameters.NormalRadius = 0.0;
-  parameters.NumberOfIterations = 2;
-  parameters.RemoveIsolatedPoints = true;
-  CheckSameBitsAsOneRun(parameters, 3, 99u);
+  CheckGivenAndAutomatic(false, 3, 7u, 99u);
   // The edge-aware mode reads its neighbours' filtered normals: its ghosts reach further
   // (EdgeAwareReachInRadii radii), and must still give one run's bits.
-  parameters.EdgeAware = true;
-  parameters.RemoveIsolatedPoints = false;
-  parameters.Radius = 0.05;
-  parameters.NormalRadius = 0.02;
-  parameters.NumberOfIterations = 2;
-  for (const int parts : { 1, 2, 3, 5 })
-  {
-    CheckSameBitsAsOneRun(parameters, parts, 17u + static_cast<unsigned>(parts));
-  }
-  parameters.Radius = 0.0;
-  parameters.NormalRadius = 0.0;
-  parameters.RemoveIsolatedPoints = true;
-  CheckSameBitsAsOneRun(parameters, 3, 199u);
+  CheckGivenAndAutomatic(true, 2, 17u, 199u);
   return PCB_TEST_RESULT();
 }
