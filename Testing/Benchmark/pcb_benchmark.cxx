@@ -653,23 +653,21 @@ bool TimeLASReadAndWrite(const std::string& path,
   return true;
 }
 
+/// One row of the --las table: the median time of the runs and the rate it gives.
+void PrintRate(const char* format, const std::vector<double>& times, double megabytes)
+{
+  std::printf(format, Median(times), megabytes / Median(times));
+}
+
 void PrintLASTable(const LASTimes& times, std::size_t size, int runs)
 {
   const double megabytes = size / 1e6;
   std::printf(
     "LAS, 10,000,000 points of format 3 (%.0f MB), median of %d runs:\n", megabytes, runs);
-  std::printf("  plain read of the bytes: %7.3f s %8.0f MB/s\n",
-    Median(times.PlainReading),
-    megabytes / Median(times.PlainReading));
-  std::printf("  LAS read (decoded):      %7.3f s %8.0f MB/s\n",
-    Median(times.Reading),
-    megabytes / Median(times.Reading));
-  std::printf("  LAS write:               %7.3f s %8.0f MB/s\n",
-    Median(times.Writing),
-    megabytes / Median(times.Writing));
-  std::printf("  plain write of the bytes: %6.3f s %8.0f MB/s\n",
-    Median(times.PlainWriting),
-    megabytes / Median(times.PlainWriting));
+  PrintRate("  plain read of the bytes: %7.3f s %8.0f MB/s\n", times.PlainReading, megabytes);
+  PrintRate("  LAS read (decoded):      %7.3f s %8.0f MB/s\n", times.Reading, megabytes);
+  PrintRate("  LAS write:               %7.3f s %8.0f MB/s\n", times.Writing, megabytes);
+  PrintRate("  plain write of the bytes: %6.3f s %8.0f MB/s\n", times.PlainWriting, megabytes);
 }
 
 int BenchmarkLAS(int runs, const std::string& folder)
