@@ -7,6 +7,7 @@
 // Formats by extension: .txt and .xyz (the authors' ASCII format), .las, .ply, .vtp. Errors
 // print one line and exit with status 1; a damaged input file is an error, never a cloud. Run with
 // -h for the options.
+#include "AutomaticRule.h"
 #include "BilateralFilter.h"
 #include "vtkPointCloudBilateralFilter.h"
 #include "vtkPointCloudFileIO.h"
@@ -27,13 +28,16 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <sstream>
 #include <string>
 #include <unistd.h>
 #include <vector>
 
 namespace
 {
-const char* const Usage =
+// The help's fixed text; the automatic rule and the paper's heuristic are the core's own words
+// (AutomaticRule.h), inserted by HelpText.
+const char* const UsageHead =
   "usage: pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [--paper] [-R] [-t THREADS]\n"
   "                   [--remove-isolated] [--edge-aware]\n"
   "\n"
@@ -43,13 +47,13 @@ const char* const Usage =
   "\n"
   "  -r R               neighbourhood radius\n"
   "  -n RN              normal radius, the tolerance to the tangent plane\n"
-  "  -N ITER            number of iterations\n"
-  "                     Each is automatic when not given (or 0): chosen from the cloud's\n"
-  "                     measured point spacing and noise sigma (r = 5 spacings + 4 sigma,\n"
-  "                     rn = 5 sigma, N = 2; flat clouds 1.5 r and N = 3; smooth clouds\n"
-  "                     with noise below half a spacing 1.25 r, rn = r, N = 1)\n"
-  "  --paper            parameters not given follow the paper's heuristic instead, as the\n"
-  "                     authors' program: r = sqrt(20 / points) x largest extent, rn = r, N = 1\n"
+  "  -N ITER            number of iterations\n";
+const char* const AutomaticLead =
+  "Each is automatic when not given (or 0): chosen from the cloud's measured point spacing "
+  "and noise sigma";
+const char* const PaperLead =
+  "parameters not given follow the paper's heuristic instead, as the authors' program:";
+const char* const UsageTail =
   "  -R                 text files carry oriented normals in columns 4-6; the estimated\n"
   "                     normals are oriented by them and they are written back\n"
   "  -t THREADS         threads (default 0: all cores); the result does not depend on it\n"
@@ -61,6 +65,47 @@ const char* const Usage =
   "  -p                 accepted for compatibility and ignored: the filter always runs in "
   "parallel\n"
   "  -h, --help         this text\n";
+
+/// The help's option descriptions start in this column and wrap before this width.
+constexpr std::size_t DescriptionColumn = 21;
+constexpr std::size_t HelpWidth = 86;
+
+/// `label` padded to the description column, then `text` wrapped at word boundaries, each
+/// continuation line indented to that column.
+std::string OptionParagraph(const std::string& label, const std::string& text)
+{
+  std::string paragraph = label + std::string(DescriptionColumn - label.size(), ' ');
+  std::size_t lineLength = DescriptionColumn;
+  std::istringstream words(text);
+  std::string word;
+  while (words >> word)
+  {
+    const bool lineStarted = lineLength > DescriptionColumn;
+    if (lineStarted && lineLength + 1 + word.size() > HelpWidth)
+    {
+      paragraph += "\n" + std::string(DescriptionColumn, ' ');
+      lineLength = DescriptionColumn;
+    }
+    else if (lineStarted)
+    {
+      paragraph += ' ';
+      ++lineLength;
+    }
+    paragraph += word;
+    lineLength += word.size();
+  }
+  return paragraph + "\n";
+}
+
+std::string HelpText()
+{
+  return UsageHead +
+         OptionParagraph(
+           "", std::string(AutomaticLead) + " (" + pcbilateral::DescribeAutomaticRule() + ")") +
+         OptionParagraph(
+           "  --paper", std::string(PaperLead) + " " + pcbilateral::DescribePaperRule()) +
+         UsageTail;
+}
 
 /// Swallows what VTK prints by itself: the messages that matter come from the observers of
 /// the reader, the filter and the writer (see ReportMessages); the rest repeat them (the
@@ -156,79 +201,74 @@ struct Options
   bool EdgeAware = pcbilateral::BilateralParameters().EdgeAware;
 };
 
-Options ParseArguments(int argc, char* argv[])
+/// Reads the option at argv[i] (and its value, advancing i) into options; false when argv[i] is
+/// not an option.
+bool ParseOption(int argc, char* argv[], int& i, Options& options)
 {
-  Options options;
-  std::vector<std::string> positional;
-  for (int i = 1; i < argc; ++i)
+  const std::string argument = argv[i];
+  auto value = [&]() -> const char*
   {
-    const std::string argument = argv[i];
-    auto value = [&]() -> const char*
+    if (i + 1 >= argc)
     {
-      if (i + 1 >= argc)
-      {
-        Fail(argument + " needs a value");
-      }
-      return argv[++i];
-    };
-    if (argument == "-h" || argument == "--help")
-    {
-      std::fputs(Usage, stdout);
-      std::exit(EXIT_SUCCESS);
+      Fail(argument + " needs a value");
     }
-    else if (argument == "-r")
-    {
-      options.Radius = ParseNumber("-r", value());
-    }
-    else if (argument == "-n")
-    {
-      options.NormalRadius = ParseNumber("-n", value());
-    }
-    else if (argument == "-N")
-    {
-      options.Iterations = ParseCount("-N", value());
-    }
-    else if (argument == "-t")
-    {
-      options.Threads = ParseCount("-t", value());
-    }
-    else if (argument == "-R")
-    {
-      options.OrientedNormals = true;
-    }
-    else if (argument == "-p")
-    {
-      // The authors' "parallel" switch: always on here.
-    }
-    else if (argument == "--paper")
-    {
-      options.Automatic = pcbilateral::AutomaticParameters::Paper;
-    }
-    else if (argument == "--remove-isolated")
-    {
-      options.RemoveIsolated = true;
-    }
-    else if (argument == "--edge-aware")
-    {
-      options.EdgeAware = true;
-    }
-    else if (argument.size() > 1 && argument[0] == '-')
-    {
-      Fail("unknown option '" + argument + "' (see pcbilateral -h)");
-    }
-    else
-    {
-      positional.push_back(argument);
-    }
-  }
-  if (positional.size() != 2)
+    return argv[++i];
+  };
+  if (argument == "-h" || argument == "--help")
   {
-    std::fputs(Usage, stderr);
-    std::exit(EXIT_FAILURE);
+    std::fputs(HelpText().c_str(), stdout);
+    std::exit(EXIT_SUCCESS);
   }
-  options.Input = positional[0];
-  options.Output = positional[1];
-  // The core's checks and messages, before any file is read.
+  else if (argument == "-r")
+  {
+    options.Radius = ParseNumber("-r", value());
+  }
+  else if (argument == "-n")
+  {
+    options.NormalRadius = ParseNumber("-n", value());
+  }
+  else if (argument == "-N")
+  {
+    options.Iterations = ParseCount("-N", value());
+  }
+  else if (argument == "-t")
+  {
+    options.Threads = ParseCount("-t", value());
+  }
+  else if (argument == "-R")
+  {
+    options.OrientedNormals = true;
+  }
+  else if (argument == "-p")
+  {
+    // The authors' "parallel" switch: always on here.
+  }
+  else if (argument == "--paper")
+  {
+    options.Automatic = pcbilateral::AutomaticParameters::Paper;
+  }
+  else if (argument == "--remove-isolated")
+  {
+    options.RemoveIsolated = true;
+  }
+  else if (argument == "--edge-aware")
+  {
+    options.EdgeAware = true;
+  }
+  else if (argument.size() > 1 && argument[0] == '-')
+  {
+    Fail("unknown option '" + argument + "' (see pcbilateral -h)");
+  }
+  else
+  {
+    return false;
+  }
+  return true;
+}
+
+/// The core's checks and messages, before any file is read.
+void CheckOptions(const Options& options)
+{
   pcbilateral::BilateralParameters parameters;
   parameters.Radius = options.Radius;
   parameters.NormalRadius = options.NormalRadius;
@@ -242,7 +282,99 @@ Options ParseArguments(int argc, char* argv[])
   }
   CheckFileName(options.Input, false);
   CheckFileName(options.Output, true);
+}
+
+Options ParseArguments(int argc, char* argv[])
+{
+  Options options;
+  std::vector<std::string> positional;
+  for (int i = 1; i < argc; ++i)
+  {
+    if (!ParseOption(argc, argv, i, options))
+    {
+      positional.push_back(argv[i]);
+    }
+  }
+  if (positional.size() != 2)
+  {
+    std::fputs(HelpText().c_str(), stderr);
+    std::exit(EXIT_FAILURE);
+  }
+  options.Input = positional[0];
+  options.Output = positional[1];
+  CheckOptions(options);
   return options;
+}
+
+/// The input cloud; a file that cannot be read or holds no points is an error.
+void ReadInput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData* input)
+{
+  if (!files->Read(options.Input.c_str(), input))
+  {
+    Fail(files->GetErrorMessage());
+  }
+  if (input->GetNumberOfPoints() == 0)
+  {
+    Fail(options.Input + ": contains no points");
+  }
+}
+
+void ConfigureFilter(vtkPointCloudBilateralFilter* filter, const Options& options)
+{
+  filter->SetRadius(options.Radius);
+  filter->SetNormalRadius(options.NormalRadius);
+  filter->SetNumberOfIterations(options.Iterations);
+  filter->SetAutomaticParameters(static_cast<int>(options.Automatic));
+  filter->SetNumberOfThreads(options.Threads);
+  filter->SetRemoveIsolatedPoints(options.RemoveIsolated);
+  filter->SetEdgeAware(options.EdgeAware);
+}
+
+/// The parameters the filter used, and for those the user left automatic, from what.
+void PrintParametersUsed(vtkPointCloudBilateralFilter* filter, const Options& options)
+{
+  const bool measured = filter->GetPointSpacing() > 0.0;
+  if (measured)
+  {
+    std::printf("measured:      point spacing %.6g, noise sigma %.6g\n",
+      filter->GetPointSpacing(),
+      filter->GetNoiseSigma());
+  }
+  const char* automatic =
+    measured ? " (automatic, from the measured spacing and noise)" : " (automatic: the paper's)";
+  std::printf(
+    "radius:        %.9g%s\n", filter->GetRadiusUsed(), options.Radius > 0.0 ? "" : automatic);
+  std::printf("normal radius: %.9g%s\n",
+    filter->GetNormalRadiusUsed(),
+    options.NormalRadius > 0.0 ? "" : automatic);
+  std::printf("iterations:    %d%s\n",
+    filter->GetNumberOfIterationsUsed(),
+    options.Iterations > 0 ? "" : automatic);
+  if (options.EdgeAware)
+  {
+    std::printf("mode:          edge-aware (normals filtered bilaterally, beyond the paper)\n");
+  }
+  if (options.RemoveIsolated)
+  {
+    std::printf("removed:       %lld isolated points\n",
+      static_cast<long long>(filter->GetNumberOfRemovedPoints()));
+  }
+}
+
+void WriteOutput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData* output)
+{
+  if (vtkPointCloudFileIO::IsTextFormat(options.Output.c_str()))
+  {
+    // The authors' layout: the input's columns in order, no columns of the filter's own.
+    output->GetPointData()->RemoveArray("vtkOriginalPointIds");
+  }
+  if (!files->Write(output, options.Output.c_str()))
+  {
+    Fail(files->GetErrorMessage());
+  }
+  std::printf("output:        %s, %lld points\n",
+    options.Output.c_str(),
+    static_cast<long long>(output->GetNumberOfPoints()));
 }
 
 } // namespace
@@ -279,26 +411,13 @@ int main(int argc, char* argv[])
   vtkNew<vtkPointCloudFileIO> files;
   files->SetOrientedNormals(options.OrientedNormals);
   vtkNew<vtkPolyData> input;
-  if (!files->Read(options.Input.c_str(), input))
-  {
-    Fail(files->GetErrorMessage());
-  }
-  if (input->GetNumberOfPoints() == 0)
-  {
-    Fail(options.Input + ": contains no points");
-  }
+  ReadInput(files, options, input);
 
   ReportMessages messages;
   vtkNew<vtkPointCloudBilateralFilter> filter;
   messages.Observe(filter);
   filter->SetInputData(input);
-  filter->SetRadius(options.Radius);
-  filter->SetNormalRadius(options.NormalRadius);
-  filter->SetNumberOfIterations(options.Iterations);
-  filter->SetAutomaticParameters(static_cast<int>(options.Automatic));
-  filter->SetNumberOfThreads(options.Threads);
-  filter->SetRemoveIsolatedPoints(options.RemoveIsolated);
-  filter->SetEdgeAware(options.EdgeAware);
+  ConfigureFilter(filter, options);
   const auto start = std::chrono::steady_clock::now();
   filter->Update();
   const double seconds =
@@ -313,45 +432,8 @@ int main(int argc, char* argv[])
   std::printf("input:         %s, %lld points\n",
     options.Input.c_str(),
     static_cast<long long>(input->GetNumberOfPoints()));
-  // What the automatic mode chose, and from what.
-  const bool measured = filter->GetPointSpacing() > 0.0;
-  if (measured)
-  {
-    std::printf("measured:      point spacing %.6g, noise sigma %.6g\n",
-      filter->GetPointSpacing(),
-      filter->GetNoiseSigma());
-  }
-  const char* automatic =
-    measured ? " (automatic, from the measured spacing and noise)" : " (automatic: the paper's)";
-  std::printf(
-    "radius:        %.9g%s\n", filter->GetRadiusUsed(), options.Radius > 0.0 ? "" : automatic);
-  std::printf("normal radius: %.9g%s\n",
-    filter->GetNormalRadiusUsed(),
-    options.NormalRadius > 0.0 ? "" : automatic);
-  std::printf("iterations:    %d%s\n",
-    filter->GetNumberOfIterationsUsed(),
-    options.Iterations > 0 ? "" : automatic);
-  if (options.EdgeAware)
-  {
-    std::printf("mode:          edge-aware (normals filtered bilaterally, beyond the paper)\n");
-  }
-  if (options.RemoveIsolated)
-  {
-    std::printf("removed:       %lld isolated points\n",
-      static_cast<long long>(filter->GetNumberOfRemovedPoints()));
-  }
+  PrintParametersUsed(filter, options);
   std::printf("filtering:     %.3f s\n", seconds);
-  if (vtkPointCloudFileIO::IsTextFormat(options.Output.c_str()))
-  {
-    // The authors' layout: the input's columns in order, no columns of the filter's own.
-    output->GetPointData()->RemoveArray("vtkOriginalPointIds");
-  }
-  if (!files->Write(output, options.Output.c_str()))
-  {
-    Fail(files->GetErrorMessage());
-  }
-  std::printf("output:        %s, %lld points\n",
-    options.Output.c_str(),
-    static_cast<long long>(output->GetNumberOfPoints()));
+  WriteOutput(files, options, output);
   return EXIT_SUCCESS;
 }

@@ -537,123 +537,159 @@ int WriteCube(const char* path)
   return EXIT_SUCCESS;
 }
 
+/// The --las benchmark's file: the sphere10M workload as point format 3 (GPS time and
+/// colours), its other fields filled with a fixed pattern of bytes. False after printing the
+/// error.
+bool WriteBenchmarkLAS(const std::string& path, std::size_t count)
+{
+  const Workload sphere{ "sphere10M", count, Surface::Sphere, 0.0, 0.0, 1, 1 };
+  const std::vector<double> xyz = Generate(sphere);
+  const double bounds[6] = { -1.1, -1.1, -1.1, 1.1, 1.1, 1.1 };
+  const pcbilateral::LASFileInfo info = pcbilateral::DefaultLASFileInfo(count, bounds, true, true);
+  LASColumns columns(info, count);
+  for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+  {
+    const std::size_t bytes = count * pcbilateral::LASColumnBytes(info.Dimensions[d]);
+    for (std::size_t b = 0; b < bytes; ++b)
+    {
+      columns.Storage[d][b] = static_cast<std::uint8_t>(b * 2654435761u >> 13);
+    }
+  }
+  const std::string error =
+    pcbilateral::WriteLAS(path, info, count, xyz.data(), columns.Columns.data());
+  if (!error.empty())
+  {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return false;
+  }
+  return true;
+}
+
+/// The times of each run of the --las benchmark.
+struct LASTimes
+{
+  std::vector<double> PlainReading, PlainWriting, Reading, Writing;
+};
+
+/// The bytes alone, in blocks of 64 MB, into memory allocated for them, and written again as
+/// they are, in the same blocks: what any reader and writer pay the system. Returns the file's
+/// size.
+std::size_t TimePlainReadAndWrite(const std::string& path, const std::string& copy, LASTimes& times)
+{
+  auto start = std::chrono::steady_clock::now();
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  std::fseek(file, 0, SEEK_END);
+  const std::size_t size = static_cast<std::size_t>(std::ftell(file));
+  std::fseek(file, 0, SEEK_SET);
+  std::unique_ptr<char[]> bytes(new char[size]);
+  for (std::size_t at = 0; at < size;)
+  {
+    const std::size_t read =
+      std::fread(bytes.get() + at, 1, std::min<std::size_t>(64 << 20, size - at), file);
+    if (read == 0)
+    {
+      break;
+    }
+    at += read;
+  }
+  std::fclose(file);
+  times.PlainReading.push_back(Seconds(start));
+  // Into a new file, as the LAS write: the previous run's LAS write is removed first, not
+  // truncated by the clock (freeing its 340 MB took 20-60 ms of the plain write's time).
+  std::remove(copy.c_str());
+  start = std::chrono::steady_clock::now();
+  file = std::fopen(copy.c_str(), "wb");
+  for (std::size_t at = 0; at < size; at += 64 << 20)
+  {
+    std::fwrite(bytes.get() + at, 1, std::min<std::size_t>(64 << 20, size - at), file);
+  }
+  std::fclose(file);
+  times.PlainWriting.push_back(Seconds(start));
+  std::remove(copy.c_str());
+  return size;
+}
+
+/// The LAS read as a reader does it: opened, decoded into fresh columns, and the file released
+/// (its mapping undone) before the clock stops; then written to `copy`. False after printing
+/// an error.
+bool TimeLASReadAndWrite(const std::string& path,
+  const std::string& copy,
+  std::size_t count,
+  LASTimes& times)
+{
+  auto start = std::chrono::steady_clock::now();
+  pcbilateral::LASFileInfo info;
+  std::unique_ptr<LASColumns> decoded;
+  {
+    pcbilateral::LASFileBytes file;
+    std::string error = file.Open(path);
+    if (error.empty())
+    {
+      error = pcbilateral::ParseLASHeader(file.Data(), file.Size(), path, info);
+    }
+    if (!error.empty())
+    {
+      std::fprintf(stderr, "%s\n", error.c_str());
+      return false;
+    }
+    decoded = std::make_unique<LASColumns>(info, count);
+    pcbilateral::DecodeLASPoints(info,
+      file.Data() + info.Header.OffsetToPointData,
+      count,
+      decoded->Positions.get(),
+      decoded->Columns.data());
+  }
+  times.Reading.push_back(Seconds(start));
+  start = std::chrono::steady_clock::now();
+  std::vector<const void*> constant(decoded->Columns.begin(), decoded->Columns.end());
+  const std::string error =
+    pcbilateral::WriteLAS(copy, info, count, decoded->Positions.get(), constant.data());
+  if (!error.empty())
+  {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return false;
+  }
+  times.Writing.push_back(Seconds(start));
+  return true;
+}
+
+/// One row of the --las table: the median time of the runs and the rate it gives.
+void PrintRate(const char* format, const std::vector<double>& times, double megabytes)
+{
+  std::printf(format, Median(times), megabytes / Median(times));
+}
+
+void PrintLASTable(const LASTimes& times, std::size_t size, int runs)
+{
+  const double megabytes = size / 1e6;
+  std::printf(
+    "LAS, 10,000,000 points of format 3 (%.0f MB), median of %d runs:\n", megabytes, runs);
+  PrintRate("  plain read of the bytes: %7.3f s %8.0f MB/s\n", times.PlainReading, megabytes);
+  PrintRate("  LAS read (decoded):      %7.3f s %8.0f MB/s\n", times.Reading, megabytes);
+  PrintRate("  LAS write:               %7.3f s %8.0f MB/s\n", times.Writing, megabytes);
+  PrintRate("  plain write of the bytes: %6.3f s %8.0f MB/s\n", times.PlainWriting, megabytes);
+}
+
 int BenchmarkLAS(int runs, const std::string& folder)
 {
   const std::size_t count = 10000000;
   const std::string path = folder + "/pcb_benchmark_10M.las";
   const std::string copy = folder + "/pcb_benchmark_10M_copy.las";
+  if (!WriteBenchmarkLAS(path, count))
   {
-    const Workload sphere{ "sphere10M", count, Surface::Sphere, 0.0, 0.0, 1, 1 };
-    const std::vector<double> xyz = Generate(sphere);
-    const double bounds[6] = { -1.1, -1.1, -1.1, 1.1, 1.1, 1.1 };
-    const pcbilateral::LASFileInfo info =
-      pcbilateral::DefaultLASFileInfo(count, bounds, true, true);
-    LASColumns columns(info, count);
-    for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
-    {
-      const std::size_t bytes = count * pcbilateral::LASColumnBytes(info.Dimensions[d]);
-      for (std::size_t b = 0; b < bytes; ++b)
-      {
-        columns.Storage[d][b] = static_cast<std::uint8_t>(b * 2654435761u >> 13);
-      }
-    }
-    const std::string error =
-      pcbilateral::WriteLAS(path, info, count, xyz.data(), columns.Columns.data());
-    if (!error.empty())
-    {
-      std::fprintf(stderr, "%s\n", error.c_str());
-      return EXIT_FAILURE;
-    }
+    return EXIT_FAILURE;
   }
-  std::vector<double> plain, plainWriting, reading, writing;
+  LASTimes times;
   std::size_t size = 0;
   for (int run = 0; run < runs; ++run)
   {
+    size = TimePlainReadAndWrite(path, copy, times);
+    if (!TimeLASReadAndWrite(path, copy, count, times))
     {
-      // The bytes alone, in blocks of 64 MB, into memory allocated for them.
-      auto start = std::chrono::steady_clock::now();
-      std::FILE* file = std::fopen(path.c_str(), "rb");
-      std::fseek(file, 0, SEEK_END);
-      size = static_cast<std::size_t>(std::ftell(file));
-      std::fseek(file, 0, SEEK_SET);
-      std::unique_ptr<char[]> bytes(new char[size]);
-      for (std::size_t at = 0; at < size;)
-      {
-        const std::size_t read =
-          std::fread(bytes.get() + at, 1, std::min<std::size_t>(64 << 20, size - at), file);
-        if (read == 0)
-        {
-          break;
-        }
-        at += read;
-      }
-      std::fclose(file);
-      plain.push_back(Seconds(start));
-      // And written again as they are, in the same blocks: what any writer pays the system.
-      // Into a new file, as the LAS write: the previous run's LAS write is removed first, not
-      // truncated by the clock (freeing its 340 MB took 20-60 ms of the plain write's time).
-      std::remove(copy.c_str());
-      start = std::chrono::steady_clock::now();
-      file = std::fopen(copy.c_str(), "wb");
-      for (std::size_t at = 0; at < size; at += 64 << 20)
-      {
-        std::fwrite(bytes.get() + at, 1, std::min<std::size_t>(64 << 20, size - at), file);
-      }
-      std::fclose(file);
-      plainWriting.push_back(Seconds(start));
-      std::remove(copy.c_str());
-    }
-    // The LAS read as a reader does it: opened, decoded into fresh columns, and the file
-    // released (its mapping undone) before the clock stops.
-    auto start = std::chrono::steady_clock::now();
-    pcbilateral::LASFileInfo info;
-    std::unique_ptr<LASColumns> decoded;
-    {
-      pcbilateral::LASFileBytes file;
-      std::string error = file.Open(path);
-      if (error.empty())
-      {
-        error = pcbilateral::ParseLASHeader(file.Data(), file.Size(), path, info);
-      }
-      if (!error.empty())
-      {
-        std::fprintf(stderr, "%s\n", error.c_str());
-        return EXIT_FAILURE;
-      }
-      decoded = std::make_unique<LASColumns>(info, count);
-      pcbilateral::DecodeLASPoints(info,
-        file.Data() + info.Header.OffsetToPointData,
-        count,
-        decoded->Positions.get(),
-        decoded->Columns.data());
-    }
-    reading.push_back(Seconds(start));
-    LASColumns& columns = *decoded;
-    start = std::chrono::steady_clock::now();
-    std::vector<const void*> constant(columns.Columns.begin(), columns.Columns.end());
-    const std::string error =
-      pcbilateral::WriteLAS(copy, info, count, columns.Positions.get(), constant.data());
-    if (!error.empty())
-    {
-      std::fprintf(stderr, "%s\n", error.c_str());
       return EXIT_FAILURE;
     }
-    writing.push_back(Seconds(start));
   }
-  const double megabytes = size / 1e6;
-  std::printf(
-    "LAS, 10,000,000 points of format 3 (%.0f MB), median of %d runs:\n", megabytes, runs);
-  std::printf(
-    "  plain read of the bytes: %7.3f s %8.0f MB/s\n", Median(plain), megabytes / Median(plain));
-  std::printf("  LAS read (decoded):      %7.3f s %8.0f MB/s\n",
-    Median(reading),
-    megabytes / Median(reading));
-  std::printf("  LAS write:               %7.3f s %8.0f MB/s\n",
-    Median(writing),
-    megabytes / Median(writing));
-  std::printf("  plain write of the bytes: %6.3f s %8.0f MB/s\n",
-    Median(plainWriting),
-    megabytes / Median(plainWriting));
+  PrintLASTable(times, size, runs);
   std::remove(path.c_str());
   std::remove(copy.c_str());
   return EXIT_SUCCESS;

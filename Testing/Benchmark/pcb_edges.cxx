@@ -14,8 +14,8 @@
 // Built with the project, run by hand (see README.md, "Edge-aware mode"):
 //
 //   pcb_edges [--only SUBSTRING] [--no-cgal]
-#include "BilateralFilter.h"
 #include "AutomaticRule.h"
+#include "BilateralFilter.h"
 #include "CloudMeasurement.h"
 #include "GroundTruth.h"
 #include "SampleShapes.h"
@@ -259,37 +259,14 @@ struct Case
   std::function<std::unique_ptr<Shape>()> Make;
   double Noise;
 };
-} // namespace
 
-int main(int argc, char* argv[])
+std::vector<Case> Cases()
 {
-  std::string only;
-  bool cgal = true;
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string argument = argv[i];
-    if (argument == "--only" && i + 1 < argc)
-    {
-      only = argv[++i];
-    }
-    else if (argument == "--no-cgal")
-    {
-      cgal = false;
-    }
-    else
-    {
-      std::fprintf(stderr, "usage: %s [--only SUBSTRING] [--no-cgal]\n", argv[0]);
-      return EXIT_FAILURE;
-    }
-  }
-#ifndef PCB_HAVE_CGAL
-  cgal = false;
-#endif
   auto cube = [] { return Cube(); };
   auto sharpEdge = [] { return SharpEdge(); };
   auto cutCylinder = [] { return std::unique_ptr<Shape>(new CutCylinder(0.2)); };
   auto sphere = [] { return std::unique_ptr<Shape>(new Sphere()); };
-  const std::vector<Case> cases = { { "cube", cube, 0.005 },
+  return { { "cube", cube, 0.005 },
     { "cube", cube, 0.01 },
     { "sharp edge", sharpEdge, 0.005 },
     { "sharp edge", sharpEdge, 0.01 },
@@ -297,7 +274,41 @@ int main(int argc, char* argv[])
     { "cut cylinder", cutCylinder, 0.01 },
     { "sphere", sphere, 0.005 },
     { "sphere", sphere, 0.01 } };
+}
 
+struct Options
+{
+  std::string Only;
+  bool Cgal = true;
+};
+
+/// The options; false for an unknown one.
+bool ParseArguments(int argc, char* argv[], Options& options)
+{
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string argument = argv[i];
+    if (argument == "--only" && i + 1 < argc)
+    {
+      options.Only = argv[++i];
+    }
+    else if (argument == "--no-cgal")
+    {
+      options.Cgal = false;
+    }
+    else
+    {
+      return false;
+    }
+  }
+#ifndef PCB_HAVE_CGAL
+  options.Cgal = false;
+#endif
+  return true;
+}
+
+void PrintHeader()
+{
   std::printf("Edge RMS / RMS in 1e-3 of the diagonal (20k points, uniform), each method at its "
               "best edge setting; then its best RMS; time of one run at the best edge setting "
               "(1 thread, processor time, minimum of 5)\n\n");
@@ -307,152 +318,212 @@ int main(int argc, char* argv[])
     "edge / RMS (setting) | time paper / edge-aware / jet / CGAL bilateral | cheapest edge-aware "
     "setting reaching the targets: edge / RMS, time | automatic rule: paper, edge-aware |\n");
   std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+}
+
+/// The first four characters of the value's decimal text (truncated, not rounded).
+std::string FourCharacters(double value)
+{
+  return std::to_string(value).substr(0, 4);
+}
+
+/// The noisy cloud's column: edge RMS / RMS, "–" for the edge without edges.
+std::string NoisyText(const Quality& noisy, bool hasEdges)
+{
+  return (hasEdges ? FourCharacters(noisy.EdgeRms) : std::string("–")) + " / " +
+         FourCharacters(noisy.Rms);
+}
+
+/// The automatic mode's rule (ChooseParameters) as it is, in both modes: "paper, edge-aware
+/// (setting)".
+std::string AutomaticText(const Truth& truth, const pcbilateral::CloudScales& scales)
+{
+  const bool hasEdges = truth.EdgePoints > 0;
+  pcbilateral::BilateralParameters automatic;
+  automatic.NumberOfIterations = 0;
+  automatic = pcbilateral::ChooseParameters(scales, automatic);
+  automatic.NumberOfThreads = 1;
+  const std::vector<double>& input = truth.Cloud->Positions;
+  const Quality autoPaper = truth.Measure(RunFilter(
+    input, automatic.Radius, automatic.NormalRadius, automatic.NumberOfIterations, false));
+  const Quality autoAware = truth.Measure(
+    RunFilter(input, automatic.Radius, automatic.NormalRadius, automatic.NumberOfIterations, true));
+  char autoText[160];
+  std::snprintf(autoText,
+    sizeof autoText,
+    "%s%.2f, %s%.2f (r %.1fs, rn %.1fσ, N %d)",
+    hasEdges ? (FourCharacters(autoPaper.EdgeRms) + " / ").c_str() : "– / ",
+    autoPaper.Rms,
+    hasEdges ? (FourCharacters(autoAware.EdgeRms) + " / ").c_str() : "– / ",
+    autoAware.Rms,
+    automatic.Radius / scales.PointSpacing,
+    automatic.NormalRadius / scales.NoiseSigma,
+    automatic.NumberOfIterations);
+  return autoText;
+}
+
+/// A method at its best edge setting: "edge / RMS (setting)", "–" for the edge without edges.
+std::string QualityText(const Best& b, bool hasEdges)
+{
+  char text[160];
+  if (hasEdges)
+  {
+    std::snprintf(text, sizeof text, "%.2f / %.2f", b.ByEdge.EdgeRms, b.ByEdge.Rms);
+  }
+  else
+  {
+    std::snprintf(text, sizeof text, "– / %.2f", b.ByEdge.Rms);
+  }
+  return std::string(text) + " (" + b.EdgeAt + ")";
+}
+
+/// A method at its best RMS setting: "RMS (setting)".
+std::string BestRmsText(const Best& b)
+{
+  char text[96];
+  std::snprintf(text, sizeof text, "%.2f (%s)", b.ByRms.Rms, b.RmsAt.c_str());
+  return text;
+}
+
+/// CGAL's columns, their times and CGAL bilateral's edge target ("–" and no target without
+/// CGAL).
+struct CgalColumns
+{
+  std::string Jet = "–";
+  std::string Bilateral = "–";
+  std::string Times; ///< " / jet / bilateral s"
+  double BilateralEdgeRms = 1e300;
+  double BilateralTime = 0.0;
+};
+
+#ifdef PCB_HAVE_CGAL
+CgalColumns CompareWithCgal(const Truth& truth)
+{
+  const bool hasEdges = truth.EdgePoints > 0;
+  Best jet = SearchJet(truth);
+  Best bilateral = SearchCgalBilateral(truth);
+  jet.TimeBest();
+  bilateral.TimeBest();
+  CgalColumns columns;
+  columns.Jet = QualityText(jet, hasEdges);
+  columns.Bilateral = QualityText(bilateral, hasEdges);
+  columns.BilateralEdgeRms = hasEdges ? bilateral.ByEdge.EdgeRms : 1e300;
+  columns.BilateralTime = bilateral.Time;
+  char timeText[160];
+  std::snprintf(timeText, sizeof timeText, " / %.3f / %.3f s", jet.Time, bilateral.Time);
+  columns.Times = timeText;
+  return columns;
+}
+#endif
+
+/// The cheapest edge-aware setting (fewest neighbours x iterations) with an edge RMS at most
+/// edgeTarget and an RMS at most rmsTarget: "edge / RMS (setting), time", and how much faster
+/// than CGAL bilateral when it ran; "–" when none reaches them.
+std::string CheapestText(const Best& edgeAware,
+  double edgeTarget,
+  double rmsTarget,
+  bool hasEdges,
+  double cgalTime)
+{
+  const Best::Setting* cheapest = nullptr;
+  for (const Best::Setting& setting : edgeAware.All)
+  {
+    if (setting.Result.EdgeRms <= edgeTarget && setting.Result.Rms <= rmsTarget &&
+        (!cheapest || setting.Cost < cheapest->Cost))
+    {
+      cheapest = &setting;
+    }
+  }
+  if (!cheapest)
+  {
+    return "–";
+  }
+  Best timing;
+  timing.RunBestEdge = cheapest->Run;
+  timing.TimeBest();
+  char edge[16] = "–";
+  if (hasEdges)
+  {
+    std::snprintf(edge, sizeof edge, "%.2f", cheapest->Result.EdgeRms);
+  }
+  char text[200];
+  std::snprintf(text,
+    sizeof text,
+    "%s / %.2f (%s), %.3f s%s",
+    edge,
+    cheapest->Result.Rms,
+    cheapest->At.c_str(),
+    timing.Time,
+    cgalTime > 0 ? (", " + FourCharacters(cgalTime / timing.Time) + "x faster").c_str() : "");
+  return text;
+}
+
+void RunCase(const Case& c, const char* name, std::uint64_t seed, [[maybe_unused]] bool cgal)
+{
+  const std::unique_ptr<Shape> shape = c.Make();
+  const NoisyCloud cloud = MakeNoisyCloud(*shape, 20000, c.Noise, false, 0.0, seed);
+  const Truth truth(*shape, cloud, 1e3 / shape->Diagonal());
+  const bool hasEdges = truth.EdgePoints > 0;
+  const Quality noisy = truth.Measure(cloud.Positions);
+  pcbilateral::ScaleMeasurementOptions options;
+  options.NumberOfThreads = 1;
+  const pcbilateral::CloudScales scales =
+    pcbilateral::MeasureScales(View(cloud.Positions), options);
+  const std::string autoText = AutomaticText(truth, scales);
+  Best paper = SearchFilter(truth, scales.PointSpacing, scales.NoiseSigma, false);
+  Best edgeAware = SearchFilter(truth, scales.PointSpacing, scales.NoiseSigma, true);
+  paper.TimeBest();
+  edgeAware.TimeBest();
+  // The targets of the cheapest edge-aware setting: an edge RMS at most CGAL bilateral's best
+  // (or, without CGAL, the paper's best) and an RMS at most the paper's best.
+  CgalColumns columns;
+  columns.BilateralEdgeRms = hasEdges ? paper.ByEdge.EdgeRms : 1e300;
+  columns.Times = " s";
+#ifdef PCB_HAVE_CGAL
+  if (cgal)
+  {
+    columns = CompareWithCgal(truth);
+  }
+#endif
+  char times[160];
+  std::snprintf(
+    times, sizeof times, "%.3f / %.3f%s", paper.Time, edgeAware.Time, columns.Times.c_str());
+  const std::string cheapText = CheapestText(
+    edgeAware, columns.BilateralEdgeRms, paper.ByRms.Rms, hasEdges, columns.BilateralTime);
+  std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
+    name,
+    NoisyText(noisy, hasEdges).c_str(),
+    QualityText(paper, hasEdges).c_str(),
+    BestRmsText(paper).c_str(),
+    QualityText(edgeAware, hasEdges).c_str(),
+    BestRmsText(edgeAware).c_str(),
+    columns.Jet.c_str(),
+    columns.Bilateral.c_str(),
+    times,
+    cheapText.c_str(),
+    autoText.c_str());
+  std::fflush(stdout);
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Options options;
+  if (!ParseArguments(argc, argv, options))
+  {
+    std::fprintf(stderr, "usage: %s [--only SUBSTRING] [--no-cgal]\n", argv[0]);
+    return EXIT_FAILURE;
+  }
+  PrintHeader();
   std::uint64_t seed = 500;
-  for (const Case& c : cases)
+  for (const Case& c : Cases())
   {
     ++seed;
     char name[96];
     std::snprintf(name, sizeof name, "%s %.1f%%", c.Name.c_str(), 100 * c.Noise);
-    if (!only.empty() && std::string(name).find(only) == std::string::npos)
+    if (options.Only.empty() || std::string(name).find(options.Only) != std::string::npos)
     {
-      continue;
+      RunCase(c, name, seed, options.Cgal);
     }
-    const std::unique_ptr<Shape> shape = c.Make();
-    const NoisyCloud cloud = MakeNoisyCloud(*shape, 20000, c.Noise, false, 0.0, seed);
-    const Truth truth(*shape, cloud, 1e3 / shape->Diagonal());
-    const bool hasEdges = truth.EdgePoints > 0;
-    const Quality noisy = truth.Measure(cloud.Positions);
-    pcbilateral::ScaleMeasurementOptions options;
-    options.NumberOfThreads = 1;
-    const pcbilateral::CloudScales scales =
-      pcbilateral::MeasureScales(View(cloud.Positions), options);
-
-    // The automatic mode's rule (ChooseParameters) as it is, in both modes.
-    pcbilateral::BilateralParameters automatic;
-    automatic.NumberOfIterations = 0;
-    automatic = pcbilateral::ChooseParameters(scales, automatic);
-    automatic.NumberOfThreads = 1;
-    const Quality autoPaper = truth.Measure(RunFilter(cloud.Positions,
-      automatic.Radius,
-      automatic.NormalRadius,
-      automatic.NumberOfIterations,
-      false));
-    const Quality autoAware = truth.Measure(RunFilter(cloud.Positions,
-      automatic.Radius,
-      automatic.NormalRadius,
-      automatic.NumberOfIterations,
-      true));
-    char autoText[160];
-    std::snprintf(autoText,
-      sizeof autoText,
-      "%s%.2f, %s%.2f (r %.1fs, rn %.1fσ, N %d)",
-      hasEdges ? (std::to_string(autoPaper.EdgeRms).substr(0, 4) + " / ").c_str() : "– / ",
-      autoPaper.Rms,
-      hasEdges ? (std::to_string(autoAware.EdgeRms).substr(0, 4) + " / ").c_str() : "– / ",
-      autoAware.Rms,
-      automatic.Radius / scales.PointSpacing,
-      automatic.NormalRadius / scales.NoiseSigma,
-      automatic.NumberOfIterations);
-    Best paper = SearchFilter(truth, scales.PointSpacing, scales.NoiseSigma, false);
-    Best edgeAware = SearchFilter(truth, scales.PointSpacing, scales.NoiseSigma, true);
-    paper.TimeBest();
-    edgeAware.TimeBest();
-    auto quality = [hasEdges](const Best& b, bool withSetting)
-    {
-      char text[160];
-      if (hasEdges)
-      {
-        std::snprintf(text, sizeof text, "%.2f / %.2f", b.ByEdge.EdgeRms, b.ByEdge.Rms);
-      }
-      else
-      {
-        std::snprintf(text, sizeof text, "– / %.2f", b.ByEdge.Rms);
-      }
-      return std::string(text) + (withSetting ? " (" + b.EdgeAt + ")" : std::string());
-    };
-    // The cheapest edge-aware setting (fewest neighbours x iterations) that reaches the targets:
-    // an edge RMS at most CGAL bilateral's best (or, without CGAL, the paper's best) and an RMS
-    // at most the paper's best.
-    double edgeTarget = hasEdges ? paper.ByEdge.EdgeRms : 1e300;
-    std::string cheapText = "–";
-    double cgalTime = 0.0;
-    std::string jetText = "–", cgalText = "–", times;
-    char timeText[160];
-    std::snprintf(timeText, sizeof timeText, "%.3f / %.3f", paper.Time, edgeAware.Time);
-    times = timeText;
-#ifdef PCB_HAVE_CGAL
-    if (cgal)
-    {
-      Best jet = SearchJet(truth);
-      Best bilateral = SearchCgalBilateral(truth);
-      jet.TimeBest();
-      bilateral.TimeBest();
-      jetText = quality(jet, true);
-      cgalText = quality(bilateral, true);
-      edgeTarget = hasEdges ? bilateral.ByEdge.EdgeRms : 1e300;
-      cgalTime = bilateral.Time;
-      std::snprintf(timeText, sizeof timeText, " / %.3f / %.3f s", jet.Time, bilateral.Time);
-      times += timeText;
-    }
-#endif
-    if (!cgal)
-    {
-      times += " s";
-    }
-    {
-      const Best::Setting* cheapest = nullptr;
-      for (const Best::Setting& setting : edgeAware.All)
-      {
-        if (setting.Result.EdgeRms <= edgeTarget && setting.Result.Rms <= paper.ByRms.Rms &&
-            (!cheapest || setting.Cost < cheapest->Cost))
-        {
-          cheapest = &setting;
-        }
-      }
-      if (cheapest)
-      {
-        Best timing;
-        timing.RunBestEdge = cheapest->Run;
-        timing.TimeBest();
-        char edge[16] = "–";
-        if (hasEdges)
-        {
-          std::snprintf(edge, sizeof edge, "%.2f", cheapest->Result.EdgeRms);
-        }
-        char text[200];
-        std::snprintf(text,
-          sizeof text,
-          "%s / %.2f (%s), %.3f s%s",
-          edge,
-          cheapest->Result.Rms,
-          cheapest->At.c_str(),
-          timing.Time,
-          cgalTime > 0
-            ? (", " + std::to_string(cgalTime / timing.Time).substr(0, 4) + "x faster").c_str()
-            : "");
-        cheapText = text;
-      }
-    }
-    char rmsText[2][96];
-    std::snprintf(rmsText[0], sizeof rmsText[0], "%.2f (%s)", paper.ByRms.Rms, paper.RmsAt.c_str());
-    std::snprintf(
-      rmsText[1], sizeof rmsText[1], "%.2f (%s)", edgeAware.ByRms.Rms, edgeAware.RmsAt.c_str());
-    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
-      name,
-      hasEdges ? (std::to_string(noisy.EdgeRms).substr(0, 4) + " / " +
-                   std::to_string(noisy.Rms).substr(0, 4))
-                   .c_str()
-               : ("– / " + std::to_string(noisy.Rms).substr(0, 4)).c_str(),
-      quality(paper, true).c_str(),
-      rmsText[0],
-      quality(edgeAware, true).c_str(),
-      rmsText[1],
-      jetText.c_str(),
-      cgalText.c_str(),
-      times.c_str(),
-      cheapText.c_str(),
-      autoText);
-    std::fflush(stdout);
   }
   return EXIT_SUCCESS;
 }

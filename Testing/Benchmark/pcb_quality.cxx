@@ -19,8 +19,8 @@
 //   pcb_quality --cost
 //       times MeasureScales against one filter iteration with the automatic radius, 1 thread,
 //       on a 600k-point cube and a 1M-point sphere (noise 0.5%).
-#include "BilateralFilter.h"
 #include "AutomaticRule.h"
+#include "BilateralFilter.h"
 #include "CloudMeasurement.h"
 #include "GroundTruth.h"
 #include "SampleShapes.h"
@@ -181,203 +181,291 @@ std::string Describe(const Case& c)
     c.Outliers > 0 ? " +1% outliers" : "");
   return text;
 }
-} // namespace
 
-int main(int argc, char* argv[])
+struct Options
 {
-  bool quick = false;
-  bool grid = true;
-  std::string only;
-  FILE* csv = nullptr;
+  bool Quick = false;
+  bool Grid = true;
+  std::string Only;
+  FILE* Csv = nullptr;
+};
+
+enum class Command
+{
+  Table,
+  Cost,
+  Usage
+};
+
+/// Reads the options; --cost ends the reading (the rest is ignored, as before).
+Command ParseArguments(int argc, char* argv[], Options& options)
+{
   for (int i = 1; i < argc; ++i)
   {
     const std::string argument = argv[i];
     if (argument == "--quick")
     {
-      quick = true;
+      options.Quick = true;
     }
     else if (argument == "--no-grid")
     {
-      grid = false;
+      options.Grid = false;
     }
     else if (argument == "--only" && i + 1 < argc)
     {
-      only = argv[++i];
+      options.Only = argv[++i];
     }
     else if (argument == "--csv" && i + 1 < argc)
     {
-      csv = std::fopen(argv[++i], "w");
+      options.Csv = std::fopen(argv[++i], "w");
     }
     else if (argument == "--cost")
     {
-      return Cost();
+      return Command::Cost;
     }
     else
     {
-      std::fprintf(stderr,
-        "usage: %s [--quick] [--no-grid] [--only SUBSTRING] [--csv FILE] | --cost\n",
-        argv[0]);
-      return EXIT_FAILURE;
+      return Command::Usage;
+    }
+  }
+  return Command::Table;
+}
+
+/// The grid's radii (none with --no-grid), in the measured units: geometric from min(3 s,
+/// 4 sigma) to max(36 s, 20 sigma). The 1M-point cases, where the wide grid would take hours,
+/// search around the automatic radius (0.5 to 2 times) instead.
+std::vector<double> GridRadii(const Case& c, bool grid, double s, double sigma, double automatic)
+{
+  std::vector<double> radii;
+  if (grid && c.Points >= 1000000)
+  {
+    for (double k : { 0.5, 0.7, 1.0, 1.4, 2.0 })
+    {
+      radii.push_back(k * automatic);
+    }
+  }
+  else if (grid)
+  {
+    const double ratio = c.Big ? 1.7 : 1.45;
+    for (double r = std::min(3 * s, 4 * sigma); r <= std::max(36 * s, 20 * sigma) * 1.01;
+         r *= ratio)
+    {
+      radii.push_back(r);
+    }
+  }
+  return radii;
+}
+
+/// The best of the grid by each measure, and where ("r/s, rn/sigma, N").
+struct GridBest
+{
+  Quality Best{ 1e300, 1e300 };
+  std::string RmsAt, EdgeAt;
+};
+
+/// The grid over the radii, rn from 1.5 to 7.5 sigma and N from 1 to 4 (coarser for the big
+/// cases); every point written to the CSV file when there is one.
+GridBest SearchGrid(const Truth& truth,
+  const Case& c,
+  const std::string& name,
+  const std::vector<double>& radii,
+  double s,
+  double sigma,
+  FILE* csv)
+{
+  std::vector<double> normalRadii;
+  for (double k :
+    c.Big ? std::vector<double>{ 2.5, 5, 7.5 } : std::vector<double>{ 1.5, 2.2, 3.3, 5, 7.5 })
+  {
+    normalRadii.push_back(k * sigma);
+  }
+  const int iterations = c.Big ? 3 : 4;
+  GridBest grid;
+  for (double r : radii)
+  {
+    for (double rn : normalRadii)
+    {
+      const std::vector<Quality> chain = RunChain(truth, r, rn, iterations);
+      for (int n = 0; n < iterations; ++n)
+      {
+        char at[64];
+        std::snprintf(at, sizeof at, "%.1f, %.1f, %d", r / s, rn / sigma, n + 1);
+        if (chain[n].Rms < grid.Best.Rms)
+        {
+          grid.Best.Rms = chain[n].Rms;
+          grid.RmsAt = at;
+        }
+        if (truth.EdgePoints > 0 && chain[n].EdgeRms < grid.Best.EdgeRms)
+        {
+          grid.Best.EdgeRms = chain[n].EdgeRms;
+          grid.EdgeAt = at;
+        }
+        if (csv)
+        {
+          std::fprintf(csv,
+            "%s,%.6g,%.6g,%.6g,%.6g,%d,%.6g,%.6g\n",
+            name.c_str(),
+            s,
+            sigma,
+            r,
+            rn,
+            n + 1,
+            chain[n].Rms,
+            chain[n].EdgeRms);
+        }
+      }
     }
   }
   if (csv)
   {
-    std::fprintf(csv, "case,spacing,sigma,r,rn,N,rms,edge_rms\n");
+    std::fflush(csv);
+  }
+  return grid;
+}
+
+std::string Format(const char* pattern, double value)
+{
+  char text[32];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
+
+/// The qualities of the paper's heuristic, the old default and the automatic mode.
+struct Contenders
+{
+  Quality Paper, Old, Automatic;
+};
+
+/// One row of the table; the grid's columns are "–" without a grid, the edge columns without
+/// edges.
+void PrintRow(const std::string& name,
+  const Truth& truth,
+  const Quality& noisy,
+  const GridBest* grid,
+  const Contenders& q)
+{
+  const bool hasEdges = truth.EdgePoints > 0;
+  auto edge = [&](const Quality& quality)
+  { return hasEdges ? Format("%.3g", quality.EdgeRms) : "–"; };
+  const std::string gridBest =
+    grid ? Format("%.3g", grid->Best.Rms) + " (" + grid->RmsAt + ")" : "–";
+  const std::string gridBestEdge =
+    grid && hasEdges ? Format("%.3g", grid->Best.EdgeRms) + " (" + grid->EdgeAt + ")" : "–";
+  const std::string ratio = grid ? Format("%.2f", q.Automatic.Rms / grid->Best.Rms) : "–";
+  const std::string edgeRatio =
+    grid && hasEdges ? Format("%.2f", q.Automatic.EdgeRms / grid->Best.EdgeRms) : "–";
+  std::printf("| %s | %.3g | %s | %s | %.3g / %s | %.3g / %s | %.3g | %s | %s | %s |\n",
+    name.c_str(),
+    noisy.Rms,
+    gridBest.c_str(),
+    gridBestEdge.c_str(),
+    q.Paper.Rms,
+    edge(q.Paper).c_str(),
+    q.Old.Rms,
+    edge(q.Old).c_str(),
+    q.Automatic.Rms,
+    edge(q.Automatic).c_str(),
+    ratio.c_str(),
+    edgeRatio.c_str());
+  std::fflush(stdout);
+}
+
+/// The automatic parameters for the measured scales, printed to stderr with the measures the
+/// rule reads.
+pcbilateral::BilateralParameters AutomaticFor(const std::string& name,
+  const pcbilateral::CloudScales& scales)
+{
+  pcbilateral::BilateralParameters automatic;
+  automatic.NumberOfIterations = 0;
+  automatic = pcbilateral::ChooseParameters(scales, automatic);
+  std::fprintf(stderr,
+    "%s: spacing %.4g, sigma %.4g, curvature excess %.4g, feature fraction %.4g, crease fraction "
+    "%.4g: r %.4g, rn "
+    "%.4g, N %d\n",
+    name.c_str(),
+    scales.PointSpacing,
+    scales.NoiseSigma,
+    scales.CurvatureExcess,
+    scales.FeatureFraction,
+    scales.CreaseFraction,
+    automatic.Radius,
+    automatic.NormalRadius,
+    automatic.NumberOfIterations);
+  return automatic;
+}
+
+/// The paper's heuristic (r = sqrt(20 / n) x extent, rn = r, N = 1), the old ParaView default
+/// (r = 2.5% of the largest extent, rn = r, N = 1) and the automatic parameters.
+Contenders RunContenders(const Truth& truth, const pcbilateral::BilateralParameters& automatic)
+{
+  const pcbilateral::CloudExtent extent = pcbilateral::MeasureCloud(View(truth.Cloud->Positions));
+  pcbilateral::BilateralParameters paper;
+  paper.Automatic = pcbilateral::AutomaticParameters::Paper;
+  pcbilateral::BilateralParameters old;
+  old.Radius = 0.025 * extent.LargestExtent();
+  old.NormalRadius = old.Radius;
+  old.NumberOfIterations = 1;
+  Contenders q;
+  q.Paper = RunOnce(truth, paper);
+  q.Old = RunOnce(truth, old);
+  q.Automatic = RunOnce(truth, automatic);
+  return q;
+}
+
+void RunCase(const Case& c, const std::string& name, std::uint64_t seed, const Options& options)
+{
+  const std::unique_ptr<Shape> shape = c.Make();
+  const NoisyCloud cloud = MakeNoisyCloud(*shape, c.Points, c.Noise, c.ScanLines, c.Outliers, seed);
+  const Truth truth(*shape, cloud);
+  const Quality noisy = truth.Measure(cloud.Positions);
+  pcbilateral::ScaleMeasurementOptions measurement;
+  measurement.NumberOfThreads = 1;
+  const pcbilateral::CloudScales scales =
+    pcbilateral::MeasureScales(View(cloud.Positions), measurement);
+  const double s = scales.PointSpacing, sigma = scales.NoiseSigma;
+  const pcbilateral::BilateralParameters automatic = AutomaticFor(name, scales);
+  const std::vector<double> radii = GridRadii(c, options.Grid, s, sigma, automatic.Radius);
+  const GridBest grid = SearchGrid(truth, c, name, radii, s, sigma, options.Csv);
+  PrintRow(name, truth, noisy, options.Grid ? &grid : nullptr, RunContenders(truth, automatic));
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Options options;
+  switch (ParseArguments(argc, argv, options))
+  {
+    case Command::Cost:
+      return Cost();
+    case Command::Usage:
+      std::fprintf(stderr,
+        "usage: %s [--quick] [--no-grid] [--only SUBSTRING] [--csv FILE] | --cost\n",
+        argv[0]);
+      return EXIT_FAILURE;
+    case Command::Table:
+      break;
+  }
+  if (options.Csv)
+  {
+    std::fprintf(options.Csv, "case,spacing,sigma,r,rn,N,rms,edge_rms\n");
   }
   std::printf("| case | noisy RMS | grid best RMS (r/s, rn/σ, N) | grid best edge RMS (r/s, rn/σ, "
               "N) | paper | old default | automatic RMS | automatic edge RMS | auto/best RMS | "
               "auto/best edge |\n");
   std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   std::uint64_t seed = 100;
-  for (const Case& c : Cases(quick))
+  for (const Case& c : Cases(options.Quick))
   {
     ++seed;
     const std::string name = Describe(c);
-    if (!only.empty() && name.find(only) == std::string::npos)
+    if (options.Only.empty() || name.find(options.Only) != std::string::npos)
     {
-      continue;
+      RunCase(c, name, seed, options);
     }
-    const std::unique_ptr<Shape> shape = c.Make();
-    const NoisyCloud cloud =
-      MakeNoisyCloud(*shape, c.Points, c.Noise, c.ScanLines, c.Outliers, seed);
-    const Truth truth(*shape, cloud);
-    const bool hasEdges = truth.EdgePoints > 0;
-    const Quality noisy = truth.Measure(cloud.Positions);
-
-    pcbilateral::ScaleMeasurementOptions options;
-    options.NumberOfThreads = 1;
-    const pcbilateral::CloudScales scales =
-      pcbilateral::MeasureScales(View(cloud.Positions), options);
-    const double s = scales.PointSpacing, sigma = scales.NoiseSigma;
-
-    pcbilateral::BilateralParameters automatic;
-    automatic.NumberOfIterations = 0;
-    automatic = pcbilateral::ChooseParameters(scales, automatic);
-    std::fprintf(stderr,
-      "%s: spacing %.4g, sigma %.4g, curvature excess %.4g, feature fraction %.4g, crease fraction "
-      "%.4g: r %.4g, rn "
-      "%.4g, N %d\n",
-      name.c_str(),
-      s,
-      sigma,
-      scales.CurvatureExcess,
-      scales.FeatureFraction,
-      scales.CreaseFraction,
-      automatic.Radius,
-      automatic.NormalRadius,
-      automatic.NumberOfIterations);
-
-    // The grid (none with --no-grid), in the measured units: r geometric from min(3 s, 4 sigma)
-    // to max(36 s, 20 sigma), rn from 1.5 to 7.5 sigma, N from 1 to 4. The 1M-point cases,
-    // where the wide grid would take hours, search around the automatic radius (0.5 to 2 times)
-    // instead.
-    std::vector<double> radii, normalRadii;
-    if (grid && c.Points >= 1000000)
-    {
-      for (double k : { 0.5, 0.7, 1.0, 1.4, 2.0 })
-      {
-        radii.push_back(k * automatic.Radius);
-      }
-    }
-    else if (grid)
-    {
-      const double ratio = c.Big ? 1.7 : 1.45;
-      for (double r = std::min(3 * s, 4 * sigma); r <= std::max(36 * s, 20 * sigma) * 1.01;
-           r *= ratio)
-      {
-        radii.push_back(r);
-      }
-    }
-    for (double k :
-      c.Big ? std::vector<double>{ 2.5, 5, 7.5 } : std::vector<double>{ 1.5, 2.2, 3.3, 5, 7.5 })
-    {
-      normalRadii.push_back(k * sigma);
-    }
-    const int iterations = c.Big ? 3 : 4;
-    Quality best{ 1e300, 1e300 };
-    std::string bestAt, bestEdgeAt;
-    for (double r : radii)
-    {
-      for (double rn : normalRadii)
-      {
-        const std::vector<Quality> chain = RunChain(truth, r, rn, iterations);
-        for (int n = 0; n < iterations; ++n)
-        {
-          char at[64];
-          std::snprintf(at, sizeof at, "%.1f, %.1f, %d", r / s, rn / sigma, n + 1);
-          if (chain[n].Rms < best.Rms)
-          {
-            best.Rms = chain[n].Rms;
-            bestAt = at;
-          }
-          if (hasEdges && chain[n].EdgeRms < best.EdgeRms)
-          {
-            best.EdgeRms = chain[n].EdgeRms;
-            bestEdgeAt = at;
-          }
-          if (csv)
-          {
-            std::fprintf(csv,
-              "%s,%.6g,%.6g,%.6g,%.6g,%d,%.6g,%.6g\n",
-              name.c_str(),
-              s,
-              sigma,
-              r,
-              rn,
-              n + 1,
-              chain[n].Rms,
-              chain[n].EdgeRms);
-          }
-        }
-      }
-    }
-    if (csv)
-    {
-      std::fflush(csv);
-    }
-
-    const pcbilateral::CloudExtent extent = pcbilateral::MeasureCloud(View(cloud.Positions));
-    pcbilateral::BilateralParameters paper; // r = sqrt(20 / n) x extent, rn = r, N = 1
-    paper.Automatic = pcbilateral::AutomaticParameters::Paper;
-    const Quality paperQuality = RunOnce(truth, paper);
-    pcbilateral::BilateralParameters old;
-    old.Radius = 0.025 * extent.LargestExtent();
-    old.NormalRadius = old.Radius;
-    old.NumberOfIterations = 1;
-    const Quality oldQuality = RunOnce(truth, old);
-    const Quality autoQuality = RunOnce(truth, automatic);
-
-    auto format = [](const char* pattern, double value)
-    {
-      char text[32];
-      std::snprintf(text, sizeof text, pattern, value);
-      return std::string(text);
-    };
-    auto edge = [&](const Quality& q) { return hasEdges ? format("%.3g", q.EdgeRms) : "–"; };
-    const std::string gridBest = grid ? format("%.3g", best.Rms) + " (" + bestAt + ")" : "–";
-    const std::string gridBestEdge =
-      grid && hasEdges ? format("%.3g", best.EdgeRms) + " (" + bestEdgeAt + ")" : "–";
-    const std::string ratio = grid ? format("%.2f", autoQuality.Rms / best.Rms) : "–";
-    const std::string edgeRatio =
-      grid && hasEdges ? format("%.2f", autoQuality.EdgeRms / best.EdgeRms) : "–";
-    std::printf("| %s | %.3g | %s | %s | %.3g / %s | %.3g / %s | %.3g | %s | %s | %s |\n",
-      name.c_str(),
-      noisy.Rms,
-      gridBest.c_str(),
-      gridBestEdge.c_str(),
-      paperQuality.Rms,
-      edge(paperQuality).c_str(),
-      oldQuality.Rms,
-      edge(oldQuality).c_str(),
-      autoQuality.Rms,
-      edge(autoQuality).c_str(),
-      ratio.c_str(),
-      edgeRatio.c_str());
-    std::fflush(stdout);
   }
-  if (csv)
+  if (options.Csv)
   {
-    std::fclose(csv);
+    std::fclose(options.Csv);
   }
   return EXIT_SUCCESS;
 }

@@ -6,9 +6,10 @@
 //   TestCloudMeasurement Determinism   the same bits for 1, 2 and 4 threads; given samples
 //   TestCloudMeasurement Rule          the rule's parameters on small clouds: error to the
 //                                      true surface against the old defaults and the paper's
-#include "BilateralFilter.h"
 #include "AutomaticRule.h"
+#include "BilateralFilter.h"
 #include "CloudMeasurement.h"
+#include "CloudView.h"
 #include "CoreTesting.h"
 #include "SampleShapes.h"
 
@@ -18,11 +19,13 @@
 #include <cstring>
 #include <numeric>
 #include <random>
+#include <string>
 #include <unordered_map>
 
 namespace
 {
 using namespace pcbilateral_samples;
+using pcbilateral_testing::ViewOf;
 
 /// The mean distance from a point to its nearest other point, by a plain grid (a check
 /// independent of the code under test), over at most 20,000 evenly spread points (the mean is
@@ -106,10 +109,67 @@ std::vector<ShapeCase> Shapes()
 
 pcbilateral::PointCloudView View(const NoisyCloud& cloud)
 {
-  pcbilateral::PointCloudView view;
-  view.NumberOfPoints = cloud.NumberOfPoints();
-  view.Positions = cloud.Positions.data();
-  return view;
+  return ViewOf(cloud.Positions.data(), cloud.NumberOfPoints());
+}
+
+/// The largest relative errors of the measured spacing and sigma so far.
+struct WorstErrors
+{
+  double Spacing = 0.0;
+  double Sigma = 0.0;
+};
+
+/// Measures one generated cloud, prints the measured and true spacing and sigma, and checks
+/// them: spacing within 10%, sigma within 25%.
+void CheckAccuracy(const ShapeCase& shapeCase,
+  std::size_t n,
+  double noise,
+  bool scanLines,
+  double outliers,
+  std::uint64_t seed,
+  WorstErrors& worst)
+{
+  const auto shape = shapeCase.Make();
+  const NoisyCloud cloud = MakeNoisyCloud(*shape, n, noise, scanLines, outliers, seed);
+  const double trueSpacing =
+    MeanNearestNeighbourDistance(cloud.Clean, 2.0 * std::sqrt(shapeCase.Area / n));
+  const auto start = std::chrono::steady_clock::now();
+  const pcbilateral::CloudScales scales = pcbilateral::MeasureScales(View(cloud));
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double spacingRatio = scales.PointSpacing / trueSpacing;
+  const double sigmaRatio = scales.NoiseSigma / cloud.Sigma;
+  worst.Spacing = std::max(worst.Spacing, std::abs(spacingRatio - 1.0));
+  worst.Sigma = std::max(worst.Sigma, std::abs(sigmaRatio - 1.0));
+  std::printf("%-9s %8zu %-8s %4.0f%% noise %5.2f%%  spacing %.3g/%.3g = %.3f  sigma "
+              "%.3g/%.3g = %.3f  rho %.3g rounds %d  %.3fs\n",
+    shapeCase.Name,
+    n,
+    scanLines ? "scan" : "uniform",
+    100 * outliers,
+    100 * noise,
+    scales.PointSpacing,
+    trueSpacing,
+    spacingRatio,
+    scales.NoiseSigma,
+    cloud.Sigma,
+    sigmaRatio,
+    scales.NeighbourhoodRadius,
+    scales.NumberOfRounds,
+    seconds);
+  PCB_CHECK(scales.Valid, "%s: %s", shapeCase.Name, scales.Problem.c_str());
+  PCB_CHECK(std::abs(spacingRatio - 1.0) <= 0.10,
+    "%s n=%zu noise %g: spacing ratio %.3f",
+    shapeCase.Name,
+    n,
+    noise,
+    spacingRatio);
+  PCB_CHECK(std::abs(sigmaRatio - 1.0) <= 0.25,
+    "%s n=%zu noise %g: sigma ratio %.3f",
+    shapeCase.Name,
+    n,
+    noise,
+    sigmaRatio);
 }
 
 void Accuracy()
@@ -137,60 +197,15 @@ void Accuracy()
     { "sphere", 0.02, true, 0.01 },
     { "plane", 0.005, true, 0.0 },
     { "cylinder", 0.0005, true, 0.01 } };
-  double worstSpacing = 0.0, worstSigma = 0.0;
+  WorstErrors worst;
   std::uint64_t seed = 1;
-  auto run =
-    [&](const ShapeCase& shapeCase, std::size_t n, double noise, bool scanLines, double outliers)
-  {
-    const auto shape = shapeCase.Make();
-    const NoisyCloud cloud = MakeNoisyCloud(*shape, n, noise, scanLines, outliers, seed++);
-    const double trueSpacing =
-      MeanNearestNeighbourDistance(cloud.Clean, 2.0 * std::sqrt(shapeCase.Area / n));
-    const auto start = std::chrono::steady_clock::now();
-    const pcbilateral::CloudScales scales = pcbilateral::MeasureScales(View(cloud));
-    const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double spacingRatio = scales.PointSpacing / trueSpacing;
-    const double sigmaRatio = scales.NoiseSigma / cloud.Sigma;
-    worstSpacing = std::max(worstSpacing, std::abs(spacingRatio - 1.0));
-    worstSigma = std::max(worstSigma, std::abs(sigmaRatio - 1.0));
-    std::printf("%-9s %8zu %-8s %4.0f%% noise %5.2f%%  spacing %.3g/%.3g = %.3f  sigma "
-                "%.3g/%.3g = %.3f  rho %.3g rounds %d  %.3fs\n",
-      shapeCase.Name,
-      n,
-      scanLines ? "scan" : "uniform",
-      100 * outliers,
-      100 * noise,
-      scales.PointSpacing,
-      trueSpacing,
-      spacingRatio,
-      scales.NoiseSigma,
-      cloud.Sigma,
-      sigmaRatio,
-      scales.NeighbourhoodRadius,
-      scales.NumberOfRounds,
-      seconds);
-    PCB_CHECK(scales.Valid, "%s: %s", shapeCase.Name, scales.Problem.c_str());
-    PCB_CHECK(std::abs(spacingRatio - 1.0) <= 0.10,
-      "%s n=%zu noise %g: spacing ratio %.3f",
-      shapeCase.Name,
-      n,
-      noise,
-      spacingRatio);
-    PCB_CHECK(std::abs(sigmaRatio - 1.0) <= 0.25,
-      "%s n=%zu noise %g: sigma ratio %.3f",
-      shapeCase.Name,
-      n,
-      noise,
-      sigmaRatio);
-  };
   for (const ShapeCase& shapeCase : Shapes())
   {
     for (double noise : noises)
     {
       for (const Size& size : sizes)
       {
-        run(shapeCase, size.Points, noise, size.ScanLines, size.Outliers);
+        CheckAccuracy(shapeCase, size.Points, noise, size.ScanLines, size.Outliers, seed++, worst);
       }
     }
   }
@@ -200,11 +215,11 @@ void Accuracy()
     {
       if (std::strcmp(shapeCase.Name, big.Shape) == 0)
       {
-        run(shapeCase, 1000000, big.Noise, big.ScanLines, big.Outliers);
+        CheckAccuracy(shapeCase, 1000000, big.Noise, big.ScanLines, big.Outliers, seed++, worst);
       }
     }
   }
-  std::printf("worst relative error: spacing %.3f, sigma %.3f\n", worstSpacing, worstSigma);
+  std::printf("worst relative error: spacing %.3f, sigma %.3f\n", worst.Spacing, worst.Sigma);
 }
 
 bool SameScales(const pcbilateral::CloudScales& a, const pcbilateral::CloudScales& b)
@@ -216,10 +231,53 @@ bool SameScales(const pcbilateral::CloudScales& a, const pcbilateral::CloudScale
          a.FeatureFraction == b.FeatureFraction && a.CreaseFraction == b.CreaseFraction;
 }
 
-void Determinism()
+/// The same bits, or the failure with what was measured.
+void CheckSameScales(const pcbilateral::CloudScales& expected,
+  const pcbilateral::CloudScales& found,
+  const std::string& what)
 {
-  const auto cube = Cube();
-  const NoisyCloud cloud = MakeNoisyCloud(*cube, 100000, 0.005, true, 0.01, 42);
+  PCB_CHECK(SameScales(expected, found),
+    "%s: spacing %.17g vs %.17g, sigma %.17g vs %.17g",
+    what.c_str(),
+    found.PointSpacing,
+    expected.PointSpacing,
+    found.NoiseSigma,
+    expected.NoiseSigma);
+}
+
+/// Spacing and sigma within the given relative tolerances of the reference's.
+void CheckCloseScales(const pcbilateral::CloudScales& found,
+  const pcbilateral::CloudScales& reference,
+  double spacingTolerance,
+  double sigmaTolerance,
+  const char* what)
+{
+  PCB_CHECK(std::abs(found.PointSpacing / reference.PointSpacing - 1) < spacingTolerance &&
+              std::abs(found.NoiseSigma / reference.NoiseSigma - 1) < sigmaTolerance,
+    "%s: spacing %g vs %g, sigma %g vs %g",
+    what,
+    found.PointSpacing,
+    reference.PointSpacing,
+    found.NoiseSigma,
+    reference.NoiseSigma);
+}
+
+/// The points of interleaved xyz at the given indices, in that order.
+std::vector<double> PointsAt(const std::vector<double>& xyz,
+  const std::vector<std::size_t>& indices)
+{
+  std::vector<double> points;
+  points.reserve(3 * indices.size());
+  for (const std::size_t i : indices)
+  {
+    points.insert(points.end(), xyz.begin() + 3 * i, xyz.begin() + 3 * i + 3);
+  }
+  return points;
+}
+
+/// The scales measured with one thread, checked to be the same bits with 2 and 4.
+pcbilateral::CloudScales CheckSameBitsForThreads(const NoisyCloud& cloud)
+{
   pcbilateral::ScaleMeasurementOptions options;
   options.NumberOfThreads = 1;
   const pcbilateral::CloudScales one = pcbilateral::MeasureScales(View(cloud), options);
@@ -227,76 +285,52 @@ void Determinism()
   for (int threads : { 2, 4 })
   {
     options.NumberOfThreads = threads;
-    const pcbilateral::CloudScales other = pcbilateral::MeasureScales(View(cloud), options);
-    PCB_CHECK(SameScales(one, other),
-      "%d threads: spacing %.17g vs %.17g, sigma %.17g vs %.17g",
-      threads,
-      other.PointSpacing,
-      one.PointSpacing,
-      other.NoiseSigma,
-      one.NoiseSigma);
+    CheckSameScales(
+      one, pcbilateral::MeasureScales(View(cloud), options), std::to_string(threads) + " threads");
   }
+  return one;
+}
 
-  // The order of the points does not matter (the samples and the fits' sums are ordered by
-  // coordinates), so a distributed run, whose parts list the points in any order, measures the
-  // same bits.
+/// The order of the points does not matter (the samples and the fits' sums are ordered by
+/// coordinates), so a distributed run, whose parts list the points in any order, measures the
+/// same bits. The selection of a cloud too large to measure whole: the parts of a split cloud
+/// select the points the whole cloud selects, and their gathered selections, in any order,
+/// measure the same bits.
+void CheckOrderAndParts(const NoisyCloud& cloud, const pcbilateral::CloudScales& one)
+{
+  std::vector<std::size_t> order(cloud.NumberOfPoints());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::mt19937 random(5);
+  std::shuffle(order.begin(), order.end(), random);
+  const std::vector<double> shuffled = PointsAt(cloud.Positions, order);
+  pcbilateral::ScaleMeasurementOptions options;
+  options.NumberOfThreads = 2;
+  CheckSameScales(one, pcbilateral::MeasureScales(ViewOf(shuffled), options), "shuffled points");
+
+  const double fraction = 0.3;
+  const std::vector<double> whole = pcbilateral::SelectMeasurementPoints(View(cloud), fraction);
+  const double kept = static_cast<double>(whole.size() / 3) / cloud.NumberOfPoints();
+  PCB_CHECK(std::abs(kept - fraction) < 0.01, "%g of the points selected, not 0.3", kept);
+  std::vector<double> gathered;
+  for (std::size_t part = 3; part-- > 0;)
   {
-    std::vector<std::size_t> order(cloud.NumberOfPoints());
-    std::iota(order.begin(), order.end(), std::size_t(0));
-    std::mt19937 random(5);
-    std::shuffle(order.begin(), order.end(), random);
-    std::vector<double> shuffled;
-    for (const std::size_t i : order)
-    {
-      shuffled.insert(
-        shuffled.end(), cloud.Positions.begin() + 3 * i, cloud.Positions.begin() + 3 * i + 3);
-    }
-    pcbilateral::PointCloudView shuffledView;
-    shuffledView.NumberOfPoints = order.size();
-    shuffledView.Positions = shuffled.data();
-    options.NumberOfThreads = 2;
-    const pcbilateral::CloudScales other = pcbilateral::MeasureScales(shuffledView, options);
-    PCB_CHECK(SameScales(one, other),
-      "shuffled points: spacing %.17g vs %.17g, sigma %.17g vs %.17g",
-      other.PointSpacing,
-      one.PointSpacing,
-      other.NoiseSigma,
-      one.NoiseSigma);
-
-    // The selection of a cloud too large to measure whole: the parts of a split cloud select
-    // the points the whole cloud selects, and their gathered selections, in any order, measure
-    // the same bits.
-    const double fraction = 0.3;
-    const std::vector<double> whole = pcbilateral::SelectMeasurementPoints(View(cloud), fraction);
-    const double kept = static_cast<double>(whole.size() / 3) / cloud.NumberOfPoints();
-    PCB_CHECK(std::abs(kept - fraction) < 0.01, "%g of the points selected, not 0.3", kept);
-    std::vector<double> gathered;
-    for (std::size_t part = 3; part-- > 0;)
-    {
-      pcbilateral::PointCloudView partView;
-      partView.Positions = shuffled.data() + 3 * (part * order.size() / 3);
-      partView.NumberOfPoints = (part + 1) * order.size() / 3 - part * order.size() / 3;
-      const std::vector<double> own = pcbilateral::SelectMeasurementPoints(partView, fraction);
-      gathered.insert(gathered.end(), own.begin(), own.end());
-    }
-    const pcbilateral::CloudScales fromWhole = pcbilateral::MeasureSelection(whole, fraction, 1);
-    const pcbilateral::CloudScales fromParts = pcbilateral::MeasureSelection(gathered, fraction, 2);
-    PCB_CHECK(fromWhole.Valid && SameScales(fromWhole, fromParts),
-      "selection from parts: spacing %.17g vs %.17g, sigma %.17g vs %.17g",
-      fromParts.PointSpacing,
-      fromWhole.PointSpacing,
-      fromParts.NoiseSigma,
-      fromWhole.NoiseSigma);
-    PCB_CHECK(std::abs(fromWhole.PointSpacing / one.PointSpacing - 1) < 0.05 &&
-                std::abs(fromWhole.NoiseSigma / one.NoiseSigma - 1) < 0.10,
-      "a 0.3 selection: spacing %g vs %g, sigma %g vs %g",
-      fromWhole.PointSpacing,
-      one.PointSpacing,
-      fromWhole.NoiseSigma,
-      one.NoiseSigma);
+    const std::size_t first = part * order.size() / 3;
+    const std::size_t count = (part + 1) * order.size() / 3 - first;
+    const std::vector<double> own =
+      pcbilateral::SelectMeasurementPoints(ViewOf(shuffled.data() + 3 * first, count), fraction);
+    gathered.insert(gathered.end(), own.begin(), own.end());
   }
+  const pcbilateral::CloudScales fromWhole = pcbilateral::MeasureSelection(whole, fraction, 1);
+  const pcbilateral::CloudScales fromParts = pcbilateral::MeasureSelection(gathered, fraction, 2);
+  PCB_CHECK(fromWhole.Valid, "selection of the whole cloud: %s", fromWhole.Problem.c_str());
+  CheckSameScales(fromWhole, fromParts, "selection from parts");
+  CheckCloseScales(fromWhole, one, 0.05, 0.10, "a 0.3 selection");
+}
 
-  // Given sample indices: every 97th point, a different sample that measures the same scales.
+/// Given sample indices: every 97th point, a different sample that measures the same scales.
+void CheckGivenSamples(const NoisyCloud& cloud, const pcbilateral::CloudScales& one)
+{
+  pcbilateral::ScaleMeasurementOptions options;
   options.NumberOfThreads = 1;
   for (std::size_t i = 0; i < cloud.NumberOfPoints(); i += 97)
   {
@@ -306,49 +340,34 @@ void Determinism()
   PCB_CHECK(
     given.NumberOfSamples == options.SampleIndices.size(), "%zu samples", given.NumberOfSamples);
   PCB_CHECK(!SameScales(one, given), "the given samples were not used");
-  PCB_CHECK(std::abs(given.PointSpacing / one.PointSpacing - 1) < 0.05 &&
-              std::abs(given.NoiseSigma / one.NoiseSigma - 1) < 0.05,
-    "given samples: spacing %g vs %g, sigma %g vs %g",
-    given.PointSpacing,
-    one.PointSpacing,
-    given.NoiseSigma,
-    one.NoiseSigma);
+  CheckCloseScales(given, one, 0.05, 0.05, "given samples");
+}
 
-  // A quarter of the cloud, as a distributed run would gather it, with PointFraction = 0.25:
-  // the whole cloud's spacing.
-  std::vector<double> quarter;
-  for (std::size_t i = 0; i < cloud.NumberOfPoints(); ++i)
+/// A quarter of the cloud, as a distributed run would gather it, with PointFraction = 0.25:
+/// the whole cloud's spacing.
+void CheckQuarter(const NoisyCloud& cloud, const pcbilateral::CloudScales& one)
+{
+  std::vector<std::size_t> quarterIndices;
+  for (std::size_t i = 1; i < cloud.NumberOfPoints(); i += 4)
   {
-    if (i % 4 == 1)
-    {
-      quarter.insert(
-        quarter.end(), cloud.Positions.begin() + 3 * i, cloud.Positions.begin() + 3 * i + 3);
-    }
+    quarterIndices.push_back(i);
   }
-  pcbilateral::PointCloudView quarterView;
-  quarterView.NumberOfPoints = quarter.size() / 3;
-  quarterView.Positions = quarter.data();
+  const std::vector<double> quarter = PointsAt(cloud.Positions, quarterIndices);
   pcbilateral::ScaleMeasurementOptions quarterOptions;
   quarterOptions.PointFraction = 0.25;
-  const pcbilateral::CloudScales part = pcbilateral::MeasureScales(quarterView, quarterOptions);
-  PCB_CHECK(std::abs(part.PointSpacing / one.PointSpacing - 1) < 0.05 &&
-              std::abs(part.NoiseSigma / one.NoiseSigma - 1) < 0.10,
-    "a quarter: spacing %g vs %g, sigma %g vs %g",
-    part.PointSpacing,
-    one.PointSpacing,
-    part.NoiseSigma,
-    one.NoiseSigma);
+  CheckCloseScales(
+    pcbilateral::MeasureScales(ViewOf(quarter), quarterOptions), one, 0.05, 0.10, "a quarter");
+}
 
-  // Non-finite points are skipped, a degenerate cloud is reported, not measured.
+/// Non-finite points are skipped, a degenerate cloud is reported, not measured.
+void CheckDegenerateClouds(const NoisyCloud& cloud, const pcbilateral::CloudScales& one)
+{
   std::vector<double> withNaN = cloud.Positions;
   for (std::size_t i = 0; i < withNaN.size(); i += 3 * 1000)
   {
     withNaN[i] = std::nan("");
   }
-  pcbilateral::PointCloudView nanView;
-  nanView.NumberOfPoints = withNaN.size() / 3;
-  nanView.Positions = withNaN.data();
-  const pcbilateral::CloudScales skipped = pcbilateral::MeasureScales(nanView);
+  const pcbilateral::CloudScales skipped = pcbilateral::MeasureScales(ViewOf(withNaN));
   PCB_CHECK(skipped.Valid && std::abs(skipped.NoiseSigma / one.NoiseSigma - 1) < 0.05,
     "with NaN points: sigma %g vs %g",
     skipped.NoiseSigma,
@@ -358,15 +377,21 @@ void Determinism()
   {
     line.insert(line.end(), { 0.001 * i, 0.0, 0.0 });
   }
-  pcbilateral::PointCloudView lineView;
-  lineView.NumberOfPoints = 1000;
-  lineView.Positions = line.data();
-  PCB_CHECK(!pcbilateral::MeasureScales(lineView).Valid, "a straight line measured as a surface");
-  std::vector<double> few(30, 0.5);
-  pcbilateral::PointCloudView fewView;
-  fewView.NumberOfPoints = 10;
-  fewView.Positions = few.data();
-  PCB_CHECK(!pcbilateral::MeasureScales(fewView).Valid, "10 points measured");
+  PCB_CHECK(
+    !pcbilateral::MeasureScales(ViewOf(line)).Valid, "a straight line measured as a surface");
+  const std::vector<double> few(30, 0.5);
+  PCB_CHECK(!pcbilateral::MeasureScales(ViewOf(few)).Valid, "10 points measured");
+}
+
+void Determinism()
+{
+  const auto cube = Cube();
+  const NoisyCloud cloud = MakeNoisyCloud(*cube, 100000, 0.005, true, 0.01, 42);
+  const pcbilateral::CloudScales one = CheckSameBitsForThreads(cloud);
+  CheckOrderAndParts(cloud, one);
+  CheckGivenSamples(cloud, one);
+  CheckQuarter(cloud, one);
+  CheckDegenerateClouds(cloud, one);
 }
 
 /// The RMS distance of the non-outliers to the true surface, and the same for those whose clean
@@ -398,23 +423,41 @@ std::pair<double, double> Errors(const Shape& shape,
   return { std::sqrt(sum / count), edgeCount ? std::sqrt(edgeSum / edgeCount) : 0.0 };
 }
 
-void Rule()
+/// Measured scales with edges and creases (neither flat nor smooth), spacing 0.01, sigma 0.002.
+pcbilateral::CloudScales ScalesWithEdges()
 {
-  // Any parameter the user gave overrides only itself.
   pcbilateral::CloudScales scales;
   scales.Valid = true;
   scales.PointSpacing = 0.01;
   scales.NoiseSigma = 0.002;
   scales.FeatureFraction = 0.2; // edges: not flat
   scales.CreaseFraction = 0.2;  // and not smooth
+  return scales;
+}
+
+/// The general rule's radius for ScalesWithEdges, which the flat and smooth rules scale.
+double GeneralRadius(const pcbilateral::AutomaticRule& rule)
+{
+  return rule.RadiusInSpacings * 0.01 + rule.RadiusInSigmas * 0.002;
+}
+
+/// The parameters the user leaves to the rule: all of them, the iterations included.
+pcbilateral::BilateralParameters AllAutomatic()
+{
   pcbilateral::BilateralParameters user;
   user.NumberOfIterations = 0;
+  return user;
+}
+
+/// The general rule, and any parameter the user gave overrides only itself.
+void CheckGeneralRule()
+{
+  const pcbilateral::CloudScales scales = ScalesWithEdges();
+  pcbilateral::BilateralParameters user = AllAutomatic();
   user.NumberOfThreads = 3;
   const pcbilateral::AutomaticRule rule;
-  // The general rule's radius for these scales, which the flat and smooth rules scale.
-  const double generalRadius = rule.RadiusInSpacings * 0.01 + rule.RadiusInSigmas * 0.002;
   pcbilateral::BilateralParameters chosen = pcbilateral::ChooseParameters(scales, user);
-  PCB_CHECK(chosen.Radius == generalRadius &&
+  PCB_CHECK(chosen.Radius == GeneralRadius(rule) &&
               chosen.NormalRadius == rule.NormalRadiusInSigmas * 0.002 &&
               chosen.NumberOfIterations == rule.NumberOfIterations && chosen.NumberOfThreads == 3,
     "automatic: r %g rn %g N %d",
@@ -431,32 +474,44 @@ void Rule()
   user.NormalRadius = 0.3;
   user.NumberOfIterations = 7;
   chosen = pcbilateral::ChooseParameters(scales, user);
-  PCB_CHECK(
-    chosen.Radius == generalRadius && chosen.NormalRadius == 0.3 && chosen.NumberOfIterations == 7,
+  PCB_CHECK(chosen.Radius == GeneralRadius(rule) && chosen.NormalRadius == 0.3 &&
+              chosen.NumberOfIterations == 7,
     "given rn and N: r %g rn %g N %d",
     chosen.Radius,
     chosen.NormalRadius,
     chosen.NumberOfIterations);
-  // A flat cloud: a larger radius and one more iteration, unless given.
+}
+
+/// A flat cloud: a larger radius and one more iteration, unless given.
+void CheckFlatRule()
+{
+  pcbilateral::CloudScales scales = ScalesWithEdges();
   scales.FeatureFraction = 0.0;
   scales.CurvatureExcess = 0.0;
-  user = pcbilateral::BilateralParameters();
-  user.NumberOfIterations = 0;
-  chosen = pcbilateral::ChooseParameters(scales, user);
-  PCB_CHECK(chosen.Radius == rule.FlatRadiusFactor * generalRadius &&
+  const pcbilateral::AutomaticRule rule;
+  const pcbilateral::BilateralParameters chosen =
+    pcbilateral::ChooseParameters(scales, AllAutomatic());
+  PCB_CHECK(chosen.Radius == rule.FlatRadiusFactor * GeneralRadius(rule) &&
               chosen.NumberOfIterations == rule.FlatIterations,
     "flat: r %g N %d",
     chosen.Radius,
     chosen.NumberOfIterations);
-  // A smooth surface with thin noise (no crease, sigma below half a spacing, not flat): a
-  // larger radius, plain averaging along the normal (rn = r) and one iteration, unless given.
+}
+
+/// A smooth surface with thin noise (no crease, sigma below half a spacing, not flat): a
+/// larger radius, plain averaging along the normal (rn = r) and one iteration, unless given.
+void CheckSmoothRule()
+{
+  pcbilateral::CloudScales scales = ScalesWithEdges();
   scales.CurvatureExcess = 0.3;
   scales.FeatureFraction = 0.1;
   scales.CreaseFraction = 0.0;
   PCB_CHECK(!pcbilateral::IsFlat(scales) && pcbilateral::IsSmoothWithThinNoise(scales),
     "a curved cloud without creases, sigma 0.2 spacings: smooth with thin noise expected");
-  chosen = pcbilateral::ChooseParameters(scales, user);
-  const double smoothRadius = rule.SmoothRadiusFactor * generalRadius;
+  const pcbilateral::AutomaticRule rule;
+  pcbilateral::BilateralParameters user = AllAutomatic();
+  pcbilateral::BilateralParameters chosen = pcbilateral::ChooseParameters(scales, user);
+  const double smoothRadius = rule.SmoothRadiusFactor * GeneralRadius(rule);
   PCB_CHECK(chosen.Radius == smoothRadius && chosen.NormalRadius == smoothRadius &&
               chosen.NumberOfIterations == rule.SmoothIterations,
     "smooth, thin noise: r %g rn %g N %d",
@@ -469,36 +524,43 @@ void Rule()
     "smooth, given rn: r %g rn %g",
     chosen.Radius,
     chosen.NormalRadius);
-  user.NormalRadius = 0.0;
   scales.NoiseSigma = 0.006; // thicker than half a spacing: the general rule
   PCB_CHECK(!pcbilateral::IsSmoothWithThinNoise(scales), "sigma 0.6 spacings: not thin noise");
   scales.NoiseSigma = 0.002;
   scales.CreaseFraction = 0.05; // creases: the general rule
   PCB_CHECK(!pcbilateral::IsSmoothWithThinNoise(scales), "5%% of creased samples: not smooth");
+}
+
+/// A cloud that could not be measured: the parameters stay unset, for the paper's heuristic.
+void CheckUnmeasuredCloud()
+{
+  pcbilateral::CloudScales scales = ScalesWithEdges();
   scales.Valid = false;
-  user = pcbilateral::BilateralParameters();
-  user.NumberOfIterations = 0;
-  chosen = pcbilateral::ChooseParameters(scales, user);
+  const pcbilateral::BilateralParameters chosen =
+    pcbilateral::ChooseParameters(scales, AllAutomatic());
   PCB_CHECK(chosen.Radius == 0.0 && chosen.NormalRadius == 0.0 && chosen.NumberOfIterations == 0,
     "unmeasured cloud: r %g rn %g N %d (0 expected: the paper's heuristic)",
     chosen.Radius,
     chosen.NormalRadius,
     chosen.NumberOfIterations);
+}
 
-  // Quality on a few of pcb_quality's small cases (same clouds: same seeds), against the best
-  // of its grid search as printed in README.md, with 5% of margin on the targets, and against
-  // the paper's heuristic.
-  struct QualityCase
-  {
-    const char* Name;
-    std::function<std::unique_ptr<Shape>()> Make;
-    double Noise;
-    bool ScanLines;
-    double Outliers;
-    std::uint64_t Seed;
-    double GridBestRms, GridBestEdgeRms; // 0: a smooth shape
-  };
-  const QualityCase cases[] = {
+/// One of pcb_quality's small cases (same clouds: same seeds) and the best of its grid search
+/// as printed in README.md.
+struct QualityCase
+{
+  const char* Name;
+  std::function<std::unique_ptr<Shape>()> Make;
+  double Noise;
+  bool ScanLines;
+  double Outliers;
+  std::uint64_t Seed;
+  double GridBestRms, GridBestEdgeRms; // 0: a smooth shape
+};
+
+std::vector<QualityCase> QualityCases()
+{
+  return {
     { "cube 20k 0.5% uniform", [] { return Cube(); }, 0.005, false, 0.0, 103, 0.00306, 0.00465 },
     { "sharp edge 20k 0.5% scan +1% outliers",
       [] { return SharpEdge(); },
@@ -543,64 +605,85 @@ void Rule()
       0.000584,
       0.0 },
   };
-  for (const QualityCase& c : cases)
+}
+
+/// Only the terrain is flat: the others have edges or bend at the filter's scale. Only the
+/// sphere at 0.1% noise is smooth with thin noise: the sphere at 0.5% has thicker noise, the
+/// others have creases.
+void CheckClassification(const char* name, const pcbilateral::CloudScales& measured)
+{
+  const bool terrain = std::strncmp(name, "terrain", 7) == 0;
+  const bool thinNoiseSphere = std::strncmp(name, "sphere 20k 0.1%", 15) == 0;
+  PCB_CHECK(pcbilateral::IsFlat(measured) == terrain &&
+              pcbilateral::IsSmoothWithThinNoise(measured) == thinNoiseSphere,
+    "%s: flat %d, smooth with thin noise %d (curvature excess %.4f, features %.3f, creases "
+    "%.3f, sigma / spacing %.3f)",
+    name,
+    pcbilateral::IsFlat(measured),
+    pcbilateral::IsSmoothWithThinNoise(measured),
+    measured.CurvatureExcess,
+    measured.FeatureFraction,
+    measured.CreaseFraction,
+    measured.NoiseSigma / measured.PointSpacing);
+}
+
+/// The automatic parameters on the case's cloud: errors within 5% of margin on the targets
+/// (1.5 or 1.25 times the grid's best RMS, 1.25 times its best edge RMS) and below the paper's
+/// heuristic.
+void CheckRuleQuality(const QualityCase& c)
+{
+  const auto shape = c.Make();
+  const NoisyCloud cloud = MakeNoisyCloud(*shape, 20000, c.Noise, c.ScanLines, c.Outliers, c.Seed);
+  const pcbilateral::CloudScales measured = pcbilateral::MeasureScales(View(cloud));
+  const pcbilateral::BilateralParameters automatic =
+    pcbilateral::ChooseParameters(measured, AllAutomatic());
+  CheckClassification(c.Name, measured);
+  const auto autoErrors =
+    Errors(*shape, cloud, pcbilateral::RunBilateralFilter(View(cloud), automatic).Positions);
+  pcbilateral::BilateralParameters paper; // r = sqrt(20 / n) x extent, rn = r, N = 1
+  paper.Automatic = pcbilateral::AutomaticParameters::Paper;
+  const auto paperErrors =
+    Errors(*shape, cloud, pcbilateral::RunBilateralFilter(View(cloud), paper).Positions);
+  std::printf("%s: automatic (r %.4g, rn %.4g, N %d) RMS %.4g edge %.4g; grid best %.4g / "
+              "%.4g; paper %.4g\n",
+    c.Name,
+    automatic.Radius,
+    automatic.NormalRadius,
+    automatic.NumberOfIterations,
+    autoErrors.first,
+    autoErrors.second,
+    c.GridBestRms,
+    c.GridBestEdgeRms,
+    paperErrors.first);
+  const double rmsTarget = c.GridBestEdgeRms > 0 ? 1.5 : 1.25;
+  PCB_CHECK(autoErrors.first <= 1.05 * rmsTarget * c.GridBestRms,
+    "%s: RMS %g vs best %g",
+    c.Name,
+    autoErrors.first,
+    c.GridBestRms);
+  PCB_CHECK(c.GridBestEdgeRms == 0 || autoErrors.second <= 1.05 * 1.25 * c.GridBestEdgeRms,
+    "%s: edge RMS %g vs best %g",
+    c.Name,
+    autoErrors.second,
+    c.GridBestEdgeRms);
+  PCB_CHECK(autoErrors.first < paperErrors.first,
+    "%s: RMS %g, the paper's heuristic %g",
+    c.Name,
+    autoErrors.first,
+    paperErrors.first);
+}
+
+void Rule()
+{
+  CheckGeneralRule();
+  CheckFlatRule();
+  CheckSmoothRule();
+  CheckUnmeasuredCloud();
+  // Quality on a few of pcb_quality's small cases, against the grid's best and the paper's
+  // heuristic.
+  for (const QualityCase& c : QualityCases())
   {
-    const auto shape = c.Make();
-    const NoisyCloud cloud =
-      MakeNoisyCloud(*shape, 20000, c.Noise, c.ScanLines, c.Outliers, c.Seed);
-    pcbilateral::BilateralParameters automatic;
-    automatic.NumberOfIterations = 0;
-    const pcbilateral::CloudScales measured = pcbilateral::MeasureScales(View(cloud));
-    automatic = pcbilateral::ChooseParameters(measured, automatic);
-    // Only the terrain is flat: the others have edges or bend at the filter's scale. Only the
-    // sphere at 0.1% noise is smooth with thin noise: the sphere at 0.5% has thicker noise, the
-    // others have creases.
-    const bool terrain = std::strncmp(c.Name, "terrain", 7) == 0;
-    const bool thinNoiseSphere = std::strncmp(c.Name, "sphere 20k 0.1%", 15) == 0;
-    PCB_CHECK(pcbilateral::IsFlat(measured) == terrain &&
-                pcbilateral::IsSmoothWithThinNoise(measured) == thinNoiseSphere,
-      "%s: flat %d, smooth with thin noise %d (curvature excess %.4f, features %.3f, creases "
-      "%.3f, sigma / spacing %.3f)",
-      c.Name,
-      pcbilateral::IsFlat(measured),
-      pcbilateral::IsSmoothWithThinNoise(measured),
-      measured.CurvatureExcess,
-      measured.FeatureFraction,
-      measured.CreaseFraction,
-      measured.NoiseSigma / measured.PointSpacing);
-    const auto autoErrors =
-      Errors(*shape, cloud, pcbilateral::RunBilateralFilter(View(cloud), automatic).Positions);
-    pcbilateral::BilateralParameters paper; // r = sqrt(20 / n) x extent, rn = r, N = 1
-    paper.Automatic = pcbilateral::AutomaticParameters::Paper;
-    const auto paperErrors =
-      Errors(*shape, cloud, pcbilateral::RunBilateralFilter(View(cloud), paper).Positions);
-    std::printf("%s: automatic (r %.4g, rn %.4g, N %d) RMS %.4g edge %.4g; grid best %.4g / "
-                "%.4g; paper %.4g\n",
-      c.Name,
-      automatic.Radius,
-      automatic.NormalRadius,
-      automatic.NumberOfIterations,
-      autoErrors.first,
-      autoErrors.second,
-      c.GridBestRms,
-      c.GridBestEdgeRms,
-      paperErrors.first);
-    const double rmsTarget = c.GridBestEdgeRms > 0 ? 1.5 : 1.25;
-    PCB_CHECK(autoErrors.first <= 1.05 * rmsTarget * c.GridBestRms,
-      "%s: RMS %g vs best %g",
-      c.Name,
-      autoErrors.first,
-      c.GridBestRms);
-    PCB_CHECK(c.GridBestEdgeRms == 0 || autoErrors.second <= 1.05 * 1.25 * c.GridBestEdgeRms,
-      "%s: edge RMS %g vs best %g",
-      c.Name,
-      autoErrors.second,
-      c.GridBestEdgeRms);
-    PCB_CHECK(autoErrors.first < paperErrors.first,
-      "%s: RMS %g, the paper's heuristic %g",
-      c.Name,
-      autoErrors.first,
-      paperErrors.first);
+    CheckRuleQuality(c);
   }
 }
 

@@ -113,6 +113,13 @@ void TestExp()
   }
 }
 
+/// The upper triangle of a symmetric matrix, as the kernel stores covariances.
+void UpperTriangle(const Eigen::Matrix3d& c, double upper[6])
+{
+  const double entries[6] = { c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2), c(2, 2) };
+  std::copy(entries, entries + 6, upper);
+}
+
 /// Weighted covariance (upper triangle) of offsets, as the kernel forms it.
 void Covariance(const std::vector<Eigen::Vector3d>& offsets, double covariance[6])
 {
@@ -128,8 +135,105 @@ void Covariance(const std::vector<Eigen::Vector3d>& offsets, double covariance[6
     c += (o - mean) * (o - mean).transpose();
   }
   c /= static_cast<double>(offsets.size());
-  const double upper[6] = { c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2), c(2, 2) };
-  std::copy(upper, upper + 6, covariance);
+  UpperTriangle(c, covariance);
+}
+
+/// A uniformly random rotation.
+Eigen::Matrix3d RandomFrame(std::mt19937_64& random, std::normal_distribution<double>& gaussian)
+{
+  return Eigen::Quaterniond(gaussian(random), gaussian(random), gaussian(random), gaussian(random))
+    .normalized()
+    .toRotationMatrix();
+}
+
+bool IsUnitVector(const double n[3])
+{
+  return std::abs(std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1.0) < 1e-14;
+}
+
+/// 40 offsets of one of five shapes (trial % 5): a plane of random thickness, an edge, an exact
+/// axis-aligned plane, in a random frame and random units.
+std::vector<Eigen::Vector3d> RandomShapeOffsets(int trial,
+  std::mt19937_64& random,
+  std::normal_distribution<double>& gaussian,
+  std::uniform_real_distribution<double>& uniform)
+{
+  const Eigen::Matrix3d frame = RandomFrame(random, gaussian);
+  const int shape = trial % 5;
+  const double thickness = std::pow(10.0, -1.0 - 5.0 * (uniform(random) + 1.0) / 2.0);
+  const double units = std::pow(10.0, 6.0 * uniform(random));
+  std::vector<Eigen::Vector3d> offsets;
+  for (int i = 0; i < 40; ++i)
+  {
+    Eigen::Vector3d local(uniform(random), uniform(random), thickness * gaussian(random));
+    if (shape == 1) // an edge: two half-planes at an angle
+    {
+      local.z() += 0.5 * std::abs(local.x());
+    }
+    if (shape == 2) // an exact plane, axis-aligned
+    {
+      offsets.emplace_back(units * uniform(random), units * uniform(random), 0.0);
+      continue;
+    }
+    offsets.push_back(units * (frame * local));
+  }
+  return offsets;
+}
+
+/// SmallestEigenvector of `covariance` against Eigen's; the worst angle times the eigenvalue
+/// gap and the number of well-determined cases are accumulated.
+void CheckEigenvector(const double covariance[6], int shape, double& worstAngle, int& cases)
+{
+  double n[3];
+  SmallestEigenvector(covariance, n);
+  Eigen::Matrix3d c;
+  c << covariance[0], covariance[1], covariance[2], covariance[1], covariance[3], covariance[4],
+    covariance[2], covariance[4], covariance[5];
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(c);
+  const Eigen::Vector3d expected = solver.eigenvectors().col(0);
+  const Eigen::Vector3d found(n[0], n[1], n[2]);
+  PCB_CHECK(std::abs(found.norm() - 1.0) < 1e-14, "not a unit vector: %.17g", found.norm());
+  // How well the eigenvector is determined: the gap to the next eigenvalue.
+  const double gap = (solver.eigenvalues()(1) - solver.eigenvalues()(0)) / solver.eigenvalues()(2);
+  // (The cross product, not acos of the dot product, which cannot resolve angles below 1e-8.)
+  const double angle = std::asin(std::min(1.0, found.cross(expected).norm()));
+  if (gap > 1e-6)
+  {
+    const double tolerance = 1e-13 / gap;
+    PCB_CHECK(
+      angle <= tolerance, "shape %d, gap %g: %g rad from Eigen's eigenvector", shape, gap, angle);
+    worstAngle = std::max(worstAngle, angle * gap);
+    ++cases;
+  }
+  if (shape == 2)
+  {
+    PCB_CHECK(n[0] == 0.0 && n[1] == 0.0 && std::abs(n[2]) == 1.0,
+      "exact plane: normal (%.17g, %.17g, %.17g), not exactly the z axis",
+      n[0],
+      n[1],
+      n[2]);
+  }
+}
+
+/// Degenerate covariances: a line (double smallest eigenvalue), repeated points (zero), an
+/// isotropic blob (triple): any unit vector orthogonal to the line, or any unit vector.
+void CheckDegenerateEigenvectors()
+{
+  const double line[6] = { 1.0, 2.0, 3.0, 4.0, 6.0, 9.0 }; // (1,2,3)(1,2,3)^T
+  const double zero[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
+  const double isotropic[6] = { 2.0, 0.0, 0.0, 2.0, 0.0, 2.0 };
+  double n[3];
+  SmallestEigenvector(line, n);
+  PCB_CHECK(std::abs(n[0] + 2 * n[1] + 3 * n[2]) < 1e-14 && IsUnitVector(n),
+    "line: normal (%g, %g, %g) is not a unit vector orthogonal to it",
+    n[0],
+    n[1],
+    n[2]);
+  for (const double* degenerate : { zero, isotropic })
+  {
+    SmallestEigenvector(degenerate, n);
+    PCB_CHECK(IsUnitVector(n), "degenerate: (%g, %g, %g) is not a unit vector", n[0], n[1], n[2]);
+  }
 }
 
 void TestEigenvector()
@@ -141,84 +245,11 @@ void TestEigenvector()
   int cases = 0;
   for (int trial = 0; trial < 20000; ++trial)
   {
-    // A random frame, a shape in it, random units and offsets.
-    const Eigen::Matrix3d frame =
-      Eigen::Quaterniond(gaussian(random), gaussian(random), gaussian(random), gaussian(random))
-        .normalized()
-        .toRotationMatrix();
-    const int shape = trial % 5;
-    const double thickness = std::pow(10.0, -1.0 - 5.0 * (uniform(random) + 1.0) / 2.0);
-    const double units = std::pow(10.0, 6.0 * uniform(random));
-    std::vector<Eigen::Vector3d> offsets;
-    for (int i = 0; i < 40; ++i)
-    {
-      Eigen::Vector3d local(uniform(random), uniform(random), thickness * gaussian(random));
-      if (shape == 1) // an edge: two half-planes at an angle
-      {
-        local.z() += 0.5 * std::abs(local.x());
-      }
-      if (shape == 2) // an exact plane, axis-aligned
-      {
-        offsets.emplace_back(units * uniform(random), units * uniform(random), 0.0);
-        continue;
-      }
-      offsets.push_back(units * (frame * local));
-    }
     double covariance[6];
-    Covariance(offsets, covariance);
-    double n[3];
-    SmallestEigenvector(covariance, n);
-    Eigen::Matrix3d c;
-    c << covariance[0], covariance[1], covariance[2], covariance[1], covariance[3], covariance[4],
-      covariance[2], covariance[4], covariance[5];
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(c);
-    const Eigen::Vector3d expected = solver.eigenvectors().col(0);
-    const Eigen::Vector3d found(n[0], n[1], n[2]);
-    PCB_CHECK(std::abs(found.norm() - 1.0) < 1e-14, "not a unit vector: %.17g", found.norm());
-    // How well the eigenvector is determined: the gap to the next eigenvalue.
-    const double gap =
-      (solver.eigenvalues()(1) - solver.eigenvalues()(0)) / solver.eigenvalues()(2);
-    // (The cross product, not acos of the dot product, which cannot resolve angles below 1e-8.)
-    const double angle = std::asin(std::min(1.0, found.cross(expected).norm()));
-    if (gap > 1e-6)
-    {
-      const double tolerance = 1e-13 / gap;
-      PCB_CHECK(
-        angle <= tolerance, "shape %d, gap %g: %g rad from Eigen's eigenvector", shape, gap, angle);
-      worstAngle = std::max(worstAngle, angle * gap);
-      ++cases;
-    }
-    if (shape == 2)
-    {
-      PCB_CHECK(n[0] == 0.0 && n[1] == 0.0 && std::abs(n[2]) == 1.0,
-        "exact plane: normal (%.17g, %.17g, %.17g), not exactly the z axis",
-        n[0],
-        n[1],
-        n[2]);
-    }
+    Covariance(RandomShapeOffsets(trial, random, gaussian, uniform), covariance);
+    CheckEigenvector(covariance, trial % 5, worstAngle, cases);
   }
-  // Degenerate covariances: a line (double smallest eigenvalue), repeated points (zero), an
-  // isotropic blob (triple): any unit vector orthogonal to the line, or any unit vector.
-  const double line[6] = { 1.0, 2.0, 3.0, 4.0, 6.0, 9.0 }; // (1,2,3)(1,2,3)^T
-  const double zero[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
-  const double isotropic[6] = { 2.0, 0.0, 0.0, 2.0, 0.0, 2.0 };
-  double n[3];
-  SmallestEigenvector(line, n);
-  PCB_CHECK(std::abs(n[0] + 2 * n[1] + 3 * n[2]) < 1e-14 &&
-              std::abs(std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1.0) < 1e-14,
-    "line: normal (%g, %g, %g) is not a unit vector orthogonal to it",
-    n[0],
-    n[1],
-    n[2]);
-  for (const double* degenerate : { zero, isotropic })
-  {
-    SmallestEigenvector(degenerate, n);
-    PCB_CHECK(std::abs(std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1.0) < 1e-14,
-      "degenerate: (%g, %g, %g) is not a unit vector",
-      n[0],
-      n[1],
-      n[2]);
-  }
+  CheckDegenerateEigenvectors();
   std::printf(
     "eigenvector: %d well-determined cases, largest angle x gap %.3g\n", cases, worstAngle);
 }
@@ -350,72 +381,76 @@ void TestFilterPoint()
     compared,
     AvailableInstructionSets().size());
 }
+/// One of eight kinds of symmetric matrix (trial % 8), upper triangle: rotated planes of any
+/// thickness, lines, zero, isotropic and diagonal ones, non-finite ones and any.
+void RandomSymmetricMatrix(int trial,
+  std::mt19937_64& random,
+  std::normal_distribution<double>& gaussian,
+  std::uniform_real_distribution<double>& uniform,
+  double m[6])
+{
+  const double units = std::pow(10.0, 6.0 * uniform(random));
+  const double thickness = std::pow(10.0, -1.0 - 8.0 * (uniform(random) + 1.0) / 2.0);
+  switch (trial % 8)
+  {
+    case 0: // a rotated plane of some thickness
+    case 1:
+    {
+      const Eigen::Matrix3d frame = RandomFrame(random, gaussian);
+      const Eigen::Vector3d spread(1.0, 0.3 + 0.7 * std::abs(uniform(random)), thickness);
+      UpperTriangle(units * frame * spread.asDiagonal() * frame.transpose(), m);
+      break;
+    }
+    case 2: // a line, (a, b, c)(a, b, c)^T plus a little
+    {
+      const double a = uniform(random), b = uniform(random), c = uniform(random);
+      const double entries[6] = { a * a, a * b, a * c, b * b, b * c, c * c };
+      for (int k = 0; k < 6; ++k)
+      {
+        m[k] = units * entries[k] + (k == 0 || k == 3 || k == 5 ? thickness * units : 0.0);
+      }
+      break;
+    }
+    case 3: // zero, isotropic, diagonal
+    {
+      const double entries[4][6] = {
+        { 0, 0, 0, 0, 0, 0 }, { 2, 0, 0, 2, 0, 2 }, { 1, 0, 0, 2, 0, 3 }, { 3, 0, 0, 1, 0, 1 }
+      };
+      for (int k = 0; k < 6; ++k)
+      {
+        m[k] = units * entries[(trial / 8) % 4][k];
+      }
+      break;
+    }
+    case 4: // not finite
+    {
+      for (int k = 0; k < 6; ++k)
+      {
+        m[k] = uniform(random);
+      }
+      m[(trial / 8) % 6] = (trial / 48) % 2 ? NAN : HUGE_VAL;
+      break;
+    }
+    default: // any symmetric matrix
+      for (int k = 0; k < 6; ++k)
+      {
+        m[k] = units * uniform(random);
+      }
+  }
+}
+
 /// KernelSmallestEigenvectors against SmallestEigenvector, bit for bit, in every build.
 void TestSmallestEigenvectors()
 {
   std::mt19937_64 random(5);
   std::normal_distribution<double> gaussian(0.0, 1.0);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  std::vector<double> matrices;
-  for (int trial = 0; trial < 20000; ++trial)
-  {
-    const double units = std::pow(10.0, 6.0 * uniform(random));
-    const double thickness = std::pow(10.0, -1.0 - 8.0 * (uniform(random) + 1.0) / 2.0);
-    double m[6];
-    switch (trial % 8)
-    {
-      case 0: // a rotated plane of some thickness
-      case 1:
-      {
-        const Eigen::Matrix3d frame =
-          Eigen::Quaterniond(gaussian(random), gaussian(random), gaussian(random), gaussian(random))
-            .normalized()
-            .toRotationMatrix();
-        const Eigen::Vector3d spread(1.0, 0.3 + 0.7 * std::abs(uniform(random)), thickness);
-        const Eigen::Matrix3d c = units * frame * spread.asDiagonal() * frame.transpose();
-        const double entries[6] = { c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2), c(2, 2) };
-        std::copy(entries, entries + 6, m);
-        break;
-      }
-      case 2: // a line, (a, b, c)(a, b, c)^T plus a little
-      {
-        const double a = uniform(random), b = uniform(random), c = uniform(random);
-        const double entries[6] = { a * a, a * b, a * c, b * b, b * c, c * c };
-        for (int k = 0; k < 6; ++k)
-        {
-          m[k] = units * entries[k] + (k == 0 || k == 3 || k == 5 ? thickness * units : 0.0);
-        }
-        break;
-      }
-      case 3: // zero, isotropic, diagonal
-      {
-        const double entries[4][6] = {
-          { 0, 0, 0, 0, 0, 0 }, { 2, 0, 0, 2, 0, 2 }, { 1, 0, 0, 2, 0, 3 }, { 3, 0, 0, 1, 0, 1 }
-        };
-        for (int k = 0; k < 6; ++k)
-        {
-          m[k] = units * entries[(trial / 8) % 4][k];
-        }
-        break;
-      }
-      case 4: // not finite
-      {
-        for (int k = 0; k < 6; ++k)
-        {
-          m[k] = uniform(random);
-        }
-        m[(trial / 8) % 6] = (trial / 48) % 2 ? NAN : HUGE_VAL;
-        break;
-      }
-      default: // any symmetric matrix
-        for (int k = 0; k < 6; ++k)
-        {
-          m[k] = units * uniform(random);
-        }
-    }
-    matrices.insert(matrices.end(), m, m + 6);
-  }
+  std::vector<double> matrices(6 * 20000);
   const std::size_t count = matrices.size() / 6;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    RandomSymmetricMatrix(static_cast<int>(i), random, gaussian, uniform, matrices.data() + 6 * i);
+  }
   std::vector<double> expected(3 * count);
   for (std::size_t i = 0; i < count; ++i)
   {
@@ -524,6 +559,84 @@ void TestAppendNearBox()
   std::printf("AppendNearBox: %d kept and %d dropped as a plain loop does\n", kept, dropped);
 }
 
+/// `count` candidates around a point at georeferenced coordinates, in a patch of half-side
+/// `radius` of one of five shapes: a noisy plane (0 and 5), an exact axis-aligned plane (1),
+/// points on a line (2), one point repeated (3), an edge (4).
+CandidateNeighbours RandomPatch(int shape,
+  std::size_t count,
+  double radius,
+  std::mt19937_64& random,
+  std::normal_distribution<double>& gaussian,
+  std::uniform_real_distribution<double>& uniform)
+{
+  const double origin[3] = { 6.5e5 + uniform(random), 4.1e6 + uniform(random), 250.0 };
+  CandidateNeighbours candidates;
+  for (std::size_t j = 0; j < count; ++j)
+  {
+    const double u = radius * uniform(random), v = radius * uniform(random);
+    double q[3] = { origin[0] + u, origin[1] + v, origin[2] + 0.01 * gaussian(random) };
+    if (shape == 1) // an exact, axis-aligned plane
+    {
+      q[2] = origin[2];
+    }
+    if (shape == 2) // points on a line: the two smallest eigenvalues meet
+    {
+      q[0] = origin[0] + u;
+      q[1] = origin[1] + 2.0 * u;
+      q[2] = origin[2] + 3.0 * u;
+    }
+    if (shape == 3) // one point repeated: no spread at all
+    {
+      q[0] = origin[0];
+      q[1] = origin[1];
+      q[2] = origin[2];
+    }
+    if (shape == 4) // an edge
+    {
+      q[2] += 0.5 * std::abs(u);
+    }
+    candidates.Append(q, q + 1, q + 2, 1);
+  }
+  return candidates;
+}
+
+/// FilterPoints on the batch against FilterPoint on each of its points, in every build.
+void CheckBatchAgainstAlone(const double points[][3],
+  std::size_t batch,
+  CandidateNeighbours& candidates,
+  const KernelConstants& constants,
+  int trial)
+{
+  for (const auto set : AvailableInstructionSets())
+  {
+    SetKernelInstructionSet(set);
+    FilteredPoint together[KernelLanes];
+    FilterPoints(points, batch, candidates, constants, together);
+    for (std::size_t k = 0; k < batch; ++k)
+    {
+      const FilteredPoint alone = FilterPoint(points[k], candidates, constants);
+      PCB_CHECK(
+        alone.NeighbourCount == together[k].NeighbourCount &&
+          alone.Filtered == together[k].Filtered &&
+          std::memcmp(&alone.Displacement, &together[k].Displacement, sizeof(double)) == 0 &&
+          std::memcmp(alone.Normal, together[k].Normal, sizeof(alone.Normal)) == 0,
+        "%s, trial %d (shape %d), point %zu of %zu: FilterPoints differs from FilterPoint "
+        "(normal %.17g %.17g %.17g against %.17g %.17g %.17g)",
+        GetName(set),
+        trial,
+        trial % 6,
+        k,
+        batch,
+        together[k].Normal[0],
+        together[k].Normal[1],
+        together[k].Normal[2],
+        alone.Normal[0],
+        alone.Normal[1],
+        alone.Normal[2]);
+    }
+  }
+}
+
 /// FilterPoints on batches of 1 to 8 points against each point alone, bit for bit, on clouds
 /// that take every path of the eigensolver.
 void TestFilterPoints()
@@ -538,34 +651,7 @@ void TestFilterPoints()
   {
     const int shape = trial % 6;
     const std::size_t count = 1 + static_cast<std::size_t>(trial % 97);
-    const double origin[3] = { 6.5e5 + uniform(random), 4.1e6 + uniform(random), 250.0 };
-    CandidateNeighbours candidates;
-    for (std::size_t j = 0; j < count; ++j)
-    {
-      const double u = radius * uniform(random), v = radius * uniform(random);
-      double q[3] = { origin[0] + u, origin[1] + v, origin[2] + 0.01 * gaussian(random) };
-      if (shape == 1) // an exact, axis-aligned plane
-      {
-        q[2] = origin[2];
-      }
-      if (shape == 2) // points on a line: the two smallest eigenvalues meet
-      {
-        q[0] = origin[0] + u;
-        q[1] = origin[1] + 2.0 * u;
-        q[2] = origin[2] + 3.0 * u;
-      }
-      if (shape == 3) // one point repeated: no spread at all
-      {
-        q[0] = origin[0];
-        q[1] = origin[1];
-        q[2] = origin[2];
-      }
-      if (shape == 4) // an edge
-      {
-        q[2] += 0.5 * std::abs(u);
-      }
-      candidates.Append(q, q + 1, q + 2, 1);
-    }
+    CandidateNeighbours candidates = RandomPatch(shape, count, radius, random, gaussian, uniform);
     const std::size_t batch = 1 + static_cast<std::size_t>(trial % KernelLanes);
     double points[KernelLanes][3];
     for (std::size_t k = 0; k < batch; ++k)
@@ -577,34 +663,7 @@ void TestFilterPoints()
       points[k][1] = candidates.Y[j];
       points[k][2] = candidates.Z[j];
     }
-    for (const auto set : AvailableInstructionSets())
-    {
-      SetKernelInstructionSet(set);
-      FilteredPoint together[KernelLanes];
-      FilterPoints(points, batch, candidates, constants, together);
-      for (std::size_t k = 0; k < batch; ++k)
-      {
-        const FilteredPoint alone = FilterPoint(points[k], candidates, constants);
-        PCB_CHECK(
-          alone.NeighbourCount == together[k].NeighbourCount &&
-            alone.Filtered == together[k].Filtered &&
-            std::memcmp(&alone.Displacement, &together[k].Displacement, sizeof(double)) == 0 &&
-            std::memcmp(alone.Normal, together[k].Normal, sizeof(alone.Normal)) == 0,
-          "%s, trial %d (shape %d), point %zu of %zu: FilterPoints differs from FilterPoint "
-          "(normal %.17g %.17g %.17g against %.17g %.17g %.17g)",
-          GetName(set),
-          trial,
-          shape,
-          k,
-          batch,
-          together[k].Normal[0],
-          together[k].Normal[1],
-          together[k].Normal[2],
-          alone.Normal[0],
-          alone.Normal[1],
-          alone.Normal[2]);
-      }
-    }
+    CheckBatchAgainstAlone(points, batch, candidates, constants, trial);
     ++batches;
   }
   std::printf("FilterPoints: %d batches of 1 to %zu points, bit for bit with FilterPoint\n",

@@ -5,6 +5,7 @@
 // each process) with an in-process ghost exchange.
 #include "BilateralFilter.h"
 #include "CloudMeasurement.h"
+#include "CloudView.h"
 #include "CoreTesting.h"
 #include "SampleShapes.h"
 
@@ -23,6 +24,7 @@ using pcbilateral::BilateralParameters;
 using pcbilateral::BilateralResult;
 using pcbilateral::BilateralStatus;
 using pcbilateral::PointCloudView;
+using pcbilateral_testing::ViewOf;
 
 /// A noisy, folded sheet with some exact duplicates: neighbours in every direction, edges, and
 /// ties in the order of a leaf.
@@ -53,67 +55,115 @@ bool SameBits(const double* a, const double* b)
   return std::memcmp(a, b, 3 * sizeof(double)) == 0;
 }
 
-/// In-process stand-in for the processes of a distributed run: each part is driven by its own
-/// pcbilateral::BilateralRun, exactly as vtkPPointCloudBilateralFilter drives one per process,
-/// and the ghost exchange between iterations hands each part the other parts' points within its
-/// reach box (the ranks' exchange, without MPI). Returns the positions in the original order.
-std::vector<double> RunPartitioned(const std::vector<double>& xyz,
-  const BilateralParameters& parameters,
-  int parts,
-  unsigned seed)
+/// The parts of a distributed run: part k holds the points with x in [bounds[k], bounds[k+1])
+/// of uneven slabs, in a shuffled order.
+struct Partition
 {
-  const std::size_t n = xyz.size() / 3;
-  // Uneven slabs: part k holds x in [bounds[k], bounds[k+1]), its points shuffled.
+  std::vector<std::vector<std::size_t>> Owned; ///< each part's points' indices in the cloud
+  std::vector<std::vector<double>> Xyz;        ///< each part's points
+};
+
+Partition SplitIntoSlabs(const std::vector<double>& xyz, int parts, unsigned seed)
+{
   std::vector<double> bounds{ -1e9 };
   for (int k = 1; k < parts; ++k)
   {
     bounds.push_back(std::pow(static_cast<double>(k) / parts, 1.5));
   }
   bounds.push_back(1e9);
-  std::vector<std::vector<std::size_t>> owned(parts);
-  for (std::size_t i = 0; i < n; ++i)
+  Partition partition;
+  partition.Owned.resize(parts);
+  partition.Xyz.resize(parts);
+  for (std::size_t i = 0; i < xyz.size() / 3; ++i)
   {
     const auto k = std::upper_bound(bounds.begin(), bounds.end(), xyz[3 * i]) - bounds.begin() - 1;
-    owned[k].push_back(i);
+    partition.Owned[k].push_back(i);
   }
   std::mt19937 random(seed);
-  std::vector<std::vector<double>> partXyz(parts);
+  for (int k = 0; k < parts; ++k)
+  {
+    std::shuffle(partition.Owned[k].begin(), partition.Owned[k].end(), random);
+    for (const std::size_t i : partition.Owned[k])
+    {
+      partition.Xyz[k].insert(partition.Xyz[k].end(), &xyz[3 * i], &xyz[3 * i] + 3);
+    }
+  }
+  return partition;
+}
+
+/// The automatic mode's scales, as the distributed filter shares them: each part's share of
+/// the whole cloud's selection, gathered (here in reverse order of parts) and measured.
+pcbilateral::CloudScales MeasureSharedScales(const Partition& partition,
+  const pcbilateral::CloudExtent& whole)
+{
+  const double fraction = pcbilateral::MeasuredFraction(whole.NumberOfFinitePoints);
+  std::vector<double> selection;
+  for (std::size_t k = partition.Xyz.size(); k-- > 0;)
+  {
+    const std::vector<double> own =
+      pcbilateral::SelectMeasurementPoints(ViewOf(partition.Xyz[k]), fraction);
+    selection.insert(selection.end(), own.begin(), own.end());
+  }
+  return pcbilateral::MeasureSelection(selection, fraction, 0);
+}
+
+/// One iteration of every part: the ghost exchange hands each part the other parts' points
+/// within its reach box (the ranks' exchange, without MPI), then the part steps.
+void ExchangeGhostsAndStep(const std::vector<std::unique_ptr<pcbilateral::BilateralRun>>& runs)
+{
+  const int parts = static_cast<int>(runs.size());
+  std::vector<std::vector<double>> offered(parts);
+  std::vector<std::array<double, 6>> reach(parts);
+  for (int k = 0; k < parts; ++k)
+  {
+    offered[k] = runs[k]->GetPositionsForOthers();
+    runs[k]->GetGhostReach(reach[k].data());
+  }
+  for (int k = 0; k < parts; ++k)
+  {
+    // The other parts' points in this part's reach, in reverse order of parts.
+    std::vector<double> ghosts;
+    for (int other = parts; other-- > 0;)
+    {
+      for (std::size_t i = 0; other != k && i < offered[other].size(); i += 3)
+      {
+        const double* p = &offered[other][i];
+        if (pcbilateral::InsideBox(reach[k].data(), p))
+        {
+          ghosts.insert(ghosts.end(), p, p + 3);
+        }
+      }
+    }
+    const BilateralStatus status = runs[k]->Step(ghosts);
+    PCB_CHECK(status == BilateralStatus::Completed, "part %d: %s", k, runs[k]->GetError().c_str());
+  }
+}
+
+/// In-process stand-in for the processes of a distributed run: each part is driven by its own
+/// pcbilateral::BilateralRun, exactly as vtkPPointCloudBilateralFilter drives one per process,
+/// with the ghost exchange between iterations. Returns the positions in the original order.
+std::vector<double> RunPartitioned(const std::vector<double>& xyz,
+  const BilateralParameters& parameters,
+  int parts,
+  unsigned seed)
+{
+  const Partition partition = SplitIntoSlabs(xyz, parts, seed);
   std::vector<std::unique_ptr<pcbilateral::BilateralRun>> runs;
   for (int k = 0; k < parts; ++k)
   {
-    std::shuffle(owned[k].begin(), owned[k].end(), random);
-    for (const std::size_t i : owned[k])
-    {
-      partXyz[k].insert(partXyz[k].end(), &xyz[3 * i], &xyz[3 * i] + 3);
-    }
-    PointCloudView part;
-    part.NumberOfPoints = owned[k].size();
-    part.Positions = partXyz[k].data();
-    runs.push_back(std::make_unique<pcbilateral::BilateralRun>(part, parameters));
+    runs.push_back(
+      std::make_unique<pcbilateral::BilateralRun>(ViewOf(partition.Xyz[k]), parameters));
   }
-
   // The whole cloud's extent, as the processes' reduction gives it.
   pcbilateral::CloudExtent whole;
   for (const auto& run : runs)
   {
     whole = pcbilateral::MergeExtents(whole, run->GetLocalExtent());
   }
-  // The automatic mode's scales, as the distributed filter shares them: each part's share of
-  // the whole cloud's selection, gathered (here in reverse order of parts) and measured.
   pcbilateral::CloudScales scales;
   if (runs[0]->NeedsScales())
   {
-    const double fraction = pcbilateral::MeasuredFraction(whole.NumberOfFinitePoints);
-    std::vector<double> selection;
-    for (int k = parts; k-- > 0;)
-    {
-      PointCloudView part;
-      part.NumberOfPoints = partXyz[k].size() / 3;
-      part.Positions = partXyz[k].data();
-      const std::vector<double> own = pcbilateral::SelectMeasurementPoints(part, fraction);
-      selection.insert(selection.end(), own.begin(), own.end());
-    }
-    scales = pcbilateral::MeasureSelection(selection, fraction, 0);
+    scales = MeasureSharedScales(partition, whole);
   }
   bool iterate = true;
   for (const auto& run : runs)
@@ -122,32 +172,7 @@ std::vector<double> RunPartitioned(const std::vector<double>& xyz,
   }
   while (iterate)
   {
-    std::vector<std::vector<double>> offered(parts);
-    std::vector<std::array<double, 6>> reach(parts);
-    for (int k = 0; k < parts; ++k)
-    {
-      offered[k] = runs[k]->GetPositionsForOthers();
-      runs[k]->GetGhostReach(reach[k].data());
-    }
-    for (int k = 0; k < parts; ++k)
-    {
-      // The other parts' points in this part's reach, in reverse order of parts.
-      std::vector<double> ghosts;
-      for (int other = parts; other-- > 0;)
-      {
-        for (std::size_t i = 0; other != k && i < offered[other].size(); i += 3)
-        {
-          const double* p = &offered[other][i];
-          if (pcbilateral::InsideBox(reach[k].data(), p))
-          {
-            ghosts.insert(ghosts.end(), p, p + 3);
-          }
-        }
-      }
-      const BilateralStatus status = runs[k]->Step(ghosts);
-      PCB_CHECK(
-        status == BilateralStatus::Completed, "part %d: %s", k, runs[k]->GetError().c_str());
-    }
+    ExchangeGhostsAndStep(runs);
     iterate = runs[0]->HasNextIteration();
   }
 
@@ -157,9 +182,9 @@ std::vector<double> RunPartitioned(const std::vector<double>& xyz,
     const BilateralResult partResult = runs[k]->Finish();
     PCB_CHECK(
       partResult.Status == BilateralStatus::Completed, "part %d: %s", k, partResult.Error.c_str());
-    for (std::size_t j = 0; j < owned[k].size(); ++j)
+    for (std::size_t j = 0; j < partition.Owned[k].size(); ++j)
     {
-      std::copy_n(&partResult.Positions[3 * j], 3, &result[3 * owned[k][j]]);
+      std::copy_n(&partResult.Positions[3 * j], 3, &result[3 * partition.Owned[k][j]]);
     }
   }
   return result;
@@ -168,9 +193,7 @@ std::vector<double> RunPartitioned(const std::vector<double>& xyz,
 void CheckSameBitsAsOneRun(const BilateralParameters& parameters, int parts, unsigned seed)
 {
   const std::vector<double> xyz = MakeCloud(6000, seed);
-  PointCloudView cloud;
-  cloud.NumberOfPoints = xyz.size() / 3;
-  cloud.Positions = xyz.data();
+  const PointCloudView cloud = ViewOf(xyz);
   const BilateralResult reference = pcbilateral::RunBilateralFilter(cloud, parameters);
   PCB_CHECK(reference.Status == BilateralStatus::Completed, "%s", reference.Error.c_str());
   const std::vector<double> partitioned = RunPartitioned(xyz, parameters, parts, seed + 1);
@@ -197,39 +220,33 @@ void CheckSameBitsAsOneRun(const BilateralParameters& parameters, int parts, uns
     moved,
     differing);
 }
+
+/// Given parameters on 1, 2, 3 and 5 parts (seeds seed + parts), then the automatic ones,
+/// chosen from the whole cloud's measured scales, with removal of isolated points on 3 parts.
+void CheckGivenAndAutomatic(bool edgeAware, int iterations, unsigned seed, unsigned automaticSeed)
+{
+  BilateralParameters parameters;
+  parameters.EdgeAware = edgeAware;
+  parameters.Radius = 0.05;
+  parameters.NormalRadius = 0.02;
+  parameters.NumberOfIterations = iterations;
+  for (const int parts : { 1, 2, 3, 5 })
+  {
+    CheckSameBitsAsOneRun(parameters, parts, seed + static_cast<unsigned>(parts));
+  }
+  parameters.Radius = 0.0;
+  parameters.NormalRadius = 0.0;
+  parameters.NumberOfIterations = 2;
+  parameters.RemoveIsolatedPoints = true;
+  CheckSameBitsAsOneRun(parameters, 3, automaticSeed);
+}
 } // namespace
 
 int main()
 {
-  BilateralParameters parameters;
-  parameters.Radius = 0.05;
-  parameters.NormalRadius = 0.02;
-  parameters.NumberOfIterations = 3;
-  for (const int parts : { 1, 2, 3, 5 })
-  {
-    CheckSameBitsAsOneRun(parameters, parts, 7u + static_cast<unsigned>(parts));
-  }
-  // The automatic parameters, chosen from the whole cloud's measured scales, and removal of
-  // isolated points.
-  parameters.Radius = 0.0;
-  parameters.NormalRadius = 0.0;
-  parameters.NumberOfIterations = 2;
-  parameters.RemoveIsolatedPoints = true;
-  CheckSameBitsAsOneRun(parameters, 3, 99u);
+  CheckGivenAndAutomatic(false, 3, 7u, 99u);
   // The edge-aware mode reads its neighbours' filtered normals: its ghosts reach further
   // (EdgeAwareReachInRadii radii), and must still give one run's bits.
-  parameters.EdgeAware = true;
-  parameters.RemoveIsolatedPoints = false;
-  parameters.Radius = 0.05;
-  parameters.NormalRadius = 0.02;
-  parameters.NumberOfIterations = 2;
-  for (const int parts : { 1, 2, 3, 5 })
-  {
-    CheckSameBitsAsOneRun(parameters, parts, 17u + static_cast<unsigned>(parts));
-  }
-  parameters.Radius = 0.0;
-  parameters.NormalRadius = 0.0;
-  parameters.RemoveIsolatedPoints = true;
-  CheckSameBitsAsOneRun(parameters, 3, 199u);
+  CheckGivenAndAutomatic(true, 2, 17u, 199u);
   return PCB_TEST_RESULT();
 }

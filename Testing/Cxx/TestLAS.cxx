@@ -553,23 +553,21 @@ void TestExtraBytes()
   PCB_CHECK(rest && rest->GetNumberOfComponents() == 6, "the undescribed bytes");
 }
 
-void TestScaledExtraBytes()
+// Format 0 with 4 + 2 + 6 + 4 + 1 extra bytes: "Height", an int32 with a scale and an offset;
+// "Temperature", a uint16 with a scale, an offset and a no-data value; "Shift", a deprecated
+// array of 3 int16 with a scale and an offset per component; "Ratio", a float with a scale
+// (floats keep their stored values); "Flags", a uint8 with neither (kept as it is).
+constexpr std::uint16_t ScaledExtraBytesLength = 20 + 4 + 2 + 6 + 4 + 1;
+constexpr int ScaledExtraBytesCount = 10;
+const std::vector<double> ShiftScales = { 0.5, 0.25, 2.0 };
+const std::vector<double> ShiftOffsets = { 1.0, -2.0, 1000.0 };
+
+/// The records of the scaled extra bytes' file; point 3's temperature is the no-data value.
+std::vector<char> ScaledExtraBytesRecords()
 {
-  // Format 0 with 4 + 2 + 6 + 4 + 1 extra bytes: "Height", an int32 with a scale and an offset;
-  // "Temperature", a uint16 with a scale, an offset and a no-data value; "Shift", a deprecated
-  // array of 3 int16 with a scale and an offset per component; "Ratio", a float with a scale
-  // (floats keep their stored values); "Flags", a uint8 with neither (kept as it is).
-  const std::vector<char> vlr = ExtraBytesVLR({
-    Descriptor(6, 8 | 16, "Height", { 0.001 }, { 100.0 }),
-    Descriptor(3, 1 | 2 | 4 | 8 | 16, "Temperature", { 0.01 }, { -40.0 }, 65535),
-    Descriptor(24, 8 | 16, "Shift", { 0.5, 0.25, 2.0 }, { 1.0, -2.0, 1000.0 }),
-    Descriptor(9, 8, "Ratio", { 10.0 }, { 0.0 }),
-    Descriptor(1, 0, "Flags", { 1.0 }, { 0.0 }),
-  });
-  const std::uint16_t length = 20 + 4 + 2 + 6 + 4 + 1;
-  const int count = 10;
-  std::vector<char> records(static_cast<std::size_t>(length) * count, 0);
-  for (int i = 0; i < count; ++i)
+  const std::uint16_t length = ScaledExtraBytesLength;
+  std::vector<char> records(static_cast<std::size_t>(length) * ScaledExtraBytesCount, 0);
+  for (int i = 0; i < ScaledExtraBytesCount; ++i)
   {
     const std::size_t at = static_cast<std::size_t>(i) * length;
     Put<std::int32_t>(records, at, 100 * i);
@@ -584,7 +582,81 @@ void TestScaledExtraBytes()
     Put<float>(records, at + 32, 0.5f * i);
     records[at + 36] = static_cast<char>(200 + i);
   }
-  WriteBytes("scaled-extra.las", HandMadeLAS(0, length, vlr, records));
+  return records;
+}
+
+/// Point i's extra bytes as read: the stored values scaled and offset, or as stored.
+void CheckScaledValues(vtkPointData* data, int i)
+{
+  vtkDataArray* height = data->GetArray("Height");
+  vtkDataArray* temperature = data->GetArray("Temperature");
+  vtkDataArray* shift = data->GetArray("Shift");
+  const double expectedHeight = (-2000000000.0 + 400000000.0 * i) * 0.001 + 100.0;
+  PCB_CHECK(height->GetComponent(i, 0) == expectedHeight,
+    "point %d: Height %.17g, expected %.17g",
+    i,
+    height->GetComponent(i, 0),
+    expectedHeight);
+  if (i == 3)
+  {
+    PCB_CHECK(std::isnan(temperature->GetComponent(i, 0)), "the no-data value reads as NaN");
+  }
+  else
+  {
+    const double expected = (6000 + 37 * i) * 0.01 - 40.0;
+    PCB_CHECK(temperature->GetComponent(i, 0) == expected,
+      "point %d: Temperature %.17g, "
+      "expected %.17g",
+      i,
+      temperature->GetComponent(i, 0),
+      expected);
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    const double expected = (c + 1) * (i - 5) * 1000 * ShiftScales[c] + ShiftOffsets[c];
+    PCB_CHECK(shift->GetComponent(i, c) == expected,
+      "point %d: Shift[%d] %g, expected %g",
+      i,
+      c,
+      shift->GetComponent(i, c),
+      expected);
+  }
+  PCB_CHECK(data->GetArray("Ratio")->GetComponent(i, 0) == 0.5 * i &&
+              data->GetArray("Flags")->GetComponent(i, 0) == 200 + i,
+    "point %d: Ratio and Flags as stored",
+    i);
+}
+
+/// Values changed (as a filter would) are stored rounded to the nearest step.
+void CheckChangedValuesRounded(vtkPolyData* read)
+{
+  read->GetPointData()->GetArray("Temperature")->SetComponent(0, 0, 20.004);
+  read->GetPointData()->GetArray("Temperature")->SetComponent(1, 0, std::nan(""));
+  read->GetPointData()->GetArray("Height")->SetComponent(0, 0, 100.0006);
+  if (Write(read, "scaled-extra-changed.las"))
+  {
+    const std::vector<char> changed = PointRecords(FileBytes("scaled-extra-changed.las"));
+    PCB_CHECK(At<std::uint16_t>(changed, 24) == 6000 &&
+                At<std::uint16_t>(changed, ScaledExtraBytesLength + 24) == 65535 &&
+                At<std::int32_t>(changed, 20) == 1,
+      "changed values stored as %u, %u and %d",
+      At<std::uint16_t>(changed, 24),
+      At<std::uint16_t>(changed, ScaledExtraBytesLength + 24),
+      At<std::int32_t>(changed, 20));
+  }
+}
+
+void TestScaledExtraBytes()
+{
+  const std::vector<char> vlr = ExtraBytesVLR({
+    Descriptor(6, 8 | 16, "Height", { 0.001 }, { 100.0 }),
+    Descriptor(3, 1 | 2 | 4 | 8 | 16, "Temperature", { 0.01 }, { -40.0 }, 65535),
+    Descriptor(24, 8 | 16, "Shift", ShiftScales, ShiftOffsets),
+    Descriptor(9, 8, "Ratio", { 10.0 }, { 0.0 }),
+    Descriptor(1, 0, "Flags", { 1.0 }, { 0.0 }),
+  });
+  WriteBytes(
+    "scaled-extra.las", HandMadeLAS(0, ScaledExtraBytesLength, vlr, ScaledExtraBytesRecords()));
   vtkSmartPointer<vtkPolyData> read = Read("scaled-extra.las");
   vtkPointData* data = read->GetPointData();
   vtkDataArray* height = data->GetArray("Height");
@@ -592,6 +664,7 @@ void TestScaledExtraBytes()
   vtkDataArray* shift = data->GetArray("Shift");
   vtkDataArray* ratio = data->GetArray("Ratio");
   vtkDataArray* flags = data->GetArray("Flags");
+  const int count = ScaledExtraBytesCount;
   PCB_CHECK(read->GetNumberOfPoints() == count,
     "%lld points",
     static_cast<long long>(read->GetNumberOfPoints()));
@@ -608,58 +681,10 @@ void TestScaledExtraBytes()
   }
   for (int i = 0; i < count; ++i)
   {
-    const double expectedHeight = (-2000000000.0 + 400000000.0 * i) * 0.001 + 100.0;
-    PCB_CHECK(height->GetComponent(i, 0) == expectedHeight,
-      "point %d: Height %.17g, expected %.17g",
-      i,
-      height->GetComponent(i, 0),
-      expectedHeight);
-    if (i == 3)
-    {
-      PCB_CHECK(std::isnan(temperature->GetComponent(i, 0)), "the no-data value reads as NaN");
-    }
-    else
-    {
-      const double expected = (6000 + 37 * i) * 0.01 - 40.0;
-      PCB_CHECK(temperature->GetComponent(i, 0) == expected,
-        "point %d: Temperature %.17g, "
-        "expected %.17g",
-        i,
-        temperature->GetComponent(i, 0),
-        expected);
-    }
-    const double scales[3] = { 0.5, 0.25, 2.0 };
-    const double offsets[3] = { 1.0, -2.0, 1000.0 };
-    for (int c = 0; c < 3; ++c)
-    {
-      const double expected = (c + 1) * (i - 5) * 1000 * scales[c] + offsets[c];
-      PCB_CHECK(shift->GetComponent(i, c) == expected,
-        "point %d: Shift[%d] %g, expected %g",
-        i,
-        c,
-        shift->GetComponent(i, c),
-        expected);
-    }
-    PCB_CHECK(ratio->GetComponent(i, 0) == 0.5 * i && flags->GetComponent(i, 0) == 200 + i,
-      "point %d: Ratio and Flags as stored",
-      i);
+    CheckScaledValues(data, i);
   }
   CheckRecordsWrittenBack("scaled-extra.las", read, "scaled-extra-again.las");
-  // Values changed (as a filter would) are stored rounded to the nearest step.
-  temperature->SetComponent(0, 0, 20.004);
-  temperature->SetComponent(1, 0, std::nan(""));
-  height->SetComponent(0, 0, 100.0006);
-  if (Write(read, "scaled-extra-changed.las"))
-  {
-    const std::vector<char> changed = PointRecords(FileBytes("scaled-extra-changed.las"));
-    PCB_CHECK(At<std::uint16_t>(changed, 24) == 6000 &&
-                At<std::uint16_t>(changed, length + 24) == 65535 &&
-                At<std::int32_t>(changed, 20) == 1,
-      "changed values stored as %u, %u and %d",
-      At<std::uint16_t>(changed, 24),
-      At<std::uint16_t>(changed, length + 24),
-      At<std::int32_t>(changed, 20));
-  }
+  CheckChangedValuesRounded(read);
 }
 
 void TestScanAngle()

@@ -187,39 +187,62 @@ void TestCubeEdges()
     roundOnSurface);
 }
 
-void TestPassThrough()
+/// Point arrays of four types, two of them the active scalars and vectors, that the filter
+/// must pass through unchanged.
+struct PassThroughArrays
 {
-  const std::vector<double> xyz = NoisyCube(3000, 0.002, 7);
-  auto cloud = MakeCloud(xyz);
-  const vtkIdType n = cloud->GetNumberOfPoints();
-  vtkNew<vtkDoubleArray> scalars;
-  scalars->SetName("Intensity");
-  vtkNew<vtkUnsignedCharArray> colours;
-  colours->SetName("RGB");
-  colours->SetNumberOfComponents(3);
-  vtkNew<vtkFloatArray> vectors;
-  vectors->SetName("Velocity");
-  vectors->SetNumberOfComponents(3);
-  vtkNew<vtkIntArray> labels;
-  labels->SetName("Label");
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    scalars->InsertNextValue(0.5 * i);
-    const unsigned char rgb[3] = { static_cast<unsigned char>(i % 256),
-      static_cast<unsigned char>((7 * i) % 256),
-      static_cast<unsigned char>((13 * i) % 256) };
-    colours->InsertNextTypedTuple(rgb);
-    const float v[3] = { float(i), float(-i), float(2 * i) };
-    vectors->InsertNextTypedTuple(v);
-    labels->InsertNextValue(static_cast<int>(i % 17));
-  }
-  cloud->GetPointData()->SetScalars(scalars);
-  cloud->GetPointData()->AddArray(colours);
-  cloud->GetPointData()->SetVectors(vectors);
-  cloud->GetPointData()->AddArray(labels);
+  vtkNew<vtkDoubleArray> Scalars;
+  vtkNew<vtkUnsignedCharArray> Colours;
+  vtkNew<vtkFloatArray> Vectors;
+  vtkNew<vtkIntArray> Labels;
 
-  auto checkArrays =
-    [&](vtkPolyData* output, const std::function<vtkIdType(vtkIdType)>& source, const char* what)
+  /// Values for each of the cloud's points, added to its point data.
+  void AddTo(vtkPolyData* cloud)
+  {
+    this->Scalars->SetName("Intensity");
+    this->Colours->SetName("RGB");
+    this->Colours->SetNumberOfComponents(3);
+    this->Vectors->SetName("Velocity");
+    this->Vectors->SetNumberOfComponents(3);
+    this->Labels->SetName("Label");
+    for (vtkIdType i = 0; i < cloud->GetNumberOfPoints(); ++i)
+    {
+      this->Scalars->InsertNextValue(0.5 * i);
+      const unsigned char rgb[3] = { static_cast<unsigned char>(i % 256),
+        static_cast<unsigned char>((7 * i) % 256),
+        static_cast<unsigned char>((13 * i) % 256) };
+      this->Colours->InsertNextTypedTuple(rgb);
+      const float v[3] = { float(i), float(-i), float(2 * i) };
+      this->Vectors->InsertNextTypedTuple(v);
+      this->Labels->InsertNextValue(static_cast<int>(i % 17));
+    }
+    cloud->GetPointData()->SetScalars(this->Scalars);
+    cloud->GetPointData()->AddArray(this->Colours);
+    cloud->GetPointData()->SetVectors(this->Vectors);
+    cloud->GetPointData()->AddArray(this->Labels);
+  }
+
+  /// A few far-away points, which have no neighbours, with values of their own.
+  void AddFarPoints(vtkPolyData* cloud)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const double far[3] = { 10.0 + k, 10.0, 10.0 };
+      cloud->GetPoints()->InsertNextPoint(far);
+      this->Scalars->InsertNextValue(-1);
+      const unsigned char black[3] = { 0, 0, 0 };
+      this->Colours->InsertNextTypedTuple(black);
+      const float zero[3] = { 0, 0, 0 };
+      this->Vectors->InsertNextTypedTuple(zero);
+      this->Labels->InsertNextValue(-1);
+    }
+  }
+
+  /// Whether the output's point data are these arrays, in order and with their roles, point
+  /// i holding the values of input point source(i); and one vertex per point.
+  void CheckPassedTo(vtkPolyData* output,
+    const std::function<vtkIdType(vtkIdType)>& source,
+    const char* what) const
   {
     vtkPointData* pd = output->GetPointData();
     PCB_CHECK(output->GetNumberOfVerts() == output->GetNumberOfPoints(),
@@ -242,6 +265,14 @@ void TestPassThrough()
     PCB_CHECK(pd->GetVectors() && std::string(pd->GetVectors()->GetName()) == "Velocity",
       "%s: vectors not active",
       what);
+    this->CheckValuesPassedTo(output, source, what);
+  }
+
+  void CheckValuesPassedTo(vtkPolyData* output,
+    const std::function<vtkIdType(vtkIdType)>& source,
+    const char* what) const
+  {
+    vtkPointData* pd = output->GetPointData();
     auto* outColours = vtkUnsignedCharArray::SafeDownCast(pd->GetArray("RGB"));
     auto* outVectors = vtkFloatArray::SafeDownCast(pd->GetArray("Velocity"));
     auto* outScalars = vtkDoubleArray::SafeDownCast(pd->GetArray("Intensity"));
@@ -255,17 +286,54 @@ void TestPassThrough()
     for (vtkIdType i = 0; i < output->GetNumberOfPoints(); ++i)
     {
       const vtkIdType j = source(i);
-      wrong += outScalars->GetValue(i) != scalars->GetValue(j);
-      wrong += outLabels->GetValue(i) != labels->GetValue(j);
+      wrong += outScalars->GetValue(i) != this->Scalars->GetValue(j);
+      wrong += outLabels->GetValue(i) != this->Labels->GetValue(j);
       for (int c = 0; c < 3; ++c)
       {
-        wrong += outColours->GetTypedComponent(i, c) != colours->GetTypedComponent(j, c);
-        wrong += outVectors->GetTypedComponent(i, c) != vectors->GetTypedComponent(j, c);
+        wrong += outColours->GetTypedComponent(i, c) != this->Colours->GetTypedComponent(j, c);
+        wrong += outVectors->GetTypedComponent(i, c) != this->Vectors->GetTypedComponent(j, c);
       }
     }
     PCB_CHECK(wrong == 0, "%s: %zu values differ from the input's", what, wrong);
-  };
+  }
+};
 
+/// With removal: the far-away points go, in order; the rest keep their values.
+void CheckRemovalKeepsValues(vtkPolyData* cloud, PassThroughArrays& arrays)
+{
+  const vtkIdType n = cloud->GetNumberOfPoints();
+  arrays.AddFarPoints(cloud);
+  auto removed = Filter(
+    cloud, 0.08, 0.08, 1, 0, [](vtkPointCloudBilateralFilter* f) { f->RemoveIsolatedPointsOn(); });
+  auto* ids =
+    vtkIdTypeArray::SafeDownCast(removed->GetPointData()->GetArray("vtkOriginalPointIds"));
+  PCB_CHECK(ids != nullptr, "no vtkOriginalPointIds array");
+  if (!ids)
+  {
+    return;
+  }
+  PCB_CHECK(removed->GetNumberOfPoints() > n * 0.99 && removed->GetNumberOfPoints() <= n,
+    "removal kept %lld of %lld points",
+    (long long)removed->GetNumberOfPoints(),
+    (long long)n);
+  for (vtkIdType i = 0; i < ids->GetNumberOfValues(); ++i)
+  {
+    PCB_CHECK(ids->GetValue(i) < n && (i == 0 || ids->GetValue(i) > ids->GetValue(i - 1)),
+      "original id %lld at %lld: out of order or a far point",
+      (long long)ids->GetValue(i),
+      (long long)i);
+  }
+  arrays.CheckPassedTo(
+    removed, [ids](vtkIdType i) { return ids->GetValue(i); }, "removal");
+}
+
+void TestPassThrough()
+{
+  const std::vector<double> xyz = NoisyCube(3000, 0.002, 7);
+  auto cloud = MakeCloud(xyz);
+  const vtkIdType n = cloud->GetNumberOfPoints();
+  PassThroughArrays arrays;
+  arrays.AddTo(cloud);
   vtkNew<vtkIntArray> scanId;
   scanId->SetName("ScanId");
   scanId->InsertNextValue(42);
@@ -278,42 +346,9 @@ void TestPassThrough()
     "%lld points out of %lld",
     (long long)output->GetNumberOfPoints(),
     (long long)n);
-  checkArrays(
+  arrays.CheckPassedTo(
     output, [](vtkIdType i) { return i; }, "kept");
-
-  // With removal: a few far-away points have no neighbours and go; the rest keep their values.
-  for (int k = 0; k < 3; ++k)
-  {
-    const double far[3] = { 10.0 + k, 10.0, 10.0 };
-    cloud->GetPoints()->InsertNextPoint(far);
-    scalars->InsertNextValue(-1);
-    const unsigned char black[3] = { 0, 0, 0 };
-    colours->InsertNextTypedTuple(black);
-    const float zero[3] = { 0, 0, 0 };
-    vectors->InsertNextTypedTuple(zero);
-    labels->InsertNextValue(-1);
-  }
-  auto removed = Filter(
-    cloud, 0.08, 0.08, 1, 0, [](vtkPointCloudBilateralFilter* f) { f->RemoveIsolatedPointsOn(); });
-  auto* ids =
-    vtkIdTypeArray::SafeDownCast(removed->GetPointData()->GetArray("vtkOriginalPointIds"));
-  PCB_CHECK(ids != nullptr, "no vtkOriginalPointIds array");
-  if (ids)
-  {
-    PCB_CHECK(removed->GetNumberOfPoints() > n * 0.99 && removed->GetNumberOfPoints() <= n,
-      "removal kept %lld of %lld points",
-      (long long)removed->GetNumberOfPoints(),
-      (long long)n);
-    for (vtkIdType i = 0; i < ids->GetNumberOfValues(); ++i)
-    {
-      PCB_CHECK(ids->GetValue(i) < n && (i == 0 || ids->GetValue(i) > ids->GetValue(i - 1)),
-        "original id %lld at %lld: out of order or a far point",
-        (long long)ids->GetValue(i),
-        (long long)i);
-    }
-    checkArrays(
-      removed, [ids](vtkIdType i) { return ids->GetValue(i); }, "removal");
-  }
+  CheckRemovalKeepsValues(cloud, arrays);
 }
 
 /// The output's point coordinates as raw bytes, to compare bit for bit.
@@ -371,35 +406,27 @@ void TestPointTypes()
   PCB_CHECK(moved > 1e-3, "the points did not move (%g)", moved);
 }
 
-void TestParametersAndNormals()
+/// Each point's outward normal, for the points of NoisyCube (point i on face i % 6).
+vtkSmartPointer<vtkDoubleArray> OutwardCubeNormals(vtkIdType count)
 {
-  // The automatic radius, read back; estimated normals oriented by the input's normals.
-  const std::vector<double> xyz = NoisyCube(30000, 0.003, 17);
-  auto cloud = MakeCloud(xyz);
-  vtkNew<vtkDoubleArray> outward;
+  auto outward = vtkSmartPointer<vtkDoubleArray>::New();
   outward->SetName("Normals");
   outward->SetNumberOfComponents(3);
-  for (vtkIdType i = 0; i < cloud->GetNumberOfPoints(); ++i)
+  for (vtkIdType i = 0; i < count; ++i)
   {
     const int face = static_cast<int>(i % 6);
     double n[3] = { 0, 0, 0 };
     n[face / 2] = face % 2 ? 1.0 : -1.0;
     outward->InsertNextTypedTuple(n);
   }
-  cloud->GetPointData()->SetNormals(outward);
-  vtkNew<vtkPointCloudBilateralFilter> filter;
-  filter->SetInputData(cloud);
-  filter->GenerateEstimatedNormalsOn();
-  filter->GenerateDisplacementLengthOn();
-  PCB_CHECK(std::string(filter->GetLastRunSummary()) == "not run yet",
-    "before a run: %s",
-    filter->GetLastRunSummary());
-  filter->Update();
-  PCB_CHECK(std::string(filter->GetLastRunSummary()).find("N 2 (measured)") != std::string::npos,
-    "last run: %s",
-    filter->GetLastRunSummary());
-  // The automatic mode (the default): 5000 points per unit face are 0.5 / sqrt(5000) apart on
-  // average; r = 5 spacings + 4 sigma, rn = 5 sigma, N = 2 (a cube is not flat).
+  return outward;
+}
+
+/// The automatic mode (the default) on NoisyCube(30000, 0.003): 5000 points per unit face are
+/// 0.5 / sqrt(5000) apart on average; r = 5 spacings + 4 sigma, rn = 5 sigma, N = 2 (a cube
+/// is not flat), recorded in the output's field data.
+void CheckAutomaticParameters(vtkPointCloudBilateralFilter* filter)
+{
   const double spacing = 0.5 / std::sqrt(5000.0);
   std::printf("measured spacing %.6g (true %.6g), sigma %.6g (true 0.003): r %.6g, rn %.6g, "
               "N %d\n",
@@ -437,24 +464,12 @@ void TestParametersAndNormals()
       name,
       value);
   }
+}
 
-  // A given parameter overrides only itself.
-  const double automaticNormalRadius = filter->GetNormalRadiusUsed();
-  filter->SetRadius(0.05);
-  filter->Update();
-  PCB_CHECK(filter->GetRadiusUsed() == 0.05 &&
-              filter->GetNormalRadiusUsed() == automaticNormalRadius &&
-              filter->GetNumberOfIterationsUsed() == 2,
-    "given radius: r %g, rn %g, N %d",
-    filter->GetRadiusUsed(),
-    filter->GetNormalRadiusUsed(),
-    filter->GetNumberOfIterationsUsed());
-
-  // The paper's heuristic, by name: r = sqrt(20 / n) x largest extent, rn = r, N = 1, nothing
-  // measured.
-  filter->SetRadius(0.0);
-  filter->SetAutomaticParametersToPaper();
-  filter->Update();
+/// The paper's heuristic, by name: r = sqrt(20 / n) x largest extent, rn = r, N = 1, nothing
+/// measured (the filter has run on NoisyCube(30000, ...)).
+void CheckPaperParameters(vtkPointCloudBilateralFilter* filter)
+{
   const double expected =
     std::sqrt(20.0 / 30000.0) * filter->GetOutput()->GetLength() / std::sqrt(3.0);
   std::printf("paper's radius %.6g (largest extent x sqrt(20/n) = %.6g), normal radius %.6g\n",
@@ -474,16 +489,17 @@ void TestParametersAndNormals()
     std::string(filter->GetLastRunSummary()).find("N 1 (paper's rule)") != std::string::npos,
     "last run: %s",
     filter->GetLastRunSummary());
-  fd = filter->GetOutput()->GetFieldData();
+  vtkFieldData* fd = filter->GetOutput()->GetFieldData();
   PCB_CHECK(fd->GetArray("BilateralRadius") && !fd->GetArray("BilateralPointSpacing"),
     "the paper's run records a measured spacing");
-  const FilterRun unknown =
-    RunFilter(cloud, [](vtkPointCloudBilateralFilter* f) { f->SetAutomaticParameters(7); });
-  PCB_CHECK(unknown.Output->GetNumberOfPoints() == 0 && unknown.Errors == 1 &&
-              unknown.Messages.find("the automatic parameters must be") != std::string::npos,
-    "an unknown automatic mode: %d errors, %s",
-    unknown.Errors,
-    unknown.Messages.c_str());
+}
+
+/// The estimated normals of the face points agree with the input's outward normals, and the
+/// displacement lengths are below the radius.
+void CheckEstimatedNormals(vtkPointCloudBilateralFilter* filter,
+  vtkPolyData* cloud,
+  vtkDataArray* outward)
+{
   vtkPointData* pd = filter->GetOutput()->GetPointData();
   vtkDataArray* normals = pd->GetArray("EstimatedNormals");
   vtkDataArray* lengths = pd->GetArray("DisplacementLength");
@@ -529,6 +545,52 @@ void TestParametersAndNormals()
     largestLength,
     filter->GetRadiusUsed());
 }
+
+void TestParametersAndNormals()
+{
+  // The automatic radius, read back; estimated normals oriented by the input's normals.
+  auto cloud = MakeCloud(NoisyCube(30000, 0.003, 17));
+  const auto outward = OutwardCubeNormals(cloud->GetNumberOfPoints());
+  cloud->GetPointData()->SetNormals(outward);
+  vtkNew<vtkPointCloudBilateralFilter> filter;
+  filter->SetInputData(cloud);
+  filter->GenerateEstimatedNormalsOn();
+  filter->GenerateDisplacementLengthOn();
+  PCB_CHECK(std::string(filter->GetLastRunSummary()) == "not run yet",
+    "before a run: %s",
+    filter->GetLastRunSummary());
+  filter->Update();
+  PCB_CHECK(std::string(filter->GetLastRunSummary()).find("N 2 (measured)") != std::string::npos,
+    "last run: %s",
+    filter->GetLastRunSummary());
+  CheckAutomaticParameters(filter);
+
+  // A given parameter overrides only itself.
+  const double automaticNormalRadius = filter->GetNormalRadiusUsed();
+  filter->SetRadius(0.05);
+  filter->Update();
+  PCB_CHECK(filter->GetRadiusUsed() == 0.05 &&
+              filter->GetNormalRadiusUsed() == automaticNormalRadius &&
+              filter->GetNumberOfIterationsUsed() == 2,
+    "given radius: r %g, rn %g, N %d",
+    filter->GetRadiusUsed(),
+    filter->GetNormalRadiusUsed(),
+    filter->GetNumberOfIterationsUsed());
+
+  filter->SetRadius(0.0);
+  filter->SetAutomaticParametersToPaper();
+  filter->Update();
+  CheckPaperParameters(filter);
+  const FilterRun unknown =
+    RunFilter(cloud, [](vtkPointCloudBilateralFilter* f) { f->SetAutomaticParameters(7); });
+  PCB_CHECK(unknown.Output->GetNumberOfPoints() == 0 && unknown.Errors == 1 &&
+              unknown.Messages.find("the automatic parameters must be") != std::string::npos,
+    "an unknown automatic mode: %d errors, %s",
+    unknown.Errors,
+    unknown.Messages.c_str());
+  CheckEstimatedNormals(filter, cloud, outward);
+}
+
 void TestProgressAndAbort()
 {
   auto cloud = MakeCloud(NoisyCube(200000, 0.005, 19));
