@@ -184,6 +184,38 @@ void LocalFit::Local(const double* p, double local[3]) const
 
 namespace
 {
+/// The points' mean and the upper triangle (xx, xy, xz, yy, yz, zz) of their scatter matrix
+/// about it: the least-squares plane through the mean is normal to its smallest eigenvector.
+void MeanAndCovariance(const std::vector<std::array<double, 3>>& points,
+  double mean[3],
+  double covariance[6])
+{
+  std::fill_n(mean, 3, 0.0);
+  std::fill_n(covariance, 6, 0.0);
+  for (const auto& p : points)
+  {
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      mean[axis] += p[axis];
+    }
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    mean[axis] /= static_cast<double>(points.size());
+  }
+  for (const auto& p : points)
+  {
+    const double d[3] = { p[0] - mean[0], p[1] - mean[1], p[2] - mean[2] };
+    const double products[6] = {
+      d[0] * d[0], d[0] * d[1], d[0] * d[2], d[1] * d[1], d[1] * d[2], d[2] * d[2]
+    };
+    for (int entry = 0; entry < 6; ++entry)
+    {
+      covariance[entry] += products[entry];
+    }
+  }
+}
+
 /// FitQuadric with the number of terms known at compile time.
 template<int terms>
 LocalFit FitHeightFunction(const std::vector<std::array<double, 3>>& points,
@@ -196,31 +228,8 @@ LocalFit FitHeightFunction(const std::vector<std::array<double, 3>>& points,
   {
     return fit;
   }
-  // The frame: the points' least-squares plane through their mean.
-  double mean[3] = { 0, 0, 0 };
-  for (const auto& p : points)
-  {
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      mean[axis] += p[axis];
-    }
-  }
-  for (double& value : mean)
-  {
-    value /= static_cast<double>(m);
-  }
-  double covariance[6] = {};
-  for (const auto& p : points)
-  {
-    const double d[3] = { p[0] - mean[0], p[1] - mean[1], p[2] - mean[2] };
-    const double products[6] = {
-      d[0] * d[0], d[0] * d[1], d[0] * d[2], d[1] * d[1], d[1] * d[2], d[2] * d[2]
-    };
-    for (int entry = 0; entry < 6; ++entry)
-    {
-      covariance[entry] += products[entry];
-    }
-  }
+  double mean[3], covariance[6];
+  MeanAndCovariance(points, mean, covariance);
   // The frame and the coefficients in local arrays, copied into the fit once: written through
   // the fit, the per-point loops would reload them after every store (they might alias).
   double normal[3], tangentU[3], tangentV[3];
