@@ -1,4 +1,4 @@
-"""The README's real-scan figure: a cross-section of the bridge deck in the airborne LiDAR tile
+"""The real-scan figure of docs/parameters.md: a cross-section of the bridge deck in the airborne LiDAR tile
 autzen_trim.las, as scanned, after the paper's heuristic parameters and after the automatic ones.
 
     python3 autzen_profile.py INPUT.las PAPER.las AUTOMATIC.las OUT.png

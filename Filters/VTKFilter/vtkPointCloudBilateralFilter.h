@@ -179,7 +179,7 @@ public:
    * Edge-aware mode, beyond the paper (default off: the paper's filter, bit for bit): the
    * normals are filtered bilaterally before the displacement, so that points near a sharp edge
    * move along the normal of their own side; it keeps edges sharper under strong noise. See
-   * EdgeAwareNormals.h in the core and the README.
+   * EdgeAwareNormals.h in the core and docs/edge-aware.md.
    */
   vtkSetMacro(EdgeAware, bool);
   vtkGetMacro(EdgeAware, bool);

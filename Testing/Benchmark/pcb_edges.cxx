@@ -11,7 +11,7 @@
 // then the cheapest edge-aware setting that reaches CGAL bilateral's best edge RMS and the
 // paper's best RMS, with its time, and the automatic mode's rule (ChooseParameters) in both
 // modes.
-// Built with the project, run by hand (see README.md, "Edge-aware mode"):
+// Built with the project, run by hand (see docs/edge-aware.md):
 //
 //   pcb_edges [--only SUBSTRING] [--no-cgal]
 #include "AutomaticRule.h"

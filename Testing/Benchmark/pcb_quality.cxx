@@ -1,6 +1,6 @@
 // pcb_quality: how well the filter denoises generated clouds with exact ground truth, for the
 // automatic parameters against a grid search, the paper's heuristic and the old default.
-// Built with the project (core only), run by hand (see README.md, "Automatic parameters"):
+// Built with the project (core only), run by hand (see docs/parameters.md):
 //
 //   pcb_quality [--quick] [--no-grid] [--only SUBSTRING] [--csv FILE]
 //       each case: a shape (cube, sharp edge, cylinder with a planar cut, sphere, CAD part,

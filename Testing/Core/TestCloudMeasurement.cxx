@@ -546,7 +546,7 @@ void CheckUnmeasuredCloud()
 }
 
 /// One of pcb_quality's small cases (same clouds: same seeds) and the best of its grid search
-/// as printed in README.md.
+/// as printed in docs/parameters.md.
 struct QualityCase
 {
   const char* Name;

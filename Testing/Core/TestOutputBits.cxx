@@ -1,8 +1,8 @@
 // The output's bits are part of the contract: the same input gives the same bits with any
 // number of threads, any instruction-set build of the kernel, and after any speed work. This
 // test pins them: a change to the numbers must change the expected hash below, on purpose, with
-// the reason in its commit. (Bits may differ on another C library: the eigensolver calls acos
-// and cos.)
+// the reason in its commit. (The kernel calls no library function but sqrt, so another C
+// library gives the same bits.)
 #include "BilateralFilter.h"
 #include "BilateralKernel.h"
 #include "PinnedBits.h"

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Takes screenshots of the ParaView GUI with the plugin, driven as a user would: the sample opened
-# (its points shown), the Filters menu entry (filters_menu.png, in the README), a bad radius
+# (its points shown), the Filters menu entry (filters_menu.png, in docs/usage.md), a bad radius
 # (error.png: one message, nothing shown), good values (recovered.png), the Properties panel with
-# advanced properties (properties_panel.png, in the README), colouring by the displacement
+# advanced properties (properties_panel.png, in docs/usage.md), colouring by the displacement
 # (colour.png), a long run with its progress (running.png) and after Abort (aborted.png).
 #   Testing/ParaView/TakeScreenshots.sh BUILD_DIR OUTPUT_DIR
 # Needs xvfb, xdotool, imagemagick and libqt5svg5 (for the icons). Starts its own X server and
