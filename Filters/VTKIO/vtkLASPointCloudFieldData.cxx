@@ -1,5 +1,7 @@
 #include "vtkLASPointCloudFieldData.h"
 
+#include "LASPointFormat.h"
+
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"

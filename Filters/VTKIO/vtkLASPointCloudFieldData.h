@@ -3,7 +3,7 @@
 #ifndef vtkLASPointCloudFieldData_h
 #define vtkLASPointCloudFieldData_h
 
-#include "LASFormat.h"
+#include "LASHeader.h"
 
 #include <string>
 

@@ -1,6 +1,7 @@
 #include "vtkLASPointCloudReader.h"
 
-#include "LASFormat.h"
+#include "LASHeader.h"
+#include "LASReader.h"
 #include "vtkLASPointCloudFieldData.h"
 #include "vtkPointCloudVertices.h"
 

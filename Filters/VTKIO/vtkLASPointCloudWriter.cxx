@@ -1,6 +1,6 @@
 #include "vtkLASPointCloudWriter.h"
 
-#include "LASFormat.h"
+#include "LASWriter.h"
 #include "vtkLASPointCloudFieldData.h"
 
 #include "vtkDataArray.h"

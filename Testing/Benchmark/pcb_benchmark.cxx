@@ -30,7 +30,9 @@
 #include "BenchmarkTiming.h"
 #include "BilateralFilter.h"
 #include "BilateralKernel.h"
-#include "LASFormat.h"
+#include "LASHeader.h"
+#include "LASReader.h"
+#include "LASWriter.h"
 #include "PointCloudText.h"
 #include "SampleShapes.h"
 

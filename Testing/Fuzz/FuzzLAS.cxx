@@ -7,7 +7,9 @@
 // exception: the coordinates of an axis whose scale and offset cannot give every stored
 // integer back (a scale near zero or infinity, an offset of 2^48 steps or more) must decode to
 // the same values, not to the same integers.
-#include "LASFormat.h"
+#include "LASHeader.h"
+#include "LASReader.h"
+#include "LASWriter.h"
 
 #include <cstdint>
 #include <cstdlib>

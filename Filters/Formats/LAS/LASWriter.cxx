@@ -1,0 +1,283 @@
+#include "LASWriter.h"
+
+#include "LASBinary.h"
+#include "LASPointEncoder.h"
+#include "LASPointFormat.h"
+#include "LASRecordBytes.h"
+#include "LASWritePoints.h"
+#include "ReplacingFile.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+
+namespace pcbilateral
+{
+
+namespace
+{
+using namespace las;
+
+/// Whether a file with the header `h` and `count` points can be written. Returns an empty
+/// string, or what is wrong.
+std::string CheckWritable(const LASHeader& h, std::size_t count)
+{
+  const std::size_t standard = LASStandardRecordLength(h.PointFormat);
+  if (standard == 0 || h.RecordLength < standard)
+  {
+    return "cannot write point format " + std::to_string(h.PointFormat) + " with records of " +
+           Str(h.RecordLength) + " bytes";
+  }
+  if (h.VersionMajor != 1 || h.VersionMinor > 4 || (h.PointFormat > 5 && h.VersionMinor < 4))
+  {
+    return "cannot write point format " + std::to_string(h.PointFormat) + " in LAS " +
+           std::to_string(h.VersionMajor) + "." + std::to_string(h.VersionMinor);
+  }
+  if (h.VersionMinor < 4 && count > std::numeric_limits<std::uint32_t>::max())
+  {
+    return Str(count) + " points do not fit in LAS 1." + std::to_string(h.VersionMinor) +
+           " (at most 4294967295; LAS 1.4 holds more)";
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (!std::isfinite(h.Scale[axis]) || h.Scale[axis] == 0.0 || !std::isfinite(h.Offset[axis]))
+    {
+      return std::string("the scale or offset of ") + "xyz"[axis] + " is zero or not finite";
+    }
+  }
+  return std::string();
+}
+
+/// The records as they are written: the VLRs' bytes, after the header, and the records written
+/// as EVLRs, after the points (the extended ones, and VLRs too long for a VLR).
+struct RecordsToWrite
+{
+  std::vector<std::uint8_t> VLRBytes;
+  std::uint32_t VLRCount = 0;
+  std::vector<const LASRecord*> Extended;
+};
+
+RecordsToWrite SortRecords(const LASFileInfo& info)
+{
+  RecordsToWrite records;
+  for (const LASRecord& record : info.VLRs)
+  {
+    if (record.Extended || record.Data.size() > 0xFFFF)
+    {
+      records.Extended.push_back(&record);
+      continue;
+    }
+    AppendRecord(records.VLRBytes, record, false);
+    ++records.VLRCount;
+  }
+  for (const LASRecord& record : info.EVLRs)
+  {
+    records.Extended.push_back(&record);
+  }
+  return records;
+}
+
+/// What the header gives besides the fields of LASHeader: where things are and how many.
+struct HeaderCounts
+{
+  std::size_t HeaderSize = 0;
+  std::size_t OffsetToPoints = 0;
+  std::uint32_t VLRs = 0;
+  std::uint32_t EVLRs = 0;
+  std::uint64_t Points = 0;
+  std::uint64_t ByReturn[15] = {};
+  double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+};
+
+/// The header block of a LAS file to write, with its counts, bounds and offsets filled in.
+std::vector<std::uint8_t> EncodeHeader(const LASHeader& h, const HeaderCounts& counts)
+{
+  std::vector<std::uint8_t> out(counts.HeaderSize, 0);
+  std::uint8_t* d = out.data();
+  std::memcpy(d, "LASF", 4);
+  Store<std::uint16_t>(d + 4, h.FileSourceId);
+  // Bit 1 says waveform data is inside the file: it is not kept, so it is not written.
+  Store<std::uint16_t>(d + 6, static_cast<std::uint16_t>(h.GlobalEncoding & ~2u));
+  std::memcpy(d + 8, h.ProjectId, 16);
+  d[24] = h.VersionMajor;
+  d[25] = h.VersionMinor;
+  StoreString(d + 26, h.SystemIdentifier, 32);
+  StoreString(d + 58, h.GeneratingSoftware, 32);
+  Store<std::uint16_t>(d + 90, h.CreationDay);
+  Store<std::uint16_t>(d + 92, h.CreationYear);
+  Store<std::uint16_t>(d + 94, static_cast<std::uint16_t>(counts.HeaderSize));
+  Store<std::uint32_t>(d + 96, static_cast<std::uint32_t>(counts.OffsetToPoints));
+  Store<std::uint32_t>(d + 100, counts.VLRs);
+  d[104] = h.PointFormat;
+  Store<std::uint16_t>(d + 105, h.RecordLength);
+  const bool legacy =
+    h.PointFormat <= 5 && counts.Points <= std::numeric_limits<std::uint32_t>::max();
+  Store<std::uint32_t>(d + 107, legacy ? static_cast<std::uint32_t>(counts.Points) : 0u);
+  for (int r = 0; r < 5; ++r)
+  {
+    Store<std::uint32_t>(d + 111 + 4 * r,
+      legacy ? static_cast<std::uint32_t>(std::min<std::uint64_t>(counts.ByReturn[r], 0xFFFFFFFFu))
+             : 0u);
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    Store<double>(d + 131 + 8 * axis, h.Scale[axis]);
+    Store<double>(d + 155 + 8 * axis, h.Offset[axis]);
+    Store<double>(d + 179 + 16 * axis, counts.Bounds[3 + axis]);
+    Store<double>(d + 187 + 16 * axis, counts.Bounds[axis]);
+  }
+  if (h.VersionMinor >= 4)
+  {
+    const std::uint64_t evlrStart =
+      counts.EVLRs
+        ? counts.OffsetToPoints + counts.Points * static_cast<std::uint64_t>(h.RecordLength)
+        : 0;
+    Store<std::uint64_t>(d + 235, evlrStart);
+    Store<std::uint32_t>(d + 243, counts.EVLRs);
+    Store<std::uint64_t>(d + 247, counts.Points);
+    for (int r = 0; r < 15; ++r)
+    {
+      Store<std::uint64_t>(d + 255 + 8 * r, counts.ByReturn[r]);
+    }
+  }
+  return out;
+}
+
+/// Encodes and writes the point records at `offset`, the file's end, mapped where possible.
+/// Returns whether every write succeeded (if not, errno says why).
+bool WritePoints(std::FILE* file,
+  std::uint64_t offset,
+  const BlockEncoder& encoder,
+  std::vector<BlockSummary>& summaries)
+{
+  const MappedWrite mapped = WritePointsMapped(file, offset, encoder, summaries);
+  return mapped == MappedWrite::NotMapped ? WritePointsInChunks(file, encoder, summaries)
+                                          : mapped == MappedWrite::Written;
+}
+
+bool AnyOutOfRange(const std::vector<BlockSummary>& summaries)
+{
+  return std::any_of(summaries.begin(),
+    summaries.end(),
+    [](const BlockSummary& summary) { return summary.OutOfRange; });
+}
+
+/// The bounds and the points by return of all the blocks into `counts`.
+void SumBlocks(const std::vector<BlockSummary>& summaries, HeaderCounts& counts)
+{
+  for (std::size_t b = 0; b < summaries.size(); ++b)
+  {
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      counts.Bounds[axis] = b == 0 ? summaries[b].Bounds[axis]
+                                   : std::min(counts.Bounds[axis], summaries[b].Bounds[axis]);
+      counts.Bounds[3 + axis] =
+        b == 0 ? summaries[b].Bounds[3 + axis]
+               : std::max(counts.Bounds[3 + axis], summaries[b].Bounds[3 + axis]);
+    }
+    for (int r = 0; r < 15; ++r)
+    {
+      counts.ByReturn[r] += summaries[b].ByReturn[r];
+    }
+  }
+}
+} // namespace
+
+std::string WriteLAS(const std::string& path,
+  const LASFileInfo& info,
+  std::size_t count,
+  const double* positions,
+  const void* const* columns)
+{
+  const LASHeader& h = info.Header;
+  const std::string problem = CheckWritable(h, count);
+  if (!problem.empty())
+  {
+    return path + ": " + problem;
+  }
+  const RecordsToWrite records = SortRecords(info);
+  if (!records.Extended.empty() && h.VersionMinor < 4)
+  {
+    return path + ": a variable-length record longer than 65535 bytes needs LAS 1.4";
+  }
+  HeaderCounts counts;
+  counts.HeaderSize = HeaderSizeOfVersion(h.VersionMinor);
+  counts.OffsetToPoints = counts.HeaderSize + records.VLRBytes.size();
+  if (counts.OffsetToPoints > std::numeric_limits<std::uint32_t>::max())
+  {
+    return path + ": the variable-length records are too long for a LAS header";
+  }
+
+  ReplacingFile output(path);
+  std::FILE* file = output.Get();
+  if (!file)
+  {
+    return output.OpenError();
+  }
+  // The header's place first; it is written again at the end with the bounds and counts.
+  std::vector<std::uint8_t> header(counts.HeaderSize, 0);
+  const std::vector<std::uint8_t>& vlrBytes = records.VLRBytes;
+  bool ok = std::fwrite(header.data(), 1, header.size(), file) == header.size() &&
+            std::fwrite(vlrBytes.data(), 1, vlrBytes.size(), file) == vlrBytes.size();
+
+  const BlockEncoder encoder(info, count, positions, columns);
+  std::vector<BlockSummary> summaries(encoder.Blocks());
+  int failure = 0; // the errno of a failed write of the records
+  if (ok)
+  {
+    ok = WritePoints(file, counts.OffsetToPoints, encoder, summaries);
+    failure = ok ? 0 : errno;
+  }
+  if (AnyOutOfRange(summaries))
+  {
+    return path + ": a point's coordinates do not fit the LAS records' 32-bit integers with "
+                  "the scale and offset of the header (or are not finite)";
+  }
+
+  std::vector<std::uint8_t> evlrBytes;
+  for (const LASRecord* record : records.Extended)
+  {
+    AppendRecord(evlrBytes, *record, true);
+  }
+  ok = ok && std::fwrite(evlrBytes.data(), 1, evlrBytes.size(), file) == evlrBytes.size();
+
+  counts.VLRs = records.VLRCount;
+  counts.EVLRs = static_cast<std::uint32_t>(records.Extended.size());
+  counts.Points = count;
+  SumBlocks(summaries, counts);
+  header = EncodeHeader(h, counts);
+  ok = ok && std::fseek(file, 0, SEEK_SET) == 0 &&
+       std::fwrite(header.data(), 1, header.size(), file) == header.size();
+  return output.Commit(ok, failure);
+}
+
+LASFileInfo DefaultLASFileInfo(std::size_t count, const double bounds[6], bool gpsTime, bool rgb)
+{
+  LASFileInfo info;
+  LASHeader& h = info.Header;
+  const bool huge = count > std::numeric_limits<std::uint32_t>::max();
+  h.VersionMinor = huge ? 4 : 2;
+  h.PointFormat = huge ? static_cast<std::uint8_t>(rgb ? 7 : 6)
+                       : static_cast<std::uint8_t>((gpsTime ? 1 : 0) + (rgb ? 2 : 0));
+  h.RecordLength = static_cast<std::uint16_t>(LASStandardRecordLength(h.PointFormat));
+  h.SystemIdentifier = "pcbilateral";
+  h.GeneratingSoftware = "PointCloudBilateral";
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const double low = std::isfinite(bounds[axis]) ? bounds[axis] : 0.0;
+    const double high = std::isfinite(bounds[3 + axis]) ? bounds[3 + axis] : low;
+    // A round offset at or below the lowest value; the finest power of ten that keeps the
+    // whole extent within 2^31 steps, but no finer than a nanometre of a metre's units.
+    h.Offset[axis] = std::floor(low);
+    const double extent = std::max(high - h.Offset[axis], 1e-300);
+    const double exponent = std::ceil(std::log10(extent / 2.0e9));
+    h.Scale[axis] = std::pow(10.0, std::max(exponent, -9.0));
+  }
+  LASDimensionsFor(h.PointFormat, h.RecordLength, info.VLRs, info.Dimensions);
+  return info;
+}
+
+} // namespace pcbilateral

@@ -1,0 +1,38 @@
+// Writing uncompressed LAS files (ASPRS LAS 1.0 to 1.4, point formats 0 to 10) from points in
+// columns. Plain C++17, no VTK types.
+#ifndef pcbilateral_LASWriter_h
+#define pcbilateral_LASWriter_h
+
+#include "LASHeader.h"
+
+#include <cstddef>
+#include <string>
+
+namespace pcbilateral
+{
+
+/**
+ * Writes a LAS file with the version, point format, scales, offsets, record length and (E)VLRs
+ * of `info`, and its dimensions filled from `columns` (as DecodeLASPoints lays them out; a null
+ * column writes zeros). The bounds, point counts and counts by return are computed from the
+ * points. Coordinates that do not fit the 32-bit records with the scale and offset are an
+ * error. Writes to a temporary file beside `path` and renames it, so a failed write leaves no
+ * file. Returns an empty string or a one-line message.
+ */
+std::string WriteLAS(const std::string& path,
+  const LASFileInfo& info,
+  std::size_t count,
+  const double* positions,
+  const void* const* columns);
+
+/**
+ * A header for points that come from no LAS file: LAS 1.2 (1.4 beyond 2^32 - 1 points), the
+ * smallest point format holding GPS time and colour when asked for, offsets at the bounds'
+ * lower corner and a power-of-ten scale fine enough to keep the points' precision within the
+ * 32-bit records. `bounds` is min x, min y, min z, max x, max y, max z.
+ */
+LASFileInfo DefaultLASFileInfo(std::size_t count, const double bounds[6], bool gpsTime, bool rgb);
+
+} // namespace pcbilateral
+
+#endif
