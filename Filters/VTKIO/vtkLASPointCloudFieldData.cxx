@@ -1,5 +1,6 @@
 #include "vtkLASPointCloudFieldData.h"
 
+#include "LASCoordinateSystem.h"
 #include "LASPointFormat.h"
 
 #include "vtkDataArray.h"
@@ -155,17 +156,10 @@ void vtkLASStoreFileInfo(const pcbilateral::LASFileInfo& info, vtkFieldData* fie
     AddBytes(fieldData, "LAS EVLRs", evlrs.data(), evlrs.size());
   }
   // The coordinate system as text, for people (the writer uses the records themselves).
-  for (const auto* records : { &info.VLRs, &info.EVLRs })
+  std::string wkt;
+  if (pcbilateral::FindLASCoordinateSystemWKT(info, wkt))
   {
-    for (const pcbilateral::LASRecord& record : *records)
-    {
-      if (record.UserId == "LASF_Projection" && record.RecordId == 2112 &&
-          !fieldData->GetAbstractArray("LAS CRS WKT"))
-      {
-        const auto* text = reinterpret_cast<const char*>(record.Data.data());
-        AddString(fieldData, "LAS CRS WKT", std::string(text, strnlen(text, record.Data.size())));
-      }
-    }
+    AddString(fieldData, "LAS CRS WKT", wkt);
   }
 }
 
