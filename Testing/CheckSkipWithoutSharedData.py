@@ -34,10 +34,11 @@ def read_cache(build):
     return cache
 
 
-def run(command, cwd=None):
+def run(command, cwd=None, check=True):
+    """Runs a command without the two variables in its environment; its output."""
     environment = {k: v for k, v in os.environ.items() if k not in VARIABLES}
     result = subprocess.run(command, cwd=cwd, env=environment, capture_output=True, text=True)
-    if result.returncode != 0 and command[0] != "ctest":
+    if check and result.returncode != 0:
         sys.exit(f"FAILED: {' '.join(command)}\n{result.stdout}{result.stderr}")
     return result.stdout
 
@@ -45,7 +46,8 @@ def run(command, cwd=None):
 def configure(source, scratch, cache, folders):
     options = [f"-D{name}={cache[name]}" for name in MIRRORED if cache.get(name)]
     options += [f"-D{name}={folder}" for name, folder in zip(VARIABLES, folders)]
-    run(["cmake", "-S", source, "-B", scratch, "-G", cache["CMAKE_GENERATOR"]] + options)
+    run([cache["CMAKE_COMMAND"], "-S", source, "-B", scratch, "-G", cache["CMAKE_GENERATOR"]] +
+        options)
 
 
 def link_programs(build, scratch, cache):
@@ -62,9 +64,9 @@ def link_programs(build, scratch, cache):
                     os.symlink(os.path.join(root, name), link)
 
 
-def data_tests(scratch, folders):
-    """The tests whose command or environment names one of the folders."""
-    listing = json.loads(run(["ctest", "--show-only=json-v1"], cwd=scratch))
+def data_tests(scratch, cache, folders):
+    """The tests whose command or environment names one of the folders, and all the tests."""
+    listing = json.loads(run([cache["CMAKE_CTEST_COMMAND"], "--show-only=json-v1"], cwd=scratch))
     names = []
     for test in listing["tests"]:
         words = list(test.get("command", []))
@@ -76,12 +78,13 @@ def data_tests(scratch, folders):
     return names, {test["name"] for test in listing["tests"]}
 
 
-def check_skipped(scratch, names):
+def check_skipped(scratch, cache, names):
     """Runs the tests and returns what is wrong: each must be skipped by its SKIP_RETURN_CODE,
     its output saying why (a line "skipped: ..." naming the variable to set)."""
     report = os.path.join(scratch, "results.xml")
     pattern = "^(" + "|".join(re.escape(name) for name in names) + ")$"
-    run(["ctest", "-R", pattern, "--output-junit", report], cwd=scratch)
+    run([cache["CMAKE_CTEST_COMMAND"], "-R", pattern, "--output-junit", report], cwd=scratch,
+        check=False)
     results = {case.get("name"): case for case in ElementTree.parse(report).getroot()}
     problems = []
     for name in names:
@@ -109,18 +112,18 @@ def main():
         missing = [os.path.join(scratch, "missing-" + name) for name in VARIABLES]
         configure(source, scratch, cache, missing)
         link_programs(build, scratch, cache)
-        names, _ = data_tests(scratch, missing)
+        names, _ = data_tests(scratch, cache, missing)
         if not names:
             sys.exit("FAILED: no test names the shared data folders")
         print("the tests that read the shared data:", " ".join(names))
-        problems = check_skipped(scratch, names)
+        problems = check_skipped(scratch, cache, names)
         # Not set at all: the same tests, none left out or disabled, each skipped.
         configure(source, scratch, cache, ["", ""])
-        _, all_names = data_tests(scratch, [])
+        _, all_names = data_tests(scratch, cache, [])
         problems += [f"{name}: no such test when the data is not set" for name in names
                      if name not in all_names]
         present = [name for name in names if name in all_names]
-        problems += check_skipped(scratch, present)
+        problems += check_skipped(scratch, cache, present)
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
     for problem in problems:
