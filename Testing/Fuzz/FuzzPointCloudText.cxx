@@ -3,6 +3,7 @@
 // whether the text is parsed in one piece or in many (the parallel parser's pieces must join
 // seamlessly); and a table of points written back in its layout must read back as the same
 // table, layout included (header line or not, the header's names, the delimiter).
+#include "FuzzScratchFile.h"
 #include "PointCloudText.h"
 
 #include <cstdint>
@@ -10,7 +11,6 @@
 #include <cstring>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 namespace
@@ -52,9 +52,7 @@ bool IsConsistent(const pcbilateral::PointCloudTable& table, bool hasNormals)
 /// Whether the table, written to a file and read back, is the same table.
 bool WritesBack(const pcbilateral::PointCloudTable& table, bool hasNormals)
 {
-  static const std::string path = (std::filesystem::temp_directory_path() /
-                                   ("FuzzPointCloudText-" + std::to_string(getpid()) + ".xyz"))
-                                    .string();
+  static const std::string path = FuzzScratchPath("FuzzPointCloudText", ".xyz");
   pcbilateral::PointCloudTable back;
   const bool same = pcbilateral::WritePointCloudText(path, table).empty() &&
                     pcbilateral::ReadPointCloudText(path, hasNormals, back).empty() &&

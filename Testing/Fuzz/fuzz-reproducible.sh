@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The reproducible fuzz run of the test command (Fuzz.text, Fuzz.filter, Fuzz.las): the same
-# commit tries the same inputs in the same order, whatever the environment (on processors with
-# the same instruction sets), so that a run fails for a reason, never by chance, and a failure
-# can be run again (README.md).
+# commit tries the same inputs in the same order, whatever the environment (on machines of the
+# same kind: README.md), so that a run fails for a reason, never by chance, and a failure can
+# be run again.
 #   fuzz-reproducible.sh FUZZER SEED_CORPUS SCRATCH_CORPUS RUNS [SEED]
 # - the scratch corpus, where libFuzzer writes the inputs it finds, is emptied first: a run does
 #   not depend on the ones before;
