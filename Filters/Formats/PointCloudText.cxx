@@ -162,101 +162,102 @@ void Append(std::vector<T>& to, const std::vector<T>& from)
 {
   to.insert(to.end(), from.begin(), from.end());
 }
-} // namespace
 
-std::string ParsePointCloudText(const char* text,
-  std::size_t length,
-  bool hasNormals,
-  const std::string& sourceName,
-  PointCloudTable& table,
-  std::size_t minimumPieceBytes)
+/// The delimiter of a line: the blank after its first field, a tab or else a space.
+char DelimiterOf(const char* line, const char* lineEnd)
 {
-  table = PointCloudTable();
-  const std::size_t leadingColumns = hasNormals ? 6 : 3;
-  const char* end = text + length;
+  const char* gap = SkipField(SkipSpaces(line, lineEnd), lineEnd);
+  return gap < lineEnd && *gap == '\t' ? '\t' : ' ';
+}
 
-  // The first line with content: a header naming the columns, or the first point, which sets
-  // the number of columns.
-  std::size_t lineNumber = 0;
-  const char* line = text;
-  std::vector<std::string> headerNames;
-  std::size_t columns = 0;
-  while (line < end && columns == 0)
+/// What the lines before the points say.
+struct TextStart
+{
+  /// The header's fields, if there is a header line.
+  std::vector<std::string> HeaderNames;
+  /// The columns of the first point (0: no point), where its line starts and its number less one.
+  std::size_t Columns = 0;
+  const char* FirstPoint = nullptr;
+  std::size_t LineNumber = 0;
+  char Delimiter = '\t';
+};
+
+/**
+ * Reads up to the first point: the header line, if the first line with content does not start
+ * with a number, and the number of columns of the first point, which every point must have.
+ * Returns an empty string, or a message naming the line.
+ */
+std::string ReadTextStart(const char* text,
+  const char* end,
+  std::size_t leadingColumns,
+  const std::string& sourceName,
+  TextStart& start)
+{
+  for (const char* line = text; line < end; line = LineEnd(line, end) + 1)
   {
     const char* lineEnd = LineEnd(line, end);
-    ++lineNumber;
-    if (!IsSkipped(line, lineEnd))
+    ++start.LineNumber;
+    if (IsSkipped(line, lineEnd))
     {
-      const char* first = SkipSpaces(line, lineEnd);
-      double value;
-      if (headerNames.empty() && !ParseNumber(first, SkipField(first, lineEnd), value))
-      {
-        for (const char* c = first; c < lineEnd; c = SkipSpaces(c, lineEnd))
-        {
-          const char* fieldEnd = SkipField(c, lineEnd);
-          headerNames.emplace_back(c, fieldEnd);
-          c = fieldEnd;
-        }
-        line = lineEnd + 1;
-        continue;
-      }
-      columns = CountFields(line, lineEnd);
-      if (columns < leadingColumns)
-      {
-        return Located(sourceName,
-          lineNumber,
-          "expected at least " + std::to_string(leadingColumns) + " numbers (x y z" +
-            (hasNormals ? " nx ny nz" : "") + "), found " + std::to_string(columns));
-      }
-      if (!headerNames.empty() && headerNames.size() != columns)
-      {
-        return Located(sourceName,
-          lineNumber,
-          "the header names " + std::to_string(headerNames.size()) + " columns but this line has " +
-            std::to_string(columns));
-      }
-      --lineNumber; // the point's line is parsed again below
-      break;
+      continue;
     }
-    line = lineEnd + 1;
+    start.Delimiter = DelimiterOf(line, lineEnd);
+    const char* first = SkipSpaces(line, lineEnd);
+    double value;
+    if (start.HeaderNames.empty() && !ParseNumber(first, SkipField(first, lineEnd), value))
+    {
+      for (const char* c = first; c < lineEnd; c = SkipSpaces(c, lineEnd))
+      {
+        const char* fieldEnd = SkipField(c, lineEnd);
+        start.HeaderNames.emplace_back(c, fieldEnd);
+        c = fieldEnd;
+      }
+      continue;
+    }
+    start.Columns = CountFields(line, lineEnd);
+    if (start.Columns < leadingColumns)
+    {
+      return Located(sourceName,
+        start.LineNumber,
+        "expected at least " + std::to_string(leadingColumns) + " numbers (x y z" +
+          (leadingColumns == 6 ? " nx ny nz" : "") + "), found " + std::to_string(start.Columns));
+    }
+    if (!start.HeaderNames.empty() && start.HeaderNames.size() != start.Columns)
+    {
+      return Located(sourceName,
+        start.LineNumber,
+        "the header names " + std::to_string(start.HeaderNames.size()) +
+          " columns but this line has " + std::to_string(start.Columns));
+    }
+    start.FirstPoint = line;
+    --start.LineNumber; // the point's line is parsed again with the others
+    break;
   }
-  if (columns == 0)
-  {
-    return std::string(); // no points
-  }
-  for (std::size_t c = leadingColumns; c < columns; ++c)
-  {
-    table.ExtraColumnNames.push_back(
-      headerNames.empty() ? "column" + std::to_string(c + 1) : headerNames[c]);
-  }
+  return std::string();
+}
 
-  // The points, in pieces of whole lines parsed in parallel, then joined in order.
-  const std::size_t bytes = static_cast<std::size_t>(end - line);
+/// Where the pieces of [begin, end) start: at least minimumPieceBytes each (at most 64 pieces),
+/// cut after a line end; the last bound is end.
+std::vector<const char*> PieceBounds(const char* begin,
+  const char* end,
+  std::size_t minimumPieceBytes)
+{
+  const std::size_t bytes = static_cast<std::size_t>(end - begin);
   const int pieceCount = static_cast<int>(
     std::min<std::size_t>(64, bytes / std::max<std::size_t>(1, minimumPieceBytes) + 1));
-  std::vector<const char*> bounds{ line };
+  std::vector<const char*> bounds{ begin };
   for (int k = 1; k < pieceCount; ++k)
   {
-    const char* cut = std::max(bounds.back(), line + bytes * k / pieceCount);
+    const char* cut = std::max(bounds.back(), begin + bytes * k / pieceCount);
     bounds.push_back(cut < end ? LineEnd(cut, end) + 1 : end);
   }
   bounds.push_back(end);
-  std::vector<ParsedPiece> pieces(static_cast<std::size_t>(pieceCount));
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int k = 0; k < pieceCount; ++k)
-  {
-    ParsePiece(
-      std::min(bounds[k], end), std::min(bounds[k + 1], end), columns, leadingColumns, pieces[k]);
-  }
-  for (const ParsedPiece& piece : pieces)
-  {
-    if (!piece.Error.empty())
-    {
-      return Located(sourceName, lineNumber + piece.ErrorLine, piece.Error);
-    }
-    lineNumber += piece.NumberOfLines;
-  }
+  return bounds;
+}
 
+/// The pieces' points appended to the table's, in order.
+void JoinPieces(std::vector<ParsedPiece>& pieces, PointCloudTable& table)
+{
   table.Positions = std::move(pieces[0].Positions);
   table.Normals = std::move(pieces[0].Normals);
   table.ExtraColumns = std::move(pieces[0].ExtraColumns);
@@ -271,7 +272,75 @@ std::string ParsePointCloudText(const char* text,
     }
     table.NumberOfPoints += pieces[k].NumberOfPoints;
   }
+}
+
+/// The points from the text start on, in pieces of whole lines parsed in parallel, then joined
+/// in order. Returns an empty string, or a message naming the first bad line.
+std::string ParsePoints(const TextStart& start,
+  const char* end,
+  std::size_t leadingColumns,
+  const std::string& sourceName,
+  std::size_t minimumPieceBytes,
+  PointCloudTable& table)
+{
+  const std::vector<const char*> bounds = PieceBounds(start.FirstPoint, end, minimumPieceBytes);
+  const int pieceCount = static_cast<int>(bounds.size()) - 1;
+  std::vector<ParsedPiece> pieces(static_cast<std::size_t>(pieceCount));
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int k = 0; k < pieceCount; ++k)
+  {
+    ParsePiece(std::min(bounds[k], end),
+      std::min(bounds[k + 1], end),
+      start.Columns,
+      leadingColumns,
+      pieces[k]);
+  }
+  std::size_t lineNumber = start.LineNumber;
+  for (const ParsedPiece& piece : pieces)
+  {
+    if (!piece.Error.empty())
+    {
+      return Located(sourceName, lineNumber + piece.ErrorLine, piece.Error);
+    }
+    lineNumber += piece.NumberOfLines;
+  }
+  JoinPieces(pieces, table);
   return std::string();
+}
+} // namespace
+
+std::string ParsePointCloudText(const char* text,
+  std::size_t length,
+  bool hasNormals,
+  const std::string& sourceName,
+  PointCloudTable& table,
+  std::size_t minimumPieceBytes)
+{
+  table = PointCloudTable();
+  const std::size_t leadingColumns = hasNormals ? 6 : 3;
+  const char* end = text + length;
+  TextStart start;
+  const std::string error = ReadTextStart(text, end, leadingColumns, sourceName, start);
+  if (!error.empty())
+  {
+    return error;
+  }
+  PointCloudTextLayout& layout = table.Layout;
+  const std::vector<std::string>& header = start.HeaderNames;
+  layout.Header = header.empty() ? PointCloudTextLayout::HeaderLine::Never
+                                 : PointCloudTextLayout::HeaderLine::Always;
+  layout.LeadingColumnNames.assign(
+    header.begin(), header.begin() + std::min(leadingColumns, header.size()));
+  layout.Delimiter = start.Delimiter;
+  if (start.Columns == 0)
+  {
+    return std::string(); // no points
+  }
+  for (std::size_t c = leadingColumns; c < start.Columns; ++c)
+  {
+    table.ExtraColumnNames.push_back(header.empty() ? "column" + std::to_string(c + 1) : header[c]);
+  }
+  return ParsePoints(start, end, leadingColumns, sourceName, minimumPieceBytes, table);
 }
 
 std::string ReadPointCloudText(const std::string& path, bool hasNormals, PointCloudTable& table)
@@ -304,6 +373,84 @@ std::string ReadPointCloudText(const std::string& path, bool hasNormals, PointCl
   return ParsePointCloudText(text.get(), size, hasNormals, path, table);
 }
 
+namespace
+{
+/// A column's name as one field of the header line: no blanks, and never empty.
+std::string HeaderField(std::string name, std::size_t column)
+{
+  std::replace_if(
+    name.begin(), name.end(), [](char ch) { return IsSpace(ch) || ch == '\n'; }, '_');
+  return name.empty() ? "column" + std::to_string(column + 1) : name;
+}
+
+/// The header line the table's layout asks for, with its line end, or "" for none.
+std::string MakeHeaderLine(const PointCloudTable& table, bool withNormals)
+{
+  using HeaderLine = PointCloudTextLayout::HeaderLine;
+  const PointCloudTextLayout& layout = table.Layout;
+  if (layout.Header == HeaderLine::Never ||
+      (layout.Header == HeaderLine::WhenExtraColumns && table.ExtraColumns.empty()))
+  {
+    return std::string();
+  }
+  static const char* const leadingNames[] = { "x", "y", "z", "nx", "ny", "nz" };
+  const std::size_t leading = withNormals ? 6 : 3;
+  std::string header;
+  for (std::size_t c = 0; c < leading + table.ExtraColumns.size(); ++c)
+  {
+    const std::vector<std::string>& names =
+      c < leading ? layout.LeadingColumnNames : table.ExtraColumnNames;
+    const std::size_t k = c < leading ? c : c - leading;
+    std::string name = k < names.size() ? names[k] : "";
+    if (name.empty() && c < leading)
+    {
+      name = leadingNames[c];
+    }
+    header += (c == 0 ? "" : std::string(1, layout.Delimiter)) + HeaderField(name, c);
+  }
+  return header + "\n";
+}
+
+/// The lines of points [begin, end), values separated by the layout's delimiter.
+void FormatLines(const PointCloudTable& table,
+  bool withNormals,
+  std::size_t begin,
+  std::size_t end,
+  std::string& block)
+{
+  const std::size_t columns = 3 + (withNormals ? 3 : 0) + table.ExtraColumns.size();
+  const char delimiter = table.Layout.Delimiter;
+  // The longest shortest round-trip form of a double takes 24 characters.
+  block.resize((end - begin) * columns * 25);
+  char* out = &block[0];
+  auto put = [&](double value)
+  {
+    out = std::to_chars(out, out + 25, value).ptr;
+    *out++ = delimiter;
+  };
+  for (std::size_t i = begin; i < end; ++i)
+  {
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      put(table.Positions[3 * i + axis]);
+    }
+    if (withNormals)
+    {
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        put(table.Normals[3 * i + axis]);
+      }
+    }
+    for (const auto& column : table.ExtraColumns)
+    {
+      put(column[i]);
+    }
+    out[-1] = '\n';
+  }
+  block.resize(static_cast<std::size_t>(out - block.data()));
+}
+} // namespace
+
 std::string WritePointCloudText(const std::string& path, const PointCloudTable& table)
 {
   ReplacingFile output(path);
@@ -314,24 +461,7 @@ std::string WritePointCloudText(const std::string& path, const PointCloudTable& 
   }
   const bool withNormals =
     table.Normals.size() == 3 * table.NumberOfPoints && !table.Normals.empty();
-  const std::size_t columns = 3 + (withNormals ? 3 : 0) + table.ExtraColumns.size();
-
-  // A header line names the extra columns, so that reading the file back keeps their names. A
-  // file of x y z [nx ny nz] alone needs none, and stays in the authors' format, which their
-  // program reads.
-  std::string header = table.ExtraColumns.empty() ? ""
-                       : withNormals              ? "x\ty\tz\tnx\tny\tnz"
-                                                  : "x\ty\tz";
-  for (std::size_t c = 0; c < table.ExtraColumns.size(); ++c)
-  {
-    std::string name = c < table.ExtraColumnNames.size() ? table.ExtraColumnNames[c] : "";
-    // A name is one field of the line: no spaces, and never empty.
-    std::replace_if(
-      name.begin(), name.end(), [](char ch) { return IsSpace(ch) || ch == '\n'; }, '_');
-    header +=
-      "\t" + (name.empty() ? "column" + std::to_string(4 + (withNormals ? 3 : 0) + c) : name);
-  }
-  header += header.empty() ? "" : "\n";
+  const std::string header = MakeHeaderLine(table, withNormals);
   bool ok = std::fwrite(header.data(), 1, header.size(), file) == header.size();
 
   // Blocks of lines formatted in parallel, written in order.
@@ -345,38 +475,12 @@ std::string WritePointCloudText(const std::string& path, const PointCloudTable& 
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::int64_t b = 0; b < count; ++b)
     {
-      std::string& block = blocks[b];
-      block.clear();
       const std::size_t begin = (first + b) * PointsPerBlock;
-      const std::size_t blockEnd = std::min(table.NumberOfPoints, begin + PointsPerBlock);
-      // The longest shortest round-trip form of a double takes 24 characters.
-      block.resize((blockEnd - begin) * columns * 25);
-      char* out = &block[0];
-      for (std::size_t i = begin; i < blockEnd; ++i)
-      {
-        auto put = [&](double value)
-        {
-          out = std::to_chars(out, out + 25, value).ptr;
-          *out++ = '\t';
-        };
-        for (int axis = 0; axis < 3; ++axis)
-        {
-          put(table.Positions[3 * i + axis]);
-        }
-        if (withNormals)
-        {
-          for (int axis = 0; axis < 3; ++axis)
-          {
-            put(table.Normals[3 * i + axis]);
-          }
-        }
-        for (const auto& column : table.ExtraColumns)
-        {
-          put(column[i]);
-        }
-        out[-1] = '\n';
-      }
-      block.resize(static_cast<std::size_t>(out - block.data()));
+      FormatLines(table,
+        withNormals,
+        begin,
+        std::min(table.NumberOfPoints, begin + PointsPerBlock),
+        blocks[b]);
     }
     for (std::int64_t b = 0; b < count && ok; ++b)
     {

@@ -11,6 +11,30 @@
 namespace pcbilateral
 {
 
+/**
+ * How a text file lays out its lines: what the reader found, which the writer follows, so that a
+ * cloud read from a text file is written back as its file was (and a tool that reads one reads
+ * the other).
+ */
+struct PointCloudTextLayout
+{
+  enum class HeaderLine
+  {
+    /// A header line only when there are extra columns, to keep their names: for a cloud that
+    /// did not come from a text file. A file of x y z [nx ny nz] alone then stays in the
+    /// authors' format, which their program reads.
+    WhenExtraColumns,
+    Always,
+    Never
+  };
+  HeaderLine Header = HeaderLine::WhenExtraColumns;
+  /// The header's names of the leading columns (x y z, then nx ny nz when read with normals);
+  /// missing ones are written "x", "y", "z", "nx", "ny", "nz".
+  std::vector<std::string> LeadingColumnNames;
+  /// Between two values of a line: '\t' or ' '.
+  char Delimiter = '\t';
+};
+
 /// A point cloud as columns of numbers.
 struct PointCloudTable
 {
@@ -22,6 +46,8 @@ struct PointCloudTable
   /// Further columns, in file order, each with one value per point.
   std::vector<std::string> ExtraColumnNames;
   std::vector<std::vector<double>> ExtraColumns;
+  /// The file's layout (ParsePointCloudText), or the one to write (WritePointCloudText).
+  PointCloudTextLayout Layout;
 };
 
 /**
@@ -29,7 +55,9 @@ struct PointCloudTable
  * CR LF; empty lines and lines starting with '#' are skipped. A first line that does not start
  * with a number names the columns (the names of the extra columns are kept); otherwise they are
  * named "column4", "column5", ... by position. Every data line must have the same number of
- * columns: at least 3, or 6 when hasNormals.
+ * columns: at least 3, or 6 when hasNormals. The table's Layout says whether there was a header
+ * line, its names of the leading columns, and the delimiter: a tab if the first point's first
+ * value is followed by one, else a space.
  *
  * Returns an empty string on success, else a one-line message naming `sourceName`, the line
  * and the problem.
@@ -48,12 +76,12 @@ std::string ParsePointCloudText(const char* text,
 std::string ReadPointCloudText(const std::string& path, bool hasNormals, PointCloudTable& table);
 
 /**
- * Writes a table as text: a header line naming the columns ("x y z", "nx ny nz" when there
- * are normals, then the extra columns' names, with spaces replaced by '_'), then one line per
- * point, values separated by tabs, printed with the shortest digits that read back to the
- * same double. Writes to a temporary file beside `path`
- * and renames it, so that a failed write leaves no partial file. Returns an empty string on
- * success, else a one-line message.
+ * Writes a table as text, in its Layout: a header line naming the columns when the layout has
+ * one ("x y z", "nx ny nz" when there are normals, or the layout's names of them, then the
+ * extra columns' names, with spaces replaced by '_'), then one line per point, values
+ * separated by the layout's delimiter, printed with the shortest digits that read back to the
+ * same double. Writes to a temporary file beside `path` and renames it, so that a failed write
+ * leaves no partial file. Returns an empty string on success, else a one-line message.
  */
 std::string WritePointCloudText(const std::string& path, const PointCloudTable& table);
 

@@ -4,6 +4,7 @@
 #include "PointCloudText.h"
 
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
@@ -11,6 +12,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 
 #include <algorithm>
 #include <string>
@@ -31,6 +33,68 @@ vtkNew<vtkDoubleArray> MakeArray(const char* name,
   array->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
   std::copy(values.begin(), values.end(), array->GetPointer(0));
   return array;
+}
+
+/// A string array of the given values.
+vtkNew<vtkStringArray> MakeStrings(const char* name, const std::vector<std::string>& values)
+{
+  vtkNew<vtkStringArray> array;
+  array->SetName(name);
+  for (const std::string& value : values)
+  {
+    array->InsertNextValue(value);
+  }
+  return array;
+}
+
+/// The extra columns as point arrays: columns "name:0", "name:1", ... (as the text writer names
+/// an array's components) are one array of as many components.
+void AddExtraColumns(const pcbilateral::PointCloudTable& table, vtkPointData* pointData)
+{
+  const auto count = static_cast<vtkIdType>(table.NumberOfPoints);
+  for (std::size_t column = 0; column < table.ExtraColumns.size();)
+  {
+    const std::string& first = table.ExtraColumnNames[column];
+    std::size_t components = 1;
+    if (first.size() > 2 && first.compare(first.size() - 2, 2, ":0") == 0)
+    {
+      const std::string base = first.substr(0, first.size() - 1);
+      while (column + components < table.ExtraColumns.size() &&
+             table.ExtraColumnNames[column + components] == base + std::to_string(components))
+      {
+        ++components;
+      }
+    }
+    if (components == 1)
+    {
+      pointData->AddArray(MakeArray(first.c_str(), 1, table.ExtraColumns[column]));
+      ++column;
+      continue;
+    }
+    std::vector<double> values(components * count);
+    for (std::size_t c = 0; c < components; ++c)
+    {
+      for (vtkIdType id = 0; id < count; ++id)
+      {
+        values[id * components + c] = table.ExtraColumns[column + c][id];
+      }
+    }
+    const std::string name = first.substr(0, first.size() - 2);
+    pointData->AddArray(MakeArray(name.c_str(), static_cast<int>(components), values));
+    column += components;
+  }
+}
+
+/// The file's layout as field data (see the class's documentation).
+void StoreLayout(const pcbilateral::PointCloudTextLayout& layout, vtkFieldData* fieldData)
+{
+  fieldData->AddArray(MakeStrings(vtkPointCloudTextReader::GetDelimiterArrayName(),
+    { vtkPointCloudTextReader::GetDelimiterName(layout.Delimiter) }));
+  if (layout.Header == pcbilateral::PointCloudTextLayout::HeaderLine::Always)
+  {
+    fieldData->AddArray(
+      MakeStrings(vtkPointCloudTextReader::GetHeaderArrayName(), layout.LeadingColumnNames));
+  }
 }
 } // namespace
 
@@ -75,39 +139,8 @@ int vtkPointCloudTextReader::RequestData(vtkInformation*,
   {
     pointData->SetNormals(MakeArray("Normals", 3, table.Normals));
   }
-  for (std::size_t column = 0; column < table.ExtraColumns.size();)
-  {
-    // Columns "name:0", "name:1", ... (as the text writer names an array's components) are
-    // one array of as many components.
-    const std::string& first = table.ExtraColumnNames[column];
-    std::size_t components = 1;
-    if (first.size() > 2 && first.compare(first.size() - 2, 2, ":0") == 0)
-    {
-      const std::string base = first.substr(0, first.size() - 1);
-      while (column + components < table.ExtraColumns.size() &&
-             table.ExtraColumnNames[column + components] == base + std::to_string(components))
-      {
-        ++components;
-      }
-    }
-    if (components == 1)
-    {
-      pointData->AddArray(MakeArray(first.c_str(), 1, table.ExtraColumns[column]));
-      ++column;
-      continue;
-    }
-    std::vector<double> values(components * count);
-    for (std::size_t c = 0; c < components; ++c)
-    {
-      for (vtkIdType id = 0; id < count; ++id)
-      {
-        values[id * components + c] = table.ExtraColumns[column + c][id];
-      }
-    }
-    const std::string name = first.substr(0, first.size() - 2);
-    pointData->AddArray(MakeArray(name.c_str(), static_cast<int>(components), values));
-    column += components;
-  }
+  AddExtraColumns(table, pointData);
+  StoreLayout(table.Layout, output->GetFieldData());
   return 1;
 }
 

@@ -13,6 +13,12 @@
  * "name:1", ... (as vtkPointCloudTextWriter names the components of an array) make one
  * array "name" of as many components.
  *
+ * The file's layout is kept in the output's field data, for vtkPointCloudTextWriter to write
+ * the cloud back the same way (the filters pass field data on): "Text Delimiter", a string
+ * array with the delimiter of the lines, "tab" (when the first point's first value is followed
+ * by one) or "space", and, when the file has a header line, "Text Header", a string array with
+ * the header's names of the leading columns (x y z, then nx ny nz with HasNormals).
+ *
  * Errors (missing file, a directory, a malformed line) name the file and the line; the
  * message of the last one is also available from GetErrorMessage().
  *
@@ -50,6 +56,18 @@ public:
 
   /// Why the last read failed; empty after a successful read.
   const char* GetErrorMessage() const { return this->ErrorMessage.c_str(); }
+
+  ///@{
+  /// The names of the field data arrays that keep the file's layout (see above).
+  static const char* GetDelimiterArrayName() { return "Text Delimiter"; }
+  static const char* GetHeaderArrayName() { return "Text Header"; }
+  ///@}
+
+  /// How "Text Delimiter" names a delimiter: "tab" for '\t', "space" for ' '.
+  static const char* GetDelimiterName(char delimiter)
+  {
+    return delimiter == '\t' ? "tab" : "space";
+  }
 
 protected:
   vtkPointCloudTextReader();

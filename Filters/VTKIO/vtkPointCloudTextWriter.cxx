@@ -1,18 +1,54 @@
 #include "vtkPointCloudTextWriter.h"
+#include "vtkPointCloudTextReader.h"
 
 #include "PointCloudText.h"
 
 #include "vtkDataArray.h"
 #include "vtkErrorCode.h"
+#include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 
 #include <string>
 
 vtkStandardNewMacro(vtkPointCloudTextWriter);
+
+namespace
+{
+/// The layout of the text file the cloud was read from (the field data of
+/// vtkPointCloudTextReader), or the default layout for a cloud from elsewhere.
+pcbilateral::PointCloudTextLayout LoadLayout(vtkFieldData* fieldData)
+{
+  using Reader = vtkPointCloudTextReader;
+  pcbilateral::PointCloudTextLayout layout;
+  auto* delimiter = vtkStringArray::SafeDownCast(
+    fieldData ? fieldData->GetAbstractArray(Reader::GetDelimiterArrayName()) : nullptr);
+  if (!delimiter || delimiter->GetNumberOfValues() != 1)
+  {
+    return layout;
+  }
+  for (char candidate : { '\t', ' ' })
+  {
+    if (delimiter->GetValue(0) == Reader::GetDelimiterName(candidate))
+    {
+      layout.Delimiter = candidate;
+      auto* header =
+        vtkStringArray::SafeDownCast(fieldData->GetAbstractArray(Reader::GetHeaderArrayName()));
+      layout.Header = header ? pcbilateral::PointCloudTextLayout::HeaderLine::Always
+                             : pcbilateral::PointCloudTextLayout::HeaderLine::Never;
+      for (vtkIdType k = 0; header && k < header->GetNumberOfValues(); ++k)
+      {
+        layout.LeadingColumnNames.push_back(header->GetValue(k));
+      }
+    }
+  }
+  return layout;
+}
+} // namespace
 
 vtkPointCloudTextWriter::vtkPointCloudTextWriter() = default;
 
@@ -88,6 +124,7 @@ void vtkPointCloudTextWriter::WriteData()
       table.ExtraColumnNames.push_back(name);
     }
   }
+  table.Layout = LoadLayout(input->GetFieldData());
   this->ErrorMessage = pcbilateral::WritePointCloudText(this->FileName, table);
   if (!this->ErrorMessage.empty())
   {

@@ -2,15 +2,19 @@
  * @class   vtkPointCloudTextWriter
  * @brief   write a point cloud in the ASCII point format of the bilateral filter's authors
  *
- * When the input has point arrays besides the normals, a header line naming the columns (the
- * arrays' names; "name:0", "name:1", ... for the components of an array, which
- * vtkPointCloudTextReader makes one array again; without such arrays there is no header, as in
- * the authors' files), then one line
- * per point, values separated by tabs: "x y z", then the point normals when WriteNormals is on
- * and the input has them, then every other point-data array in order, one column per
- * component. Numbers are written with the shortest digits that read back to the
- * same double. The file is written under a temporary name and renamed when complete, so a
- * failed write leaves no partial file.
+ * A cloud read from a text file by vtkPointCloudTextReader is written in its file's layout,
+ * which the reader keeps in field data ("Text Delimiter", "Text Header"): a header line or not,
+ * the header's names of x y z [nx ny nz], and the delimiter, tab or space. A cloud from
+ * elsewhere gets a header line when it has point arrays besides the normals, and only then (as
+ * in the authors' files), and tabs.
+ *
+ * The header line names the columns: x y z [nx ny nz], then the arrays' names ("name:0",
+ * "name:1", ... for the components of an array, which vtkPointCloudTextReader makes one array
+ * again). Then one line per point: "x y z", then the point normals when WriteNormals is on and
+ * the input has them, then every other point-data array in order, one column per component.
+ * Numbers are written with the shortest digits that read back to the same double. The file is
+ * written under a temporary name and renamed when complete, so a failed write leaves no
+ * partial file.
  *
  * @sa
  * vtkPointCloudTextReader

@@ -5,10 +5,12 @@
 #include "BilateralFilter.h"
 #include "BilateralKernel.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <omp.h>
 #include <vector>
 
 namespace
@@ -48,11 +50,12 @@ private:
   std::size_t Size;
   std::size_t Offset = 0;
 };
-} // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+/// The parameters, from the first bytes. Threads: 1 or 2, but never more than OpenMP's maximum
+/// (the reproducible runs of the test command set OMP_NUM_THREADS=1: coverage counted from two
+/// threads at once varies from run to run).
+pcbilateral::BilateralParameters ReadParameters(Bytes& bytes)
 {
-  Bytes bytes(data, size);
   pcbilateral::BilateralParameters parameters;
   const auto radiusKind = bytes.Next<std::uint8_t>();
   parameters.Radius = (radiusKind & 3) == 0   ? 0.0
@@ -66,8 +69,67 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto flags = bytes.Next<std::uint8_t>();
   parameters.RemoveIsolatedPoints = flags & 1;
   parameters.EdgeAware = (flags & 2) != 0; // the edge-aware mode (EdgeAwareNormals.h)
-  parameters.NumberOfThreads = 1 + bytes.Next<std::uint8_t>() % 2;
+  const int threads = 1 + bytes.Next<std::uint8_t>() % 2;
+  parameters.NumberOfThreads = std::min(threads, omp_get_max_threads());
   parameters.ComputeNormals = true;
+  return parameters;
+}
+
+/// Whether the generic build of the kernel gives the result's bits too.
+bool SameBitsWithGenericKernel(const pcbilateral::PointCloudView& cloud,
+  const pcbilateral::BilateralParameters& parameters,
+  const pcbilateral::BilateralResult& result)
+{
+  const pcbilateral::KernelInstructionSet best = pcbilateral::GetKernelInstructionSet();
+  if (best == pcbilateral::KernelInstructionSet::Generic)
+  {
+    return true;
+  }
+  pcbilateral::SetKernelInstructionSet(pcbilateral::KernelInstructionSet::Generic);
+  const pcbilateral::BilateralResult generic = pcbilateral::RunBilateralFilter(cloud, parameters);
+  pcbilateral::SetKernelInstructionSet(best);
+  auto sameBits = [](const std::vector<double>& a, const std::vector<double>& b)
+  {
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+  };
+  return sameBits(generic.Positions, result.Positions) && sameBits(generic.Normals, result.Normals);
+}
+
+/// Whether every finite input point stayed finite and within N r of where it was.
+bool StayedWithinReach(const std::vector<double>& xyz, const pcbilateral::BilateralResult& result)
+{
+  const double reach = result.NumberOfIterationsUsed * result.RadiusUsed; // N may be automatic
+  for (std::size_t i = 0; i < xyz.size() / 3; ++i)
+  {
+    const double* before = &xyz[3 * i];
+    const double* after = &result.Positions[3 * i];
+    if (!(std::isfinite(before[0]) && std::isfinite(before[1]) && std::isfinite(before[2])))
+    {
+      continue;
+    }
+    double moved = 0.0;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      if (!std::isfinite(after[axis]))
+      {
+        return false; // a finite point became NaN or infinite
+      }
+      moved = std::max(moved, std::abs(after[axis] - before[axis]));
+    }
+    if (moved > reach * (1 + 1e-9) && moved > 0.0)
+    {
+      return false; // a point moved further than N r
+    }
+  }
+  return true;
+}
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+  Bytes bytes(data, size);
+  const pcbilateral::BilateralParameters parameters = ReadParameters(bytes);
   const std::size_t count = bytes.Next<std::uint8_t>() % 48;
   std::vector<double> xyz(3 * count);
   for (double& value : xyz)
@@ -94,46 +156,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   {
     std::abort();
   }
-  // The same run with the generic build of the kernel: the same bits.
-  const pcbilateral::KernelInstructionSet best = pcbilateral::GetKernelInstructionSet();
-  if (best != pcbilateral::KernelInstructionSet::Generic)
+  if (!SameBitsWithGenericKernel(cloud, parameters, result))
   {
-    pcbilateral::SetKernelInstructionSet(pcbilateral::KernelInstructionSet::Generic);
-    const pcbilateral::BilateralResult generic = pcbilateral::RunBilateralFilter(cloud, parameters);
-    pcbilateral::SetKernelInstructionSet(best);
-    auto sameBits = [](const std::vector<double>& a, const std::vector<double>& b)
-    {
-      return a.size() == b.size() &&
-             (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
-    };
-    if (!sameBits(generic.Positions, result.Positions) ||
-        !sameBits(generic.Normals, result.Normals))
-    {
-      std::abort(); // the instruction-set builds disagree
-    }
+    std::abort(); // the instruction-set builds disagree
   }
-  const double reach = result.NumberOfIterationsUsed * result.RadiusUsed; // N may be automatic
-  for (std::size_t i = 0; i < count; ++i)
+  if (!StayedWithinReach(xyz, result))
   {
-    const double* before = &xyz[3 * i];
-    const double* after = &result.Positions[3 * i];
-    if (!(std::isfinite(before[0]) && std::isfinite(before[1]) && std::isfinite(before[2])))
-    {
-      continue;
-    }
-    double moved = 0.0;
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      if (!std::isfinite(after[axis]))
-      {
-        std::abort(); // a finite point became NaN or infinite
-      }
-      moved = std::max(moved, std::abs(after[axis] - before[axis]));
-    }
-    if (moved > reach * (1 + 1e-9) && moved > 0.0)
-    {
-      std::abort(); // a point moved further than N r
-    }
+    std::abort();
   }
   return 0;
 }

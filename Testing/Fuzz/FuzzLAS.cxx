@@ -7,6 +7,7 @@
 // exception: the coordinates of an axis whose scale and offset cannot give every stored
 // integer back (a scale near zero or infinity, an offset of 2^48 steps or more) must decode to
 // the same values, not to the same integers.
+#include "FuzzScratchFile.h"
 #include "LASHeader.h"
 #include "LASReader.h"
 #include "LASWriter.h"
@@ -17,8 +18,6 @@
 #include <filesystem>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 namespace
 {
@@ -60,9 +59,7 @@ void CheckWrittenBack(const pcbilateral::LASFileInfo& info,
   const std::uint8_t* data,
   const DecodedPoints& points)
 {
-  static const std::string path =
-    (std::filesystem::temp_directory_path() / ("FuzzLAS-" + std::to_string(getpid()) + ".las"))
-      .string();
+  static const std::string path = FuzzScratchPath("FuzzLAS", ".las");
   const auto count = static_cast<std::size_t>(info.Header.NumberOfPoints);
   const std::vector<const void*> columns(points.Columns.begin(), points.Columns.end());
   const std::string error =

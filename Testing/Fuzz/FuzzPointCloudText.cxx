@@ -1,13 +1,67 @@
-// libFuzzer target for the ASCII point reader: any bytes must give either a clear error or a
-// consistent table, never a crash, a hang or a sanitizer report; and the same answer whether
-// the text is parsed in one piece or in many (the parallel parser's pieces must join seamlessly).
+// libFuzzer target for the ASCII point reader and writer: any bytes must give either a clear
+// error or a consistent table, never a crash, a hang or a sanitizer report; the same answer
+// whether the text is parsed in one piece or in many (the parallel parser's pieces must join
+// seamlessly); and a table of points written back in its layout must read back as the same
+// table, layout included (header line or not, the header's names, the delimiter).
+#include "FuzzScratchFile.h"
 #include "PointCloudText.h"
 
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <vector>
+
+namespace
+{
+bool SameBits(const std::vector<double>& a, const std::vector<double>& b)
+{
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
+bool SameTables(const pcbilateral::PointCloudTable& a, const pcbilateral::PointCloudTable& b)
+{
+  bool same = a.NumberOfPoints == b.NumberOfPoints && SameBits(a.Positions, b.Positions) &&
+              SameBits(a.Normals, b.Normals) && a.ExtraColumnNames == b.ExtraColumnNames &&
+              a.ExtraColumns.size() == b.ExtraColumns.size() &&
+              a.Layout.Header == b.Layout.Header &&
+              a.Layout.LeadingColumnNames == b.Layout.LeadingColumnNames &&
+              a.Layout.Delimiter == b.Layout.Delimiter;
+  for (std::size_t c = 0; same && c < a.ExtraColumns.size(); ++c)
+  {
+    same = SameBits(a.ExtraColumns[c], b.ExtraColumns[c]);
+  }
+  return same;
+}
+
+bool IsConsistent(const pcbilateral::PointCloudTable& table, bool hasNormals)
+{
+  const std::size_t n = table.NumberOfPoints;
+  bool consistent = table.Positions.size() == 3 * n &&
+                    table.Normals.size() == (hasNormals ? 3 * n : 0) &&
+                    table.ExtraColumns.size() == table.ExtraColumnNames.size();
+  for (const auto& column : table.ExtraColumns)
+  {
+    consistent = consistent && column.size() == n;
+  }
+  return consistent;
+}
+
+/// Whether the table, written to a file and read back, is the same table.
+bool WritesBack(const pcbilateral::PointCloudTable& table, bool hasNormals)
+{
+  static const std::string path = FuzzScratchPath("FuzzPointCloudText", ".xyz");
+  pcbilateral::PointCloudTable back;
+  const bool same = pcbilateral::WritePointCloudText(path, table).empty() &&
+                    pcbilateral::ReadPointCloudText(path, hasNormals, back).empty() &&
+                    SameTables(table, back);
+  std::error_code ignored;
+  std::filesystem::remove(path, ignored);
+  return same;
+}
+} // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
@@ -20,21 +74,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::size_t pieceBytes = 1 + (size > 1 ? data[1] % 16 : 0);
   const std::string piecesError = pcbilateral::ParsePointCloudText(
     reinterpret_cast<const char*>(data), size, hasNormals, "fuzz", pieces, pieceBytes);
-  auto sameBits = [](const std::vector<double>& a, const std::vector<double>& b)
-  {
-    return a.size() == b.size() &&
-           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
-  };
-  bool same = piecesError == error && pieces.NumberOfPoints == table.NumberOfPoints &&
-              sameBits(pieces.Positions, table.Positions) &&
-              sameBits(pieces.Normals, table.Normals) &&
-              pieces.ExtraColumnNames == table.ExtraColumnNames &&
-              pieces.ExtraColumns.size() == table.ExtraColumns.size();
-  for (std::size_t c = 0; same && c < table.ExtraColumns.size(); ++c)
-  {
-    same = sameBits(pieces.ExtraColumns[c], table.ExtraColumns[c]);
-  }
-  if (!same)
+  if (piecesError != error || !SameTables(pieces, table))
   {
     std::abort(); // parsing in pieces changed the answer
   }
@@ -46,17 +86,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     return 0;
   }
-  const std::size_t n = table.NumberOfPoints;
-  bool consistent = table.Positions.size() == 3 * n &&
-                    table.Normals.size() == (hasNormals ? 3 * n : 0) &&
-                    table.ExtraColumns.size() == table.ExtraColumnNames.size();
-  for (const auto& column : table.ExtraColumns)
-  {
-    consistent = consistent && column.size() == n;
-  }
-  if (!consistent)
+  if (!IsConsistent(table, hasNormals))
   {
     std::abort();
+  }
+  if (table.NumberOfPoints > 0 && !WritesBack(table, hasNormals))
+  {
+    std::abort(); // the writer did not keep the table or its layout
   }
   return 0;
 }
