@@ -274,7 +274,9 @@ private:
     // (A flat box, e.g. points on a line, would give cells of no size.)
     const double largest = extent.LargestExtent();
     this->Density = static_cast<double>(this->N) / std::max(boxArea, 1e-4 * largest * largest);
-    if (!(std::isfinite(this->Density) && this->Density > 0.0))
+    // (Above 1e300 points per unit area, the balls' expected counts, density x pi rho^2,
+    // would overflow: LevelFor compares them.)
+    if (!(std::isfinite(this->Density) && this->Density > 0.0 && this->Density < 1e300))
     {
       // Coordinates so far apart that areas overflow: the filter refuses such clouds anyway.
       return this->Fail("the cloud's extent is beyond what can be measured");

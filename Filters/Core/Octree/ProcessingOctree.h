@@ -6,6 +6,7 @@
 #include "PointArray.h"
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -185,12 +186,30 @@ public:
     this->NextLink[index] = head;
     head = static_cast<std::int32_t>(index);
   }
-  /// Appends a list made with Link (first and last point) to an existing cell's list, under the
-  /// same rule as Place.
+  /// Appends a list made with Link (first and last point) to an existing cell's list. Other
+  /// threads may hand lists to the same cell at the same time: two cells of one colour share no
+  /// leaf of their r-dilations, but the cells between them are in both, and a cell's leaves
+  /// share its list head. So the head is swapped atomically; the order of the lists in it does
+  /// not matter (Compact orders each leaf's points by coordinates).
   void PlaceList(std::int32_t cell, std::int32_t first, std::int32_t last)
   {
-    this->NextLink[last] = this->NextHead[cell];
-    this->NextHead[cell] = first;
+    std::int32_t& head = this->NextHead[cell];
+#if defined(__GNUC__) || defined(__clang__)
+    std::int32_t old = __atomic_load_n(&head, __ATOMIC_RELAXED);
+    do
+    {
+      this->NextLink[last] = old;
+    } while (!__atomic_compare_exchange_n(
+      &head, &old, first, true, __ATOMIC_RELEASE, __ATOMIC_RELAXED));
+#else
+    std::atomic_ref<std::int32_t> shared(head); // C++20 compilers other than GCC and clang
+    std::int32_t old = shared.load(std::memory_order_relaxed);
+    do
+    {
+      this->NextLink[last] = old;
+    } while (!shared.compare_exchange_weak(
+      old, first, std::memory_order_release, std::memory_order_relaxed));
+#endif
   }
   ///@}
 
