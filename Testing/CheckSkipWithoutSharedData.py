@@ -1,6 +1,6 @@
 """Configured without the shared data, every test that reads it is reported skipped, with its
-reason, and none fails: once with PCB_REFERENCE_DIR and PCB_LAS_DATA_DIR naming folders that do
-not exist, once with them not set (and never in the environment).
+reason, and none fails: once with PCB_REFERENCE_DIR, PCB_LAS_DATA_DIR and PCB_REAL_DATA_DIR
+naming folders that do not exist, once with them not set (and never in the environment).
 
     CheckSkipWithoutSharedData.py SOURCE_DIR BUILD_DIR
 
@@ -18,7 +18,7 @@ import sys
 import tempfile
 import xml.etree.ElementTree as ElementTree
 
-VARIABLES = ("PCB_REFERENCE_DIR", "PCB_LAS_DATA_DIR")
+VARIABLES = ("PCB_REFERENCE_DIR", "PCB_LAS_DATA_DIR", "PCB_REAL_DATA_DIR")
 # The build's options that decide which tests there are, given to the scratch configuration too.
 MIRRORED = ("CMAKE_BUILD_TYPE", "CMAKE_CXX_COMPILER", "CMAKE_C_COMPILER", "PCB_WITH_VTK",
             "PCB_WITH_PARAVIEW", "PCB_SANITIZE", "PCB_BUILD_FUZZERS", "VTK_DIR", "ParaView_DIR")
@@ -35,7 +35,7 @@ def read_cache(build):
 
 
 def run(command, cwd=None, check=True):
-    """Runs a command without the two variables in its environment; its output."""
+    """Runs a command without the variables in its environment; its output."""
     environment = {k: v for k, v in os.environ.items() if k not in VARIABLES}
     result = subprocess.run(command, cwd=cwd, env=environment, capture_output=True, text=True)
     if check and result.returncode != 0:
@@ -118,7 +118,7 @@ def main():
         print("the tests that read the shared data:", " ".join(names))
         problems = check_skipped(scratch, cache, names)
         # Not set at all: the same tests, none left out or disabled, each skipped.
-        configure(source, scratch, cache, ["", ""])
+        configure(source, scratch, cache, [""] * len(VARIABLES))
         _, all_names = data_tests(scratch, cache, [])
         problems += [f"{name}: no such test when the data is not set" for name in names
                      if name not in all_names]

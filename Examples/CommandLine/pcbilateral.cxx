@@ -340,6 +340,12 @@ void PrintParametersUsed(vtkPointCloudBilateralFilter* filter, const Options& op
     std::printf("measured:      point spacing %.6g, noise sigma %.6g\n",
       filter->GetPointSpacing(),
       filter->GetNoiseSigma());
+    const double* distances = filter->GetNearestNeighbourDistances();
+    std::printf(
+      "sampling:      nearest-neighbour distance %.6g (5%%), %.6g (median), %.6g (95%%)\n",
+      distances[0],
+      distances[1],
+      distances[2]);
   }
   const char* automatic =
     measured ? " (automatic, from the measured spacing and noise)" : " (automatic: the paper's)";

@@ -408,6 +408,7 @@ bool BilateralRun::Start(const CloudExtent& wholeCloud, const CloudScales* whole
       result.Measured = true;
       result.PointSpacing = scales.PointSpacing;
       result.NoiseSigma = scales.NoiseSigma;
+      std::copy_n(scales.NearestNeighbourDistance, 3, result.NearestNeighbourDistance);
     }
     else if (scales.Measurable)
     {

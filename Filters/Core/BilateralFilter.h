@@ -61,6 +61,9 @@ struct BilateralResult
   bool Measured = false;
   double PointSpacing = 0.0;
   double NoiseSigma = 0.0;
+  /// The 5th, 50th and 95th percentiles of the distance from a point to its nearest neighbour,
+  /// measured with them (CloudScales), else 0.
+  double NearestNeighbourDistance[3] = { 0.0, 0.0, 0.0 };
   int ProcessingDepth = 0;
   std::size_t NumberOfRemovedPoints = 0;
   /// Points with a NaN or infinite coordinate: passed through, never neighbours.

@@ -152,6 +152,17 @@ void AddParametersUsed(const pcbilateral::BilateralResult& result, vtkFieldData*
     used.emplace_back("BilateralPointSpacing", result.PointSpacing);
     used.emplace_back("BilateralNoiseSigma", result.NoiseSigma);
   }
+  if (result.Measured)
+  {
+    vtkNew<vtkDoubleArray> distances;
+    distances->SetName("BilateralNearestNeighbourDistances");
+    distances->SetNumberOfComponents(3);
+    distances->SetComponentName(0, "5th percentile");
+    distances->SetComponentName(1, "median");
+    distances->SetComponentName(2, "95th percentile");
+    distances->InsertNextTuple(result.NearestNeighbourDistance);
+    fieldData->AddArray(distances);
+  }
   for (const auto& [name, number] : used)
   {
     vtkNew<vtkDoubleArray> value;
@@ -392,6 +403,7 @@ void vtkPointCloudBilateralFilter::RecordRunInformation(const pcbilateral::Bilat
   this->NumberOfIterationsUsed = result.NumberOfIterationsUsed;
   this->PointSpacing = result.PointSpacing;
   this->NoiseSigma = result.NoiseSigma;
+  std::copy_n(result.NearestNeighbourDistance, 3, this->NearestNeighbourDistances);
   this->ProcessingDepth = result.ProcessingDepth;
   this->NumberOfRemovedPoints = static_cast<vtkIdType>(result.NumberOfRemovedPoints);
   this->NumberOfNonFinitePoints = static_cast<vtkIdType>(result.NumberOfNonFinitePoints);
@@ -477,6 +489,8 @@ void vtkPointCloudBilateralFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfIterationsUsed: " << this->NumberOfIterationsUsed << "\n";
   os << indent << "PointSpacing: " << this->PointSpacing << "\n";
   os << indent << "NoiseSigma: " << this->NoiseSigma << "\n";
+  os << indent << "NearestNeighbourDistances: " << this->NearestNeighbourDistances[0] << " "
+     << this->NearestNeighbourDistances[1] << " " << this->NearestNeighbourDistances[2] << "\n";
   os << indent << "ProcessingDepth: " << this->ProcessingDepth << "\n";
   os << indent << "NumberOfRemovedPoints: " << this->NumberOfRemovedPoints << "\n";
   os << indent << "NumberOfNonFinitePoints: " << this->NumberOfNonFinitePoints << "\n";

@@ -54,7 +54,8 @@
  * with the same point type, every point-data array passed through, and one vertex cell per
  * point. The input's field data passes through, with more one-value arrays: "BilateralRadius",
  * "BilateralNormalRadius" and "BilateralNumberOfIterations", the parameters used, and, when the
- * cloud was measured, "BilateralPointSpacing" and "BilateralNoiseSigma". The input's other cells
+ * cloud was measured, "BilateralPointSpacing", "BilateralNoiseSigma" and the three-component
+ * "BilateralNearestNeighbourDistances" (GetNearestNeighbourDistances). The input's other cells
  * (lines, polygons, volumes) are not carried over, with one warning. Optional arrays: the estimated
  * normals ("EstimatedNormals", see GenerateEstimatedNormals) and the distance each point
  * moved ("DisplacementLength", see GenerateDisplacementLength).
@@ -233,6 +234,14 @@ public:
   ///@}
 
   /**
+   * The spread of the cloud's sampling, measured with its spacing and noise: the 5th, 50th and
+   * 95th percentiles of the distance from a point to its nearest neighbour (zeros when the cloud
+   * was not measured). Evenly sampled clouds have them close together; a scan from one position
+   * spans a hundred times and more.
+   */
+  vtkGetVector3Macro(NearestNeighbourDistances, double);
+
+  /**
    * The last update in one line, for a user interface: "not run yet" before the first, then the
    * parameters used and where they came from (e.g. "r 0.0628, rn 0.0471, N 2 (measured)": from
    * the measured scales; "(paper's rule)", "(given)"), "failed: " and the error, or "aborted".
@@ -275,6 +284,7 @@ protected:
   int NumberOfIterationsUsed = 0;
   double PointSpacing = 0.0;
   double NoiseSigma = 0.0;
+  double NearestNeighbourDistances[3] = { 0.0, 0.0, 0.0 };
   int ProcessingDepth = 0;
   vtkIdType NumberOfRemovedPoints = 0;
   vtkIdType NumberOfNonFinitePoints = 0;

@@ -228,7 +228,9 @@ bool SameScales(const pcbilateral::CloudScales& a, const pcbilateral::CloudScale
          a.SurfaceDensity == b.SurfaceDensity && a.NeighbourhoodRadius == b.NeighbourhoodRadius &&
          a.NumberOfFittedSamples == b.NumberOfFittedSamples &&
          a.NumberOfRounds == b.NumberOfRounds && a.CurvatureExcess == b.CurvatureExcess &&
-         a.FeatureFraction == b.FeatureFraction && a.CreaseFraction == b.CreaseFraction;
+         a.FeatureFraction == b.FeatureFraction && a.CreaseFraction == b.CreaseFraction &&
+         std::equal(
+           a.NearestNeighbourDistance, a.NearestNeighbourDistance + 3, b.NearestNeighbourDistance);
 }
 
 /// The same bits, or the failure with what was measured.
@@ -687,10 +689,103 @@ void Rule()
   }
 }
 
+/// Points of a square grid of `side` x `side` points `spacing` apart on the plane z = 0, from
+/// (x0, 0), appended to xyz.
+void AppendGrid(std::vector<double>& xyz, double x0, int side, double spacing)
+{
+  for (int j = 0; j < side; ++j)
+  {
+    for (int i = 0; i < side; ++i)
+    {
+      xyz.insert(xyz.end(), { x0 + i * spacing, j * spacing, 0.0 });
+    }
+  }
+}
+
+void CheckDistances(const pcbilateral::CloudScales& scales,
+  const double expected[3],
+  double tolerance,
+  const char* what)
+{
+  const double* found = scales.NearestNeighbourDistance;
+  std::printf("%s: nearest-neighbour distance %.6g / %.6g / %.6g (5%% / median / 95%%), "
+              "expected %.6g / %.6g / %.6g\n",
+    what,
+    found[0],
+    found[1],
+    found[2],
+    expected[0],
+    expected[1],
+    expected[2]);
+  for (int k = 0; k < 3; ++k)
+  {
+    PCB_CHECK(std::abs(found[k] / expected[k] - 1.0) <= tolerance,
+      "%s: percentile %d is %.9g, expected %.9g",
+      what,
+      k,
+      found[k],
+      expected[k]);
+  }
+}
+
+/// The spread of the sampling: the percentiles of the nearest-neighbour distance on grids whose
+/// distances are known, evenly spaced and with a density that changes 100 times across the
+/// cloud (as a scan from one position does), and on a random thinning of the latter.
+void Sampling()
+{
+  std::vector<double> even;
+  AppendGrid(even, 0.0, 120, 0.01);
+  const double evenDistances[3] = { 0.01, 0.01, 0.01 };
+  CheckDistances(pcbilateral::MeasureScales(ViewOf(even)), evenDistances, 1e-9, "even grid");
+
+  // A dense square (spacing h) beside a sparse one (spacing 10 h, 1% of the density) a little
+  // wider: the sparse points are about 1 / 11 of all, so the 95th percentile is theirs.
+  std::vector<double> uneven;
+  const double h = 0.001;
+  AppendGrid(uneven, 0.0, 200, h);
+  AppendGrid(uneven, 200 * h, 63, 10 * h);
+  const double unevenDistances[3] = { h, h, 10 * h };
+  const pcbilateral::CloudScales scales = pcbilateral::MeasureScales(ViewOf(uneven));
+  CheckDistances(scales, unevenDistances, 1e-9, "dense and sparse grids");
+  PCB_CHECK(scales.NumberOfDistanceSamples == 8192,
+    "%zu distances measured, expected 8192",
+    scales.NumberOfDistanceSamples);
+
+  // Points at random over the same two squares, and a quarter of them picked at random as a
+  // distributed run's selection is: a random thinning of random points has distances twice as
+  // long, which the fraction scales back.
+  Random random(20261125);
+  std::vector<double> scattered;
+  const double parts[2][3] = { { 0.0, 0.2, 40000 }, { 0.2, 0.63, 3969 } };
+  for (const auto& part : parts)
+  {
+    for (int k = 0; k < static_cast<int>(part[2]); ++k)
+    {
+      scattered.insert(
+        scattered.end(), { part[0] + part[1] * random.Uniform(), part[1] * random.Uniform(), 0.0 });
+    }
+  }
+  const pcbilateral::CloudScales whole = pcbilateral::MeasureScales(ViewOf(scattered));
+  const double fraction = 0.25;
+  const std::vector<double> selection =
+    pcbilateral::SelectMeasurementPoints(ViewOf(scattered), fraction);
+  CheckDistances(pcbilateral::MeasureSelection(selection, fraction, 0),
+    whole.NearestNeighbourDistance,
+    0.15,
+    "a quarter of random points, against all of them");
+  PCB_CHECK(whole.NearestNeighbourDistance[2] > 5.0 * whole.NearestNeighbourDistance[1],
+    "random points: the 95th percentile %.6g is not the sparse part's (median %.6g)",
+    whole.NearestNeighbourDistance[2],
+    whole.NearestNeighbourDistance[1]);
+}
 } // namespace
 
 int main(int argc, char* argv[])
 {
-  return RunNamedCase(
-    argc, argv, { { "Accuracy", Accuracy }, { "Determinism", Determinism }, { "Rule", Rule } });
+  return RunNamedCase(argc,
+    argv,
+    { { "Accuracy", Accuracy },
+      { "Determinism", Determinism },
+      { "Rule", Rule },
+      { "Sampling", Sampling } });
 }

@@ -194,6 +194,10 @@ if args.radius == 0 or args.normal_radius == 0 or args.iterations == 0:
           and bilateral.NoiseSigma == serial.GetNoiseSigma(),
           f"measured spacing {bilateral.PointSpacing!r} (serial {serial.GetPointSpacing()!r}), "
           f"noise {bilateral.NoiseSigma!r} (serial {serial.GetNoiseSigma()!r})")
+    distances = list(bilateral.NearestNeighbourDistances)
+    check(distances == list(serial.GetNearestNeighbourDistances()) and 0 < distances[0],
+          f"nearest-neighbour distances {distances} "
+          f"(serial {list(serial.GetNearestNeighbourDistances())})")
 removed = total - reference.GetNumberOfPoints()
 print(f"{removed} point(s) removed as isolated")
 if args.remove_isolated:

@@ -42,6 +42,11 @@ struct CloudScales
   /// The mean distance from a point to its nearest neighbour on the noise-free surface,
   /// 1 / (2 sqrt(density)) (exact for points spread at random), averaged over the samples.
   double PointSpacing = 0.0;
+  /// The spread of the sampling: the 5th, 50th and 95th percentiles of the distance from a point
+  /// to its nearest neighbour (over a pseudo-random sample of the points), 0 when not measured.
+  /// A scan from one position spans a hundred times and more between the first and the last.
+  double NearestNeighbourDistance[3] = { 0.0, 0.0, 0.0 };
+  std::size_t NumberOfDistanceSamples = 0;
   /// The standard deviation of the points' offsets from the underlying surface (the noise),
   /// curvature removed by a local quadric fit.
   double NoiseSigma = 0.0;
