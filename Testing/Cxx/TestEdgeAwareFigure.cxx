@@ -1,6 +1,6 @@
-// The edge-aware mode against the paper's filter (the figure of docs/edge-aware.md): the bundled noisy
-// sharp edge (noise 0.5% of the diagonal), then the paper's filter and the edge-aware mode with
-// the same r, rn and N, seen along the ridge and close to it. The edge-aware mode keeps the
+// The edge-aware mode against the paper's filter (the figure of docs/edge-aware.md): the bundled
+// noisy sharp edge (noise 0.5% of the diagonal), then the paper's filter and the edge-aware mode
+// with the same r, rn and N, seen along the ridge and close to it. The edge-aware mode keeps the
 // ridge sharper and the faces thinner.
 #include "RenderingScene.h"
 
