@@ -1,5 +1,6 @@
-// Bit counting for the core's leaf masks, with the compiler's instruction where it has one and
-// portable standard C++ elsewhere (C++17 has no std::countr_zero or std::popcount).
+// Bit operations of the core: counting for the leaf masks, with the compiler's instruction where
+// it has one and portable standard C++ elsewhere (C++17 has no std::countr_zero or
+// std::popcount), and mixing for hashes.
 #ifndef pcbilateral_BitOperations_h
 #define pcbilateral_BitOperations_h
 
@@ -36,6 +37,17 @@ inline int PopCount(std::uint32_t mask)
   }
   return count;
 #endif
+}
+
+/// SplitMix64's finaliser: every input bit changes about half the output bits, so that keys
+/// made from coordinates spread evenly (the measurement's pseudo-random keys, the grid's
+/// buckets).
+inline std::uint64_t MixBits(std::uint64_t x)
+{
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
 }
 
 } // namespace pcbilateral

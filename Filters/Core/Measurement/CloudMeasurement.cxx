@@ -27,6 +27,7 @@
 // result does not depend on the number of threads.
 #include "CloudMeasurement.h"
 
+#include "BitOperations.h"
 #include "LocalSurfaceFit.h"
 #include "PointGrid.h"
 #include "Threads.h"
@@ -42,15 +43,6 @@ namespace pcbilateral
 {
 namespace
 {
-/// SplitMix64's finaliser.
-std::uint64_t Mix(std::uint64_t x)
-{
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
 std::uint64_t Bits(double value)
 {
   // -0 and +0 are one point.
@@ -64,7 +56,7 @@ std::uint64_t Bits(double value)
 /// key whatever its index, in whichever part of a distributed cloud it is.
 std::uint64_t MeasurementKey(const double* p)
 {
-  return Mix(Mix(Mix(Bits(p[0])) ^ Bits(p[1])) ^ Bits(p[2]));
+  return MixBits(MixBits(MixBits(Bits(p[0])) ^ Bits(p[1])) ^ Bits(p[2]));
 }
 
 /// The key that decides whether a point is in the measured selection (SelectMeasurementPoints):
@@ -72,7 +64,7 @@ std::uint64_t MeasurementKey(const double* p)
 /// independent.
 std::uint64_t SelectionKey(const double* p)
 {
-  return Mix(MeasurementKey(p) ^ 0x5bd1e995ull);
+  return MixBits(MeasurementKey(p) ^ 0x5bd1e995ull);
 }
 
 /// A finite point's MeasurementKey and index.
@@ -151,7 +143,7 @@ void GatherBall(const PointGrid& grid,
   const double* z = grid.GetZ();
   grid.ForEachInBall(centre,
     rho,
-    [&](std::size_t i)
+    [&](std::size_t i, double)
     {
       points.push_back(
         { (x[i] - centre[0]) / rho, (y[i] - centre[1]) / rho, (z[i] - centre[2]) / rho });
@@ -356,21 +348,21 @@ private:
     const double* y = grid.GetY();
     const double* z = grid.GetZ();
     const std::uint32_t* ids = grid.GetIds();
-    const double largest = 2.0 * this->Extent.LargestExtent();
-    for (double radius = grid.GetCellSize(); radius <= 2.0 * largest; radius *= 2.0)
+    // (A ball twice the cloud's extent holds every point.)
+    const double wholeCloud = 2.0 * this->Extent.LargestExtent();
+    for (double radius = grid.GetCellSize(); radius <= 2.0 * wholeCloud; radius *= 2.0)
     {
       double nearest = std::numeric_limits<double>::infinity();
       grid.ForEachInBall(p,
         radius,
-        [&](std::size_t i)
+        [&](std::size_t i, double distanceSquared)
         {
           if (ids[i] != index)
           {
-            const double dx = x[i] - p[0], dy = y[i] - p[1], dz = z[i] - p[2];
-            nearest = std::min(nearest, dx * dx + dy * dy + dz * dz);
+            nearest = std::min(nearest, distanceSquared);
           }
         });
-      if (nearest <= radius * radius)
+      if (std::isfinite(nearest))
       {
         return std::sqrt(nearest);
       }
@@ -553,7 +545,7 @@ private:
     std::size_t count = 0;
     grid.ForEachInBall(fit.SurfacePoint,
       std::sqrt(disc * disc + slab * slab),
-      [&](std::size_t i)
+      [&](std::size_t i, double)
       {
         const double q[3] = { grid.GetX()[i], grid.GetY()[i], grid.GetZ()[i] };
         double local[3];

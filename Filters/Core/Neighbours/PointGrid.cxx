@@ -1,5 +1,7 @@
 #include "PointGrid.h"
 
+#include "BitOperations.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -37,15 +39,6 @@ bool EntryBefore(const GridEntry& a, const GridEntry& b)
     }
   }
   return false;
-}
-
-/// SplitMix64's finaliser: spreads the cells' hashes over the buckets.
-std::uint64_t MixBits(std::uint64_t x)
-{
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
 }
 
 bool KeyLess(const std::int64_t* a, const std::int64_t* b)

@@ -78,9 +78,9 @@ public:
     return &this->NeighbourRuns[18 * static_cast<std::size_t>(cell)];
   }
 
-  /// Calls visit(index in the layout) for each point q with |q - centre|^2 <= radius^2, cell by
-  /// cell in the layout's order. A ball that spans more cells than there are points is answered
-  /// by looking at every point.
+  /// Calls visit(index in the layout, |q - centre|^2) for each point q with
+  /// |q - centre|^2 <= radius^2, cell by cell in the layout's order. A ball that spans more cells
+  /// than there are points is answered by looking at every point.
   template<typename Visit>
   void ForEachInBall(const double centre[3], double radius, Visit&& visit) const;
 
@@ -139,9 +139,10 @@ void PointGrid::ForEachInBall(const double centre[3], double radius, Visit&& vis
     {
       const double dx = this->X[i] - centre[0], dy = this->Y[i] - centre[1],
                    dz = this->Z[i] - centre[2];
-      if (dx * dx + dy * dy + dz * dz <= radiusSquared)
+      const double distanceSquared = dx * dx + dy * dy + dz * dz;
+      if (distanceSquared <= radiusSquared)
       {
-        visit(i);
+        visit(i, distanceSquared);
       }
     }
   };

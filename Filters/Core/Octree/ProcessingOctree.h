@@ -6,7 +6,6 @@
 #include "PointArray.h"
 
 #include <array>
-#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -194,22 +193,14 @@ public:
   void PlaceList(std::int32_t cell, std::int32_t first, std::int32_t last)
   {
     std::int32_t& head = this->NextHead[cell];
-#if defined(__GNUC__) || defined(__clang__)
+    // (GCC's and clang's atomic builtins on a plain int32_t: C++17 has no std::atomic_ref, and
+    // NextHead grows while no thread places points, which a vector of atomics could not.)
     std::int32_t old = __atomic_load_n(&head, __ATOMIC_RELAXED);
     do
     {
       this->NextLink[last] = old;
     } while (
       !__atomic_compare_exchange_n(&head, &old, first, true, __ATOMIC_RELEASE, __ATOMIC_RELAXED));
-#else
-    std::atomic_ref<std::int32_t> shared(head); // C++20 compilers other than GCC and clang
-    std::int32_t old = shared.load(std::memory_order_relaxed);
-    do
-    {
-      this->NextLink[last] = old;
-    } while (!shared.compare_exchange_weak(
-      old, first, std::memory_order_release, std::memory_order_relaxed));
-#endif
   }
   ///@}
 
@@ -224,27 +215,15 @@ public:
   /// The layout of this iteration (valid after Load or Compact).
   /// Cells that held points at the last layout, numbered 0 to this count - 1. Cells created
   /// while placing come after them.
-  std::size_t GetNumberOfProcessingCells() const
-  {
-    return this->NumberOfProcessingCells;
-  }
-  const LatticeCoord& GetCellCoord(std::size_t cell) const
-  {
-    return this->CellCoords[cell];
-  }
+  std::size_t GetNumberOfProcessingCells() const { return this->NumberOfProcessingCells; }
+  const LatticeCoord& GetCellCoord(std::size_t cell) const { return this->CellCoords[cell]; }
   /// The 27 cells around a cell (itself in CentreSlot), NoCell where none is stored. Looked up
   /// rather than stored: clouds of sparse cells would spend more on such tables than on points.
   void GetNeighbourCells(std::size_t cell, std::int32_t neighbours[27]) const;
   /// The end of a cell's points in the arrays below (they start at the previous cell's end).
-  std::uint32_t GetCellEnd(std::size_t cell) const
-  {
-    return this->CellBegins[cell + 1];
-  }
+  std::uint32_t GetCellEnd(std::size_t cell) const { return this->CellBegins[cell + 1]; }
   /// The leaves of a cell that hold points: bit l for leaf l.
-  std::uint64_t GetLeafMask(std::size_t cell) const
-  {
-    return this->LeafMasks[cell];
-  }
+  std::uint64_t GetLeafMask(std::size_t cell) const { return this->LeafMasks[cell]; }
   /// Points of leaves `first` to `last` of `cell`: indices [begin, end) in the arrays below
   /// (empty when the leaves hold none).
   void GetLeavesRange(std::size_t cell,
@@ -264,26 +243,11 @@ public:
   {
     this->GetLeavesRange(cell, localLeaf, localLeaf, begin, end);
   }
-  const std::uint32_t* GetIds() const
-  {
-    return this->Ids.data();
-  }
-  const double* GetX() const
-  {
-    return this->X.data();
-  }
-  const double* GetY() const
-  {
-    return this->Y.data();
-  }
-  const double* GetZ() const
-  {
-    return this->Z.data();
-  }
-  std::size_t GetNumberOfPoints() const
-  {
-    return this->Ids.size();
-  }
+  const std::uint32_t* GetIds() const { return this->Ids.data(); }
+  const double* GetX() const { return this->X.data(); }
+  const double* GetY() const { return this->Y.data(); }
+  const double* GetZ() const { return this->Z.data(); }
+  std::size_t GetNumberOfPoints() const { return this->Ids.size(); }
   ///@}
 
   /// After the last iteration: frees all but GetIds and the moved positions (what is needed to
@@ -294,18 +258,9 @@ public:
   ///@{
   /// Where the points of this iteration go, by index in its layout: written by the filter
   /// before it places them, read by the next Compact.
-  double* GetMovedX()
-  {
-    return this->MovedX.data();
-  }
-  double* GetMovedY()
-  {
-    return this->MovedY.data();
-  }
-  double* GetMovedZ()
-  {
-    return this->MovedZ.data();
-  }
+  double* GetMovedX() { return this->MovedX.data(); }
+  double* GetMovedY() { return this->MovedY.data(); }
+  double* GetMovedZ() { return this->MovedZ.data(); }
   ///@}
 
 private:
