@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# Runs a test that reads the shared data (the authors' reference outputs, the LAS samples), or
-# reports it skipped, with the reason, when that data is not configured or not there: exit 77,
+# Runs a test that reads the shared data (the authors' reference outputs, the LAS samples, the
+# real scans), or reports it skipped, with the reason, when that data is not configured or not there: exit 77,
 # the SKIP_RETURN_CODE of these tests, so that ctest lists them as "Skipped" instead of failing
 # them (and no program is started with an empty or missing path).
 #   SkipWithoutSharedData.sh VARIABLE FOLDER [FILE...] -- COMMAND [ARGUMENTS...]
-# VARIABLE is the setting that names FOLDER (PCB_REFERENCE_DIR, PCB_LAS_DATA_DIR), for the
-# message; each FILE is a path inside FOLDER that the test needs.
+# VARIABLE is the setting that names FOLDER (PCB_REFERENCE_DIR, PCB_LAS_DATA_DIR,
+# PCB_REAL_DATA_DIR), for the message; each FILE is a path inside FOLDER that the test needs.
 set -euo pipefail
 variable=$1
 folder=$2

@@ -338,9 +338,8 @@ std::string NoisyText(const Quality& noisy, bool hasEdges)
 std::string AutomaticText(const Truth& truth, const pcbilateral::CloudScales& scales)
 {
   const bool hasEdges = truth.EdgePoints > 0;
-  pcbilateral::BilateralParameters automatic;
-  automatic.NumberOfIterations = 0;
-  automatic = pcbilateral::ChooseParameters(scales, automatic);
+  pcbilateral::BilateralParameters automatic =
+    pcbilateral::ChooseParameters(scales, pcbilateral::BilateralParameters());
   automatic.NumberOfThreads = 1;
   const std::vector<double>& input = truth.Cloud->Positions;
   const Quality autoPaper = truth.Measure(RunFilter(

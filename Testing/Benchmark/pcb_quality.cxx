@@ -149,9 +149,8 @@ int Cost()
     }
     std::sort(times.begin(), times.end());
     const double measuring = times[1];
-    pcbilateral::BilateralParameters automatic;
-    automatic.NumberOfIterations = 0;
-    pcbilateral::BilateralParameters parameters = pcbilateral::ChooseParameters(scales, automatic);
+    pcbilateral::BilateralParameters parameters =
+      pcbilateral::ChooseParameters(scales, pcbilateral::BilateralParameters());
     parameters.NumberOfIterations = 1;
     parameters.NumberOfThreads = 1;
     const auto start = std::chrono::steady_clock::now();
@@ -375,9 +374,8 @@ void PrintRow(const std::string& name,
 pcbilateral::BilateralParameters AutomaticFor(const std::string& name,
   const pcbilateral::CloudScales& scales)
 {
-  pcbilateral::BilateralParameters automatic;
-  automatic.NumberOfIterations = 0;
-  automatic = pcbilateral::ChooseParameters(scales, automatic);
+  const pcbilateral::BilateralParameters automatic =
+    pcbilateral::ChooseParameters(scales, pcbilateral::BilateralParameters());
   std::fprintf(stderr,
     "%s: spacing %.4g, sigma %.4g, curvature excess %.4g, feature fraction %.4g, crease fraction "
     "%.4g: r %.4g, rn "

@@ -443,19 +443,11 @@ double GeneralRadius(const pcbilateral::AutomaticRule& rule)
   return rule.RadiusInSpacings * 0.01 + rule.RadiusInSigmas * 0.002;
 }
 
-/// The parameters the user leaves to the rule: all of them, the iterations included.
-pcbilateral::BilateralParameters AllAutomatic()
-{
-  pcbilateral::BilateralParameters user;
-  user.NumberOfIterations = 0;
-  return user;
-}
-
 /// The general rule, and any parameter the user gave overrides only itself.
 void CheckGeneralRule()
 {
   const pcbilateral::CloudScales scales = ScalesWithEdges();
-  pcbilateral::BilateralParameters user = AllAutomatic();
+  pcbilateral::BilateralParameters user; // all automatic
   user.NumberOfThreads = 3;
   const pcbilateral::AutomaticRule rule;
   pcbilateral::BilateralParameters chosen = pcbilateral::ChooseParameters(scales, user);
@@ -492,7 +484,7 @@ void CheckFlatRule()
   scales.CurvatureExcess = 0.0;
   const pcbilateral::AutomaticRule rule;
   const pcbilateral::BilateralParameters chosen =
-    pcbilateral::ChooseParameters(scales, AllAutomatic());
+    pcbilateral::ChooseParameters(scales, pcbilateral::BilateralParameters());
   PCB_CHECK(chosen.Radius == rule.FlatRadiusFactor * GeneralRadius(rule) &&
               chosen.NumberOfIterations == rule.FlatIterations,
     "flat: r %g N %d",
@@ -511,7 +503,7 @@ void CheckSmoothRule()
   PCB_CHECK(!pcbilateral::IsFlat(scales) && pcbilateral::IsSmoothWithThinNoise(scales),
     "a curved cloud without creases, sigma 0.2 spacings: smooth with thin noise expected");
   const pcbilateral::AutomaticRule rule;
-  pcbilateral::BilateralParameters user = AllAutomatic();
+  pcbilateral::BilateralParameters user; // all automatic
   pcbilateral::BilateralParameters chosen = pcbilateral::ChooseParameters(scales, user);
   const double smoothRadius = rule.SmoothRadiusFactor * GeneralRadius(rule);
   PCB_CHECK(chosen.Radius == smoothRadius && chosen.NormalRadius == smoothRadius &&
@@ -539,7 +531,7 @@ void CheckUnmeasuredCloud()
   pcbilateral::CloudScales scales = ScalesWithEdges();
   scales.Valid = false;
   const pcbilateral::BilateralParameters chosen =
-    pcbilateral::ChooseParameters(scales, AllAutomatic());
+    pcbilateral::ChooseParameters(scales, pcbilateral::BilateralParameters());
   PCB_CHECK(chosen.Radius == 0.0 && chosen.NormalRadius == 0.0 && chosen.NumberOfIterations == 0,
     "unmeasured cloud: r %g rn %g N %d (0 expected: the paper's heuristic)",
     chosen.Radius,
@@ -638,7 +630,7 @@ void CheckRuleQuality(const QualityCase& c)
   const NoisyCloud cloud = MakeNoisyCloud(*shape, 20000, c.Noise, c.ScanLines, c.Outliers, c.Seed);
   const pcbilateral::CloudScales measured = pcbilateral::MeasureScales(View(cloud));
   const pcbilateral::BilateralParameters automatic =
-    pcbilateral::ChooseParameters(measured, AllAutomatic());
+    pcbilateral::ChooseParameters(measured, pcbilateral::BilateralParameters());
   CheckClassification(c.Name, measured);
   const auto autoErrors =
     Errors(*shape, cloud, pcbilateral::RunBilateralFilter(View(cloud), automatic).Positions);

@@ -113,7 +113,7 @@ def check_layers(source_dir, build_dir):
                                 f"{layer} may not use (it may use {', '.join(LAYERS[layer]) or 'nothing'})")
     problems += find_cycles(edges)
     if build_dir:
-        problems += check_links(build_dir)
+        problems += check_link_lines(build_dir)
     return problems
 
 
@@ -139,8 +139,8 @@ def find_cycles(edges):
     return problems
 
 
-def check_links(build_dir):
-    """The link lines of the VTK filter modules (build.ninja, or link.txt for Makefiles) must not
+def check_link_lines(build_dir):
+    """The link lines of the VTK filter modules (in build.ninja: a Ninja build) must not
     name the formats library, and the core's libraries must not name VTK."""
     ninja = os.path.join(build_dir, "build.ninja")
     if not os.path.exists(ninja):
