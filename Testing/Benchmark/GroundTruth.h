@@ -5,6 +5,7 @@
 
 #include "BenchmarkTiming.h"
 #include "BilateralFilter.h"
+#include "CloudView.h"
 #include "SampleShapes.h"
 
 #include <cmath>
@@ -20,14 +21,6 @@ struct Quality
   double Rms = 0.0;
   double EdgeRms = 0.0;
 };
-
-inline pcbilateral::PointCloudView View(const std::vector<double>& positions)
-{
-  pcbilateral::PointCloudView view;
-  view.NumberOfPoints = positions.size() / 3;
-  view.Positions = positions.data();
-  return view;
-}
 
 /// A noisy cloud of a shape, and which of its points are near a sharp edge: those whose
 /// noise-free position is within 3 sigma + 3% of the diagonal of one (outliers never are).

@@ -30,6 +30,7 @@
 #include "BenchmarkTiming.h"
 #include "BilateralFilter.h"
 #include "BilateralKernel.h"
+#include "CloudView.h"
 #include "LASHeader.h"
 #include "LASReader.h"
 #include "LASWriter.h"
@@ -180,9 +181,8 @@ Measurement RunInChild(const Workload& workload, int threads, int runs, double& 
   {
     close(channel[0]);
     const std::vector<double> xyz = Generate(workload);
-    pcbilateral::PointCloudView cloud;
-    cloud.NumberOfPoints = workload.Points;
-    cloud.Positions = xyz.data();
+    const pcbilateral::PointCloudView cloud =
+      pcbilateral_testing::ViewOf(xyz.data(), workload.Points);
     pcbilateral::BilateralParameters parameters;
     parameters.Radius = workload.Radius;
     parameters.NormalRadius = workload.NormalRadius;

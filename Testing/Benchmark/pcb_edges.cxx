@@ -106,7 +106,8 @@ std::vector<double> RunFilter(const std::vector<double>& input,
   parameters.NumberOfIterations = iterations;
   parameters.NumberOfThreads = 1;
   parameters.EdgeAware = edgeAware;
-  pcbilateral::BilateralResult result = pcbilateral::RunBilateralFilter(View(input), parameters);
+  pcbilateral::BilateralResult result =
+    pcbilateral::RunBilateralFilter(pcbilateral_testing::ViewOf(input), parameters);
   if (result.Status != pcbilateral::BilateralStatus::Completed)
   {
     std::fprintf(stderr, "run failed: %s\n", result.Error.c_str());
@@ -466,7 +467,7 @@ void RunCase(const Case& c, const char* name, std::uint64_t seed, [[maybe_unused
   pcbilateral::ScaleMeasurementOptions options;
   options.NumberOfThreads = 1;
   const pcbilateral::CloudScales scales =
-    pcbilateral::MeasureScales(View(cloud.Positions), options);
+    pcbilateral::MeasureScales(pcbilateral_testing::ViewOf(cloud.Positions), options);
   const std::string autoText = AutomaticText(truth, scales);
   Best paper = SearchFilter(truth, scales.PointSpacing, scales.NoiseSigma, false);
   Best edgeAware = SearchFilter(truth, scales.PointSpacing, scales.NoiseSigma, true);

@@ -64,7 +64,7 @@ std::vector<Quality> RunChain(const Truth& truth, double r, double rn, int itera
   for (int k = 0; k < iterations; ++k)
   {
     const pcbilateral::BilateralResult result =
-      pcbilateral::RunBilateralFilter(View(positions), parameters);
+      pcbilateral::RunBilateralFilter(pcbilateral_testing::ViewOf(positions), parameters);
     if (result.Status != pcbilateral::BilateralStatus::Completed)
     {
       std::fprintf(stderr, "run failed: %s\n", result.Error.c_str());
@@ -80,8 +80,8 @@ Quality RunOnce(const Truth& truth, const pcbilateral::BilateralParameters& give
 {
   pcbilateral::BilateralParameters parameters = given;
   parameters.NumberOfThreads = 1;
-  const pcbilateral::BilateralResult result =
-    pcbilateral::RunBilateralFilter(View(truth.Cloud->Positions), parameters);
+  const pcbilateral::BilateralResult result = pcbilateral::RunBilateralFilter(
+    pcbilateral_testing::ViewOf(truth.Cloud->Positions), parameters);
   return truth.Measure(result.Positions);
 }
 
@@ -144,7 +144,7 @@ int Cost()
     for (int run = 0; run < 3; ++run)
     {
       const auto start = std::chrono::steady_clock::now();
-      scales = pcbilateral::MeasureScales(View(cloud.Positions), options);
+      scales = pcbilateral::MeasureScales(pcbilateral_testing::ViewOf(cloud.Positions), options);
       times.push_back(Seconds(start));
     }
     std::sort(times.begin(), times.end());
@@ -154,7 +154,7 @@ int Cost()
     parameters.NumberOfIterations = 1;
     parameters.NumberOfThreads = 1;
     const auto start = std::chrono::steady_clock::now();
-    pcbilateral::RunBilateralFilter(View(cloud.Positions), parameters);
+    pcbilateral::RunBilateralFilter(pcbilateral_testing::ViewOf(cloud.Positions), parameters);
     const double filtering = Seconds(start);
     std::printf("| %s | %.3f s | %.3f s (r = %.4g, rn = %.4g) | %.1f%% |\n",
       workload.Name,
@@ -396,7 +396,8 @@ pcbilateral::BilateralParameters AutomaticFor(const std::string& name,
 /// (r = 2.5% of the largest extent, rn = r, N = 1) and the automatic parameters.
 Contenders RunContenders(const Truth& truth, const pcbilateral::BilateralParameters& automatic)
 {
-  const pcbilateral::CloudExtent extent = pcbilateral::MeasureCloud(View(truth.Cloud->Positions));
+  const pcbilateral::CloudExtent extent =
+    pcbilateral::MeasureCloud(pcbilateral_testing::ViewOf(truth.Cloud->Positions));
   pcbilateral::BilateralParameters paper;
   paper.Automatic = pcbilateral::AutomaticParameters::Paper;
   pcbilateral::BilateralParameters old;
@@ -419,7 +420,7 @@ void RunCase(const Case& c, const std::string& name, std::uint64_t seed, const O
   pcbilateral::ScaleMeasurementOptions measurement;
   measurement.NumberOfThreads = 1;
   const pcbilateral::CloudScales scales =
-    pcbilateral::MeasureScales(View(cloud.Positions), measurement);
+    pcbilateral::MeasureScales(pcbilateral_testing::ViewOf(cloud.Positions), measurement);
   const double s = scales.PointSpacing, sigma = scales.NoiseSigma;
   const pcbilateral::BilateralParameters automatic = AutomaticFor(name, scales);
   const std::vector<double> radii = GridRadii(c, options.Grid, s, sigma, automatic.Radius);

@@ -4,12 +4,30 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <functional>
 #include <map>
+#include <sstream>
 #include <string>
 
 namespace pcbilateral_testing
 {
+/// A file's bytes (empty when it cannot be read).
+inline std::string FileContents(const std::string& path)
+{
+  std::ifstream file(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << file.rdbuf();
+  return bytes.str();
+}
+
+/// Writes `bytes` as the whole file at `path`; returns the path.
+inline std::string WriteFileContents(const std::string& path, const std::string& bytes)
+{
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path;
+}
+
 inline int& FailureCount()
 {
   static int failures = 0;

@@ -107,11 +107,6 @@ std::vector<ShapeCase> Shapes()
   };
 }
 
-pcbilateral::PointCloudView View(const NoisyCloud& cloud)
-{
-  return ViewOf(cloud.Positions.data(), cloud.NumberOfPoints());
-}
-
 /// The largest relative errors of the measured spacing and sigma so far.
 struct WorstErrors
 {
@@ -134,7 +129,7 @@ void CheckAccuracy(const ShapeCase& shapeCase,
   const double trueSpacing =
     MeanNearestNeighbourDistance(cloud.Clean, 2.0 * std::sqrt(shapeCase.Area / n));
   const auto start = std::chrono::steady_clock::now();
-  const pcbilateral::CloudScales scales = pcbilateral::MeasureScales(View(cloud));
+  const pcbilateral::CloudScales scales = pcbilateral::MeasureScales(ViewOf(cloud.Positions));
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double spacingRatio = scales.PointSpacing / trueSpacing;
@@ -282,13 +277,14 @@ pcbilateral::CloudScales CheckSameBitsForThreads(const NoisyCloud& cloud)
 {
   pcbilateral::ScaleMeasurementOptions options;
   options.NumberOfThreads = 1;
-  const pcbilateral::CloudScales one = pcbilateral::MeasureScales(View(cloud), options);
+  const pcbilateral::CloudScales one = pcbilateral::MeasureScales(ViewOf(cloud.Positions), options);
   PCB_CHECK(one.Valid, "%s", one.Problem.c_str());
   for (int threads : { 2, 4 })
   {
     options.NumberOfThreads = threads;
-    CheckSameScales(
-      one, pcbilateral::MeasureScales(View(cloud), options), std::to_string(threads) + " threads");
+    CheckSameScales(one,
+      pcbilateral::MeasureScales(ViewOf(cloud.Positions), options),
+      std::to_string(threads) + " threads");
   }
   return one;
 }
@@ -310,7 +306,8 @@ void CheckOrderAndParts(const NoisyCloud& cloud, const pcbilateral::CloudScales&
   CheckSameScales(one, pcbilateral::MeasureScales(ViewOf(shuffled), options), "shuffled points");
 
   const double fraction = 0.3;
-  const std::vector<double> whole = pcbilateral::SelectMeasurementPoints(View(cloud), fraction);
+  const std::vector<double> whole =
+    pcbilateral::SelectMeasurementPoints(ViewOf(cloud.Positions), fraction);
   const double kept = static_cast<double>(whole.size() / 3) / cloud.NumberOfPoints();
   PCB_CHECK(std::abs(kept - fraction) < 0.01, "%g of the points selected, not 0.3", kept);
   std::vector<double> gathered;
@@ -338,7 +335,8 @@ void CheckGivenSamples(const NoisyCloud& cloud, const pcbilateral::CloudScales& 
   {
     options.SampleIndices.push_back(i);
   }
-  const pcbilateral::CloudScales given = pcbilateral::MeasureScales(View(cloud), options);
+  const pcbilateral::CloudScales given =
+    pcbilateral::MeasureScales(ViewOf(cloud.Positions), options);
   PCB_CHECK(
     given.NumberOfSamples == options.SampleIndices.size(), "%zu samples", given.NumberOfSamples);
   PCB_CHECK(!SameScales(one, given), "the given samples were not used");
@@ -628,16 +626,16 @@ void CheckRuleQuality(const QualityCase& c)
 {
   const auto shape = c.Make();
   const NoisyCloud cloud = MakeNoisyCloud(*shape, 20000, c.Noise, c.ScanLines, c.Outliers, c.Seed);
-  const pcbilateral::CloudScales measured = pcbilateral::MeasureScales(View(cloud));
+  const pcbilateral::CloudScales measured = pcbilateral::MeasureScales(ViewOf(cloud.Positions));
   const pcbilateral::BilateralParameters automatic =
     pcbilateral::ChooseParameters(measured, pcbilateral::BilateralParameters());
   CheckClassification(c.Name, measured);
-  const auto autoErrors =
-    Errors(*shape, cloud, pcbilateral::RunBilateralFilter(View(cloud), automatic).Positions);
+  const auto autoErrors = Errors(
+    *shape, cloud, pcbilateral::RunBilateralFilter(ViewOf(cloud.Positions), automatic).Positions);
   pcbilateral::BilateralParameters paper; // r = sqrt(20 / n) x extent, rn = r, N = 1
   paper.Automatic = pcbilateral::AutomaticParameters::Paper;
-  const auto paperErrors =
-    Errors(*shape, cloud, pcbilateral::RunBilateralFilter(View(cloud), paper).Positions);
+  const auto paperErrors = Errors(
+    *shape, cloud, pcbilateral::RunBilateralFilter(ViewOf(cloud.Positions), paper).Positions);
   std::printf("%s: automatic (r %.4g, rn %.4g, N %d) RMS %.4g edge %.4g; grid best %.4g / "
               "%.4g; paper %.4g\n",
     c.Name,

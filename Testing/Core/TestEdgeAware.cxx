@@ -12,6 +12,7 @@
 #include "BilateralFilter.h"
 #include "BilateralKernel.h"
 #include "CloudMeasurement.h"
+#include "CloudView.h"
 #include "PinnedBits.h"
 #include "SampleShapes.h"
 
@@ -25,14 +26,6 @@ namespace
 {
 using namespace pcbilateral;
 using namespace pcbilateral_samples;
-
-PointCloudView View(const std::vector<double>& positions)
-{
-  PointCloudView view;
-  view.NumberOfPoints = positions.size() / 3;
-  view.Positions = positions.data();
-  return view;
-}
 
 struct Errors
 {
@@ -67,7 +60,7 @@ Errors Measure(const Shape& shape, const NoisyCloud& cloud, const std::vector<do
 
 BilateralResult Run(const std::vector<double>& positions, BilateralParameters parameters)
 {
-  BilateralResult result = RunBilateralFilter(View(positions), parameters);
+  BilateralResult result = RunBilateralFilter(pcbilateral_testing::ViewOf(positions), parameters);
   PCB_CHECK(result.Status == BilateralStatus::Completed, "%s", result.Error.c_str());
   return result;
 }
@@ -76,7 +69,7 @@ BilateralResult Run(const std::vector<double>& positions, BilateralParameters pa
 /// both modes on these shapes (pcb_edges).
 BilateralParameters Parameters(const std::vector<double>& positions, bool edgeAware)
 {
-  const CloudScales scales = MeasureScales(View(positions));
+  const CloudScales scales = MeasureScales(pcbilateral_testing::ViewOf(positions));
   BilateralParameters parameters;
   parameters.Radius = 12.0 * scales.PointSpacing;
   parameters.NormalRadius = 5.0 * scales.NoiseSigma;
@@ -211,7 +204,7 @@ void Inputs()
   {
     up[3 * i + 2] = 1.0;
   }
-  PointCloudView oriented = View(positions);
+  PointCloudView oriented = pcbilateral_testing::ViewOf(positions);
   oriented.OrientationNormals = up.data();
   const BilateralResult orientedResult = RunBilateralFilter(oriented, parameters);
   std::size_t agreeing = 0;
@@ -238,7 +231,8 @@ void Inputs()
   BilateralObserver observer;
   observer.ShouldAbort = [&polls] { return ++polls > 2; };
   observer.Progress = [&progress](double fraction) { progress = std::max(progress, fraction); };
-  const BilateralResult aborted = RunBilateralFilter(View(positions), parameters, observer);
+  const BilateralResult aborted =
+    RunBilateralFilter(pcbilateral_testing::ViewOf(positions), parameters, observer);
   PCB_CHECK(aborted.Status == BilateralStatus::Aborted, "not aborted");
   PCB_CHECK(progress > 0.0 && progress < 1.0, "progress %g", progress);
 }

@@ -5,6 +5,7 @@
 // library gives the same bits.)
 #include "BilateralFilter.h"
 #include "BilateralKernel.h"
+#include "CloudView.h"
 #include "PinnedBits.h"
 #include "SampleShapes.h"
 
@@ -48,9 +49,7 @@ int main()
   constexpr std::uint64_t Expected = 0x5c0d1cc36be3654bULL;
 
   const std::vector<double> xyz = NoisyCube(30000);
-  PointCloudView cloud;
-  cloud.NumberOfPoints = xyz.size() / 3;
-  cloud.Positions = xyz.data();
+  const PointCloudView cloud = pcbilateral_testing::ViewOf(xyz);
   BilateralParameters parameters;
   parameters.Radius = 0.06;
   parameters.NormalRadius = 0.03;

@@ -3,6 +3,7 @@
 // random clouds, radii and root sizes, including radii as large as the cloud.
 // Also checks the other half of the argument: a filtered point moves by less than r.
 #include "BilateralFilter.h"
+#include "CloudView.h"
 #include "CoreTesting.h"
 #include "ProcessingOctree.h"
 
@@ -108,9 +109,7 @@ int main()
     parameters.NormalRadius = radius * (0.1 + 2 * unit(random));
     parameters.NumberOfIterations = 1;
     parameters.NumberOfThreads = 2;
-    pcbilateral::PointCloudView cloud;
-    cloud.NumberOfPoints = count;
-    cloud.Positions = points.data();
+    const pcbilateral::PointCloudView cloud = pcbilateral_testing::ViewOf(points.data(), count);
     const auto result = pcbilateral::RunBilateralFilter(cloud, parameters);
     double largestMove = 0.0;
     for (std::size_t i = 0; i < count; ++i)

@@ -4,6 +4,7 @@
 // bytes named by their record, the header chosen for points from elsewhere, and damaged files
 // through the VTK reader (one error, an empty output).
 #include "CoreTesting.h"
+#include "FileSizeLimit.h"
 
 #include "vtkLASPointCloudReader.h"
 #include "vtkLASPointCloudWriter.h"
@@ -24,7 +25,6 @@
 
 #include <cerrno>
 #include <cmath>
-#include <csignal>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -33,7 +33,6 @@
 #include <string>
 #include <vector>
 
-#include <sys/resource.h>
 #include <unistd.h>
 
 namespace
@@ -330,18 +329,14 @@ void CheckMappedAndChunked(vtkPolyData* cloud, const std::string& name)
 /// and neither the file nor its temporary file left.
 void CheckWriteBeyondLimit(vtkPolyData* cloud, const std::string& path)
 {
-  rlimit limit;
-  getrlimit(RLIMIT_FSIZE, &limit);
-  rlimit small = limit;
-  small.rlim_cur = 6000000; // within the second chunk of the fwrite path (4.5 MB each)
-  void (*handler)(int) = std::signal(SIGXFSZ, SIG_IGN); // else the signal ends the process
-  setrlimit(RLIMIT_FSIZE, &small);
   vtkNew<vtkLASPointCloudWriter> writer;
   writer->SetFileName(path.c_str());
   writer->SetInputData(cloud);
-  writer->Write();
-  setrlimit(RLIMIT_FSIZE, &limit);
-  std::signal(SIGXFSZ, handler);
+  {
+    // Within the second chunk of the fwrite path (4.5 MB each).
+    const pcbilateral_testing::FileSizeLimit sizeLimit(6000000);
+    writer->Write();
+  }
   const std::string expected = path + ": write failed (" + std::strerror(EFBIG) + ")";
   PCB_CHECK(expected == writer->GetErrorMessage(),
     "%s: \"%s\" instead of \"%s\"",

@@ -50,14 +50,6 @@ vtkSmartPointer<vtkPolyData> Read(const std::string& path, bool hasNormals)
   return reader->GetOutput();
 }
 
-std::string FileText(const std::string& path)
-{
-  std::ifstream file(path, std::ios::binary);
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
 /// A cloud of PointCount points with normals, a scalar array named with a space, an integer
 /// array and a 3-component colour array.
 vtkSmartPointer<vtkPolyData> MakeCloudWithArrays()
@@ -180,7 +172,7 @@ void LayoutKept()
     std::ofstream(input, std::ios::binary) << c.Text;
     if (Write(Read(input, c.Normals), output, c.Normals))
     {
-      const std::string written = FileText(output);
+      const std::string written = pcbilateral_testing::FileContents(output);
       PCB_CHECK(written == c.Text,
         "%s: written back as\n%s\ninstead of\n%s",
         c.Name,
@@ -199,7 +191,9 @@ void DefaultLayout()
   const std::string path = "default-layout.xyz";
   if (Write(cloud, path, true))
   {
-    PCB_CHECK(FileText(path) == "0.5\t1\t-2\n", "x y z alone: %s", FileText(path).c_str());
+    PCB_CHECK(pcbilateral_testing::FileContents(path) == "0.5\t1\t-2\n",
+      "x y z alone: %s",
+      pcbilateral_testing::FileContents(path).c_str());
   }
   vtkNew<vtkIntArray> label;
   label->SetName("label");
@@ -207,9 +201,9 @@ void DefaultLayout()
   cloud->GetPointData()->AddArray(label);
   if (Write(cloud, path, true))
   {
-    PCB_CHECK(FileText(path) == "x\ty\tz\tlabel\n0.5\t1\t-2\t3\n",
+    PCB_CHECK(pcbilateral_testing::FileContents(path) == "x\ty\tz\tlabel\n0.5\t1\t-2\t3\n",
       "with an array: %s",
-      FileText(path).c_str());
+      pcbilateral_testing::FileContents(path).c_str());
   }
 }
 } // namespace

@@ -10,16 +10,7 @@
 
 namespace
 {
-std::string WriteFile(const std::string& name, const std::string& bytes)
-{
-  std::FILE* file = std::fopen(name.c_str(), "wb");
-  if (file)
-  {
-    std::fwrite(bytes.data(), 1, bytes.size(), file);
-    std::fclose(file);
-  }
-  return name;
-}
+using pcbilateral_testing::WriteFileContents;
 
 /// A check's message for a file of `bytes`: "" or the problem after "NAME: ".
 template<typename Check>
@@ -28,7 +19,7 @@ void Expect(Check check,
   const std::string& bytes,
   const std::string& problem)
 {
-  const std::string path = WriteFile(name, bytes);
+  const std::string path = WriteFileContents(name, bytes);
   const std::string expected = problem.empty() ? problem : path + ": " + problem;
   const std::string found = check(path);
   PCB_CHECK(found == expected,

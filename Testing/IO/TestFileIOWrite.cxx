@@ -2,6 +2,7 @@
 // and a write that fails part-way (a file larger than the process may write, as on a full
 // disk) says so in one line and leaves the old file as it was, with no temporary file beside.
 #include "CoreTesting.h"
+#include "FileSizeLimit.h"
 #include "VTKTesting.h"
 
 #include "vtkLASPointCloudWriter.h"
@@ -12,15 +13,12 @@
 #include "vtkNew.h"
 #include "vtkPolyData.h"
 
-#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <sys/resource.h>
 
 namespace
 {
@@ -46,14 +44,6 @@ std::set<std::string> Files()
     names.insert(entry.path().filename().string());
   }
   return names;
-}
-
-std::string Contents(const std::string& path)
-{
-  std::ifstream file(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << file.rdbuf();
-  return bytes.str();
 }
 
 void RemoveFiles()
@@ -85,16 +75,12 @@ void UpperCaseExtensions()
 /// Writes `cloud` to `name` allowed files of `limit` bytes at most; the error message.
 std::string WriteLimited(vtkPolyData* cloud, const std::string& name, rlim_t limit)
 {
-  rlimit unlimited;
-  getrlimit(RLIMIT_FSIZE, &unlimited);
-  rlimit small = unlimited;
-  small.rlim_cur = limit;
-  void (*handler)(int) = std::signal(SIGXFSZ, SIG_IGN); // else the signal ends the process
-  setrlimit(RLIMIT_FSIZE, &small);
   vtkNew<vtkPointCloudFileIO> io;
-  const bool written = io->Write(cloud, name.c_str());
-  setrlimit(RLIMIT_FSIZE, &unlimited);
-  std::signal(SIGXFSZ, handler);
+  bool written = false;
+  {
+    const pcbilateral_testing::FileSizeLimit sizeLimit(limit);
+    written = io->Write(cloud, name.c_str());
+  }
   return written ? std::string() : io->GetErrorMessage();
 }
 
@@ -116,7 +102,9 @@ void WriteBeyondLimit()
       name,
       message.c_str(),
       expected.c_str());
-    PCB_CHECK(Contents(name) == "the old file", "%s: a failed write changed the file", name);
+    PCB_CHECK(pcbilateral_testing::FileContents(name) == "the old file",
+      "%s: a failed write changed the file",
+      name);
   }
   const std::set<std::string> expected(std::begin(Names), std::end(Names));
   PCB_CHECK(Files() == expected, "a failed write left a file behind");

@@ -25,18 +25,8 @@ bool Exists(const std::string& path)
   return stat(path.c_str(), &status) == 0;
 }
 
-std::string Contents(const std::string& path)
-{
-  std::ifstream file(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << file.rdbuf();
-  return bytes.str();
-}
-
-void Write(const std::string& path, const std::string& bytes)
-{
-  std::ofstream(path, std::ios::binary) << bytes;
-}
+using pcbilateral_testing::FileContents;
+using pcbilateral_testing::WriteFileContents;
 
 void ExpectTemporary(const std::string& path,
   ReplacingPath::TemporaryName naming,
@@ -65,23 +55,24 @@ void TemporaryNames()
 void CommitAndFailures()
 {
   const std::string path = "replaced.ply";
-  Write(path, "old");
+  WriteFileContents(path, "old");
   {
     ReplacingPath destination(path, ReplacingPath::TemporaryName::ExtensionLast);
-    Write(destination.GetTemporaryPath(), "new");
-    PCB_CHECK(Contents(path) == "old", "the file changed before the commit");
+    WriteFileContents(destination.GetTemporaryPath(), "new");
+    PCB_CHECK(FileContents(path) == "old", "the file changed before the commit");
     const std::string problem = destination.Commit(true);
     PCB_CHECK(problem.empty(), "%s", problem.c_str());
   }
-  PCB_CHECK(Contents(path) == "new" && !Exists("replaced.partial.ply"), "not moved onto the path");
+  PCB_CHECK(
+    FileContents(path) == "new" && !Exists("replaced.partial.ply"), "not moved onto the path");
   {
     ReplacingPath destination(path, ReplacingPath::TemporaryName::ExtensionLast);
-    Write(destination.GetTemporaryPath(), "cut");
+    WriteFileContents(destination.GetTemporaryPath(), "cut");
     const std::string problem = destination.Commit(false, EIO);
     const std::string expected = path + ": write failed (" + std::strerror(EIO) + ")";
     PCB_CHECK(problem == expected, "\"%s\" instead of \"%s\"", problem.c_str(), expected.c_str());
   }
-  PCB_CHECK(Contents(path) == "new" && !Exists("replaced.partial.ply"),
+  PCB_CHECK(FileContents(path) == "new" && !Exists("replaced.partial.ply"),
     "a failed write changed the file or left its temporary file");
   {
     ReplacingPath destination(path, ReplacingPath::TemporaryName::ExtensionLast);
@@ -91,9 +82,9 @@ void CommitAndFailures()
   }
   {
     ReplacingPath destination(path);
-    Write(destination.GetTemporaryPath(), "abandoned");
+    WriteFileContents(destination.GetTemporaryPath(), "abandoned");
   }
-  PCB_CHECK(!Exists(path + ".partial") && Contents(path) == "new",
+  PCB_CHECK(!Exists(path + ".partial") && FileContents(path) == "new",
     "a temporary file outlived its ReplacingPath");
   std::remove(path.c_str());
 }
@@ -103,9 +94,9 @@ void FailedMove()
   // A folder that is not empty cannot be replaced by a file.
   const std::string folder = "replaced-folder.xyz";
   mkdir(folder.c_str(), 0755);
-  Write(folder + "/inside", "x");
+  WriteFileContents(folder + "/inside", "x");
   ReplacingPath destination(folder);
-  Write(destination.GetTemporaryPath(), "new");
+  WriteFileContents(destination.GetTemporaryPath(), "new");
   const std::string problem = destination.Commit(true);
   PCB_CHECK(problem.rfind(folder + ": write failed (", 0) == 0 && !Exists(folder + ".partial"),
     "%s",
@@ -125,12 +116,13 @@ void ReplacingFiles()
     const std::string problem = output.Commit(true);
     PCB_CHECK(problem.empty(), "%s", problem.c_str());
   }
-  PCB_CHECK(Contents(path) == "0 0 0\n" && !Exists(path + ".partial"), "not written");
+  PCB_CHECK(FileContents(path) == "0 0 0\n" && !Exists(path + ".partial"), "not written");
   {
     ReplacingFile output(path);
     std::fputs("1 1 1\n", output.Get()); // never committed
   }
-  PCB_CHECK(Contents(path) == "0 0 0\n" && !Exists(path + ".partial"), "an abandoned write stayed");
+  PCB_CHECK(
+    FileContents(path) == "0 0 0\n" && !Exists(path + ".partial"), "an abandoned write stayed");
   std::remove(path.c_str());
   const ReplacingFile nowhere("no/such/folder/out.xyz");
   const std::string expected =
