@@ -80,22 +80,11 @@ RecordsToWrite SortRecords(const LASFileInfo& info)
   return records;
 }
 
-/// What the header gives besides the fields of LASHeader: where things are and how many.
-struct HeaderCounts
+/// The header block of a LAS file to write: `h` with this file's sizes, offsets, counts and
+/// bounds, and its numbers of VLRs and EVLRs.
+std::vector<std::uint8_t> EncodeHeader(const LASHeader& h, std::uint32_t vlrs, std::uint32_t evlrs)
 {
-  std::size_t HeaderSize = 0;
-  std::size_t OffsetToPoints = 0;
-  std::uint32_t VLRs = 0;
-  std::uint32_t EVLRs = 0;
-  std::uint64_t Points = 0;
-  std::uint64_t ByReturn[15] = {};
-  double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
-};
-
-/// The header block of a LAS file to write, with its counts, bounds and offsets filled in.
-std::vector<std::uint8_t> EncodeHeader(const LASHeader& h, const HeaderCounts& counts)
-{
-  std::vector<std::uint8_t> out(counts.HeaderSize, 0);
+  std::vector<std::uint8_t> out(h.HeaderSize, 0);
   std::uint8_t* d = out.data();
   std::memcpy(d, "LASF", 4);
   Store<std::uint16_t>(d + 4, h.FileSourceId);
@@ -108,39 +97,38 @@ std::vector<std::uint8_t> EncodeHeader(const LASHeader& h, const HeaderCounts& c
   StoreString(d + 58, h.GeneratingSoftware, 32);
   Store<std::uint16_t>(d + 90, h.CreationDay);
   Store<std::uint16_t>(d + 92, h.CreationYear);
-  Store<std::uint16_t>(d + 94, static_cast<std::uint16_t>(counts.HeaderSize));
-  Store<std::uint32_t>(d + 96, static_cast<std::uint32_t>(counts.OffsetToPoints));
-  Store<std::uint32_t>(d + 100, counts.VLRs);
+  Store<std::uint16_t>(d + 94, h.HeaderSize);
+  Store<std::uint32_t>(d + 96, h.OffsetToPointData);
+  Store<std::uint32_t>(d + 100, vlrs);
   d[104] = h.PointFormat;
   Store<std::uint16_t>(d + 105, h.RecordLength);
   const bool legacy =
-    h.PointFormat <= 5 && counts.Points <= std::numeric_limits<std::uint32_t>::max();
-  Store<std::uint32_t>(d + 107, legacy ? static_cast<std::uint32_t>(counts.Points) : 0u);
+    h.PointFormat <= 5 && h.NumberOfPoints <= std::numeric_limits<std::uint32_t>::max();
+  Store<std::uint32_t>(d + 107, legacy ? static_cast<std::uint32_t>(h.NumberOfPoints) : 0u);
   for (int r = 0; r < 5; ++r)
   {
     Store<std::uint32_t>(d + 111 + 4 * r,
-      legacy ? static_cast<std::uint32_t>(std::min<std::uint64_t>(counts.ByReturn[r], 0xFFFFFFFFu))
+      legacy ? static_cast<std::uint32_t>(std::min<std::uint64_t>(h.PointsByReturn[r], 0xFFFFFFFFu))
              : 0u);
   }
   for (int axis = 0; axis < 3; ++axis)
   {
     Store<double>(d + 131 + 8 * axis, h.Scale[axis]);
     Store<double>(d + 155 + 8 * axis, h.Offset[axis]);
-    Store<double>(d + 179 + 16 * axis, counts.Bounds[3 + axis]);
-    Store<double>(d + 187 + 16 * axis, counts.Bounds[axis]);
+    Store<double>(d + 179 + 16 * axis, h.Bounds[3 + axis]);
+    Store<double>(d + 187 + 16 * axis, h.Bounds[axis]);
   }
   if (h.VersionMinor >= 4)
   {
     const std::uint64_t evlrStart =
-      counts.EVLRs
-        ? counts.OffsetToPoints + counts.Points * static_cast<std::uint64_t>(h.RecordLength)
-        : 0;
+      evlrs ? h.OffsetToPointData + h.NumberOfPoints * static_cast<std::uint64_t>(h.RecordLength)
+            : 0;
     Store<std::uint64_t>(d + 235, evlrStart);
-    Store<std::uint32_t>(d + 243, counts.EVLRs);
-    Store<std::uint64_t>(d + 247, counts.Points);
+    Store<std::uint32_t>(d + 243, evlrs);
+    Store<std::uint64_t>(d + 247, h.NumberOfPoints);
     for (int r = 0; r < 15; ++r)
     {
-      Store<std::uint64_t>(d + 255 + 8 * r, counts.ByReturn[r]);
+      Store<std::uint64_t>(d + 255 + 8 * r, h.PointsByReturn[r]);
     }
   }
   return out;
@@ -165,22 +153,24 @@ bool AnyOutOfRange(const std::vector<BlockSummary>& summaries)
     [](const BlockSummary& summary) { return summary.OutOfRange; });
 }
 
-/// The bounds and the points by return of all the blocks into `counts`.
-void SumBlocks(const std::vector<BlockSummary>& summaries, HeaderCounts& counts)
+/// The bounds and the points by return of all the blocks into `header`.
+void SumBlocks(const std::vector<BlockSummary>& summaries, LASHeader& header)
 {
+  std::fill_n(header.Bounds, 6, 0.0);
+  std::fill_n(header.PointsByReturn, 15, 0);
   for (std::size_t b = 0; b < summaries.size(); ++b)
   {
     for (int axis = 0; axis < 3; ++axis)
     {
-      counts.Bounds[axis] = b == 0 ? summaries[b].Bounds[axis]
-                                   : std::min(counts.Bounds[axis], summaries[b].Bounds[axis]);
-      counts.Bounds[3 + axis] =
+      header.Bounds[axis] = b == 0 ? summaries[b].Bounds[axis]
+                                   : std::min(header.Bounds[axis], summaries[b].Bounds[axis]);
+      header.Bounds[3 + axis] =
         b == 0 ? summaries[b].Bounds[3 + axis]
-               : std::max(counts.Bounds[3 + axis], summaries[b].Bounds[3 + axis]);
+               : std::max(header.Bounds[3 + axis], summaries[b].Bounds[3 + axis]);
     }
     for (int r = 0; r < 15; ++r)
     {
-      counts.ByReturn[r] += summaries[b].ByReturn[r];
+      header.PointsByReturn[r] += summaries[b].ByReturn[r];
     }
   }
 }
@@ -203,13 +193,16 @@ std::string WriteLAS(const std::string& path,
   {
     return path + ": a variable-length record longer than 65535 bytes needs LAS 1.4";
   }
-  HeaderCounts counts;
-  counts.HeaderSize = HeaderSizeOfVersion(h.VersionMinor);
-  counts.OffsetToPoints = counts.HeaderSize + records.VLRBytes.size();
-  if (counts.OffsetToPoints > std::numeric_limits<std::uint32_t>::max())
+  // The header written: the given one with this file's sizes, offsets, counts and bounds.
+  LASHeader written = h;
+  written.HeaderSize = static_cast<std::uint16_t>(HeaderSizeOfVersion(h.VersionMinor));
+  const std::size_t offsetToPoints = written.HeaderSize + records.VLRBytes.size();
+  if (offsetToPoints > std::numeric_limits<std::uint32_t>::max())
   {
     return path + ": the variable-length records are too long for a LAS header";
   }
+  written.OffsetToPointData = static_cast<std::uint32_t>(offsetToPoints);
+  written.NumberOfPoints = count;
 
   ReplacingFile output(path);
   std::FILE* file = output.Get();
@@ -218,7 +211,7 @@ std::string WriteLAS(const std::string& path,
     return output.OpenError();
   }
   // The header's place first; it is written again at the end with the bounds and counts.
-  std::vector<std::uint8_t> header(counts.HeaderSize, 0);
+  std::vector<std::uint8_t> header(written.HeaderSize, 0);
   const std::vector<std::uint8_t>& vlrBytes = records.VLRBytes;
   bool ok = std::fwrite(header.data(), 1, header.size(), file) == header.size() &&
             std::fwrite(vlrBytes.data(), 1, vlrBytes.size(), file) == vlrBytes.size();
@@ -228,7 +221,7 @@ std::string WriteLAS(const std::string& path,
   int failure = 0; // the errno of a failed write of the records
   if (ok)
   {
-    ok = WritePoints(file, counts.OffsetToPoints, encoder, summaries);
+    ok = WritePoints(file, written.OffsetToPointData, encoder, summaries);
     failure = ok ? 0 : errno;
   }
   if (AnyOutOfRange(summaries))
@@ -244,11 +237,9 @@ std::string WriteLAS(const std::string& path,
   }
   ok = ok && std::fwrite(evlrBytes.data(), 1, evlrBytes.size(), file) == evlrBytes.size();
 
-  counts.VLRs = records.VLRCount;
-  counts.EVLRs = static_cast<std::uint32_t>(records.Extended.size());
-  counts.Points = count;
-  SumBlocks(summaries, counts);
-  header = EncodeHeader(h, counts);
+  SumBlocks(summaries, written);
+  header =
+    EncodeHeader(written, records.VLRCount, static_cast<std::uint32_t>(records.Extended.size()));
   ok = ok && std::fseek(file, 0, SEEK_SET) == 0 &&
        std::fwrite(header.data(), 1, header.size(), file) == header.size();
   return output.Commit(ok, failure);
