@@ -228,17 +228,10 @@ bool vtkLASLoadFileInfo(vtkFieldData* fieldData,
     problem = "the input's LAS VLRs or EVLRs field data does not hold whole records";
     return false;
   }
-  // The extra bytes are described by a VLR, or else maybe by an EVLR (as the reader does).
-  auto describes = [](const std::vector<pcbilateral::LASRecord>& records)
-  {
-    return std::any_of(records.begin(),
-      records.end(),
-      [](const pcbilateral::LASRecord& r) { return r.UserId == "LASF_Spec" && r.RecordId == 4; });
-  };
-  const auto* extraBytes =
-    describes(info.VLRs) || !describes(info.EVLRs) ? &info.VLRs : &info.EVLRs;
-  problem =
-    pcbilateral::LASDimensionsFor(h.PointFormat, h.RecordLength, *extraBytes, info.Dimensions);
+  problem = pcbilateral::LASDimensionsFor(h.PointFormat,
+    h.RecordLength,
+    pcbilateral::LASExtraBytesRecords(info.VLRs, info.EVLRs),
+    info.Dimensions);
   if (!problem.empty())
   {
     problem = "the input's LAS field data: " + problem;

@@ -228,11 +228,12 @@ std::string DecodeEVLRs(const std::uint8_t* data,
 std::string DescribeExtraBytesByEVLR(LASFileInfo& info)
 {
   const LASHeader& h = info.Header;
-  if (FindExtraBytesRecord(info.VLRs) || !FindExtraBytesRecord(info.EVLRs))
+  const std::vector<LASRecord>& described = LASExtraBytesRecords(info.VLRs, info.EVLRs);
+  if (&described == &info.VLRs)
   {
     return std::string();
   }
-  return LASDimensionsFor(h.PointFormat, h.RecordLength, info.EVLRs, info.Dimensions);
+  return LASDimensionsFor(h.PointFormat, h.RecordLength, described, info.Dimensions);
 }
 } // namespace
 

@@ -144,4 +144,10 @@ std::string LASDimensionsFor(int pointFormat,
   return las::AddExtraBytesDimensions(standard, recordLength, vlrs, dimensions);
 }
 
+const std::vector<LASRecord>& LASExtraBytesRecords(const std::vector<LASRecord>& vlrs,
+  const std::vector<LASRecord>& evlrs)
+{
+  return las::FindExtraBytesRecord(vlrs) || !las::FindExtraBytesRecord(evlrs) ? vlrs : evlrs;
+}
+
 } // namespace pcbilateral

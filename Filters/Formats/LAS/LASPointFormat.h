@@ -27,6 +27,11 @@ std::string LASDimensionsFor(int pointFormat,
   const std::vector<LASRecord>& vlrs,
   std::vector<LASDimension>& dimensions);
 
+/// The records that describe a file's extra bytes, for LASDimensionsFor: its VLRs, unless only
+/// its EVLRs hold an extra-bytes record (LAS 1.4 allows it there too).
+const std::vector<LASRecord>& LASExtraBytesRecords(const std::vector<LASRecord>& vlrs,
+  const std::vector<LASRecord>& evlrs);
+
 } // namespace pcbilateral
 
 #endif
