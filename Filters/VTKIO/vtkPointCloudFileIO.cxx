@@ -378,7 +378,8 @@ bool vtkPointCloudFileIO::Write(vtkPolyData* data, const char* path)
     input = InputForPLY(data, ply);
   }
   writer->SetInputDataObject(input);
-  if (TypeOf(path) == FileType::PLY || TypeOf(path) == FileType::VTP)
+  const FileType type = TypeOf(path);
+  if (type == FileType::PLY || type == FileType::VTP)
   {
     this->ErrorMessage = WriteReplacing(writer, name, messages);
     return this->ErrorMessage.empty();
