@@ -1,5 +1,7 @@
 #include "PLYFileCheck.h"
 
+#include "TextFields.h"
+
 #include "FileBytes.h"
 
 #include <algorithm>
@@ -214,13 +216,7 @@ std::string CheckASCIILines(const std::string& path, const PLYHeader& header)
                  element.Name + " lines, the file holds " + std::to_string(k);
         }
       } while (line.find_first_not_of(" \t\r") == std::string::npos);
-      std::istringstream words(line);
-      std::string word;
-      std::size_t values = 0;
-      while (words >> word)
-      {
-        ++values;
-      }
+      const std::size_t values = CountFields(line.data(), line.data() + line.size());
       if (values < element.Properties)
       {
         return element.Name + " " + std::to_string(k + 1) + " has " + std::to_string(values) +

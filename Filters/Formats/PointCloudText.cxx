@@ -1,5 +1,7 @@
 #include "PointCloudText.h"
 
+#include "TextFields.h"
+
 #include "ReplacingFile.h"
 
 #include <algorithm>
@@ -17,35 +19,6 @@ namespace pcbilateral
 
 namespace
 {
-bool IsSpace(char c)
-{
-  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
-
-const char* SkipSpaces(const char* c, const char* end)
-{
-  while (c < end && IsSpace(*c))
-  {
-    ++c;
-  }
-  return c;
-}
-
-const char* SkipField(const char* c, const char* end)
-{
-  while (c < end && !IsSpace(*c))
-  {
-    ++c;
-  }
-  return c;
-}
-
-const char* LineEnd(const char* line, const char* end)
-{
-  const char* found = static_cast<const char*>(std::memchr(line, '\n', end - line));
-  return found ? found : end;
-}
-
 bool ParseNumber(const char* begin, const char* end, double& value)
 {
   if (begin < end && *begin == '+')
@@ -68,17 +41,6 @@ bool IsSkipped(const char* line, const char* lineEnd)
 {
   const char* first = SkipSpaces(line, lineEnd);
   return first == lineEnd || *first == '#';
-}
-
-std::size_t CountFields(const char* line, const char* lineEnd)
-{
-  std::size_t count = 0;
-  for (const char* c = SkipSpaces(line, lineEnd); c < lineEnd; c = SkipSpaces(c, lineEnd))
-  {
-    c = SkipField(c, lineEnd);
-    ++count;
-  }
-  return count;
 }
 
 /// The points of one piece of the text, which starts at a line start and ends after a line end.
