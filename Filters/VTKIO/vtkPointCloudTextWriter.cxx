@@ -31,20 +31,23 @@ pcbilateral::PointCloudTextLayout LoadLayout(vtkFieldData* fieldData)
   {
     return layout;
   }
-  for (char candidate : { '\t', ' ' })
+  char named = 0;
+  for (const char candidate : { '\t', ' ' })
   {
-    if (delimiter->GetValue(0) == Reader::GetDelimiterName(candidate))
-    {
-      layout.Delimiter = candidate;
-      auto* header =
-        vtkStringArray::SafeDownCast(fieldData->GetAbstractArray(Reader::GetHeaderArrayName()));
-      layout.Header = header ? pcbilateral::PointCloudTextLayout::HeaderLine::Always
-                             : pcbilateral::PointCloudTextLayout::HeaderLine::Never;
-      for (vtkIdType k = 0; header && k < header->GetNumberOfValues(); ++k)
-      {
-        layout.LeadingColumnNames.push_back(header->GetValue(k));
-      }
-    }
+    named = delimiter->GetValue(0) == Reader::GetDelimiterName(candidate) ? candidate : named;
+  }
+  if (!named)
+  {
+    return layout; // a value no reader wrote: the default layout
+  }
+  layout.Delimiter = named;
+  auto* header =
+    vtkStringArray::SafeDownCast(fieldData->GetAbstractArray(Reader::GetHeaderArrayName()));
+  layout.Header = header ? pcbilateral::PointCloudTextLayout::HeaderLine::Always
+                         : pcbilateral::PointCloudTextLayout::HeaderLine::Never;
+  for (vtkIdType k = 0; header && k < header->GetNumberOfValues(); ++k)
+  {
+    layout.LeadingColumnNames.push_back(header->GetValue(k));
   }
   return layout;
 }
