@@ -4,14 +4,23 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace pcbilateral_testing
 {
+/// Whether two arrays of doubles hold the same bits (NaN equal to the same NaN, -0 not to 0).
+inline bool SameBits(const std::vector<double>& a, const std::vector<double>& b)
+{
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
 /// A file's bytes (empty when it cannot be read).
 inline std::string FileContents(const std::string& path)
 {

@@ -4,6 +4,7 @@
 // the generic build of the kernel must give the same bits as the best one of the machine.
 #include "BilateralFilter.h"
 #include "BilateralKernel.h"
+#include "CoreTesting.h"
 
 #include <algorithm>
 #include <cmath>
@@ -88,12 +89,8 @@ bool SameBitsWithGenericKernel(const pcbilateral::PointCloudView& cloud,
   pcbilateral::SetKernelInstructionSet(pcbilateral::KernelInstructionSet::Generic);
   const pcbilateral::BilateralResult generic = pcbilateral::RunBilateralFilter(cloud, parameters);
   pcbilateral::SetKernelInstructionSet(best);
-  auto sameBits = [](const std::vector<double>& a, const std::vector<double>& b)
-  {
-    return a.size() == b.size() &&
-           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
-  };
-  return sameBits(generic.Positions, result.Positions) && sameBits(generic.Normals, result.Normals);
+  return pcbilateral_testing::SameBits(generic.Positions, result.Positions) &&
+         pcbilateral_testing::SameBits(generic.Normals, result.Normals);
 }
 
 /// Whether every finite input point stayed finite and within N r of where it was.

@@ -3,6 +3,7 @@
 // whether the text is parsed in one piece or in many (the parallel parser's pieces must join
 // seamlessly); and a table of points written back in its layout must read back as the same
 // table, layout included (header line or not, the header's names, the delimiter).
+#include "CoreTesting.h"
 #include "FuzzScratchFile.h"
 #include "PointCloudText.h"
 
@@ -15,11 +16,7 @@
 
 namespace
 {
-bool SameBits(const std::vector<double>& a, const std::vector<double>& b)
-{
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
-}
+using pcbilateral_testing::SameBits;
 
 bool SameTables(const pcbilateral::PointCloudTable& a, const pcbilateral::PointCloudTable& b)
 {
