@@ -16,7 +16,7 @@ import sys
 import urllib.parse
 
 # The same walk as the other structure checks: build folders and hidden ones left out.
-from check_structure import source_files
+from check_structure import report, source_files
 
 FENCE = re.compile(r"^\s{0,3}(```|~~~)")
 CODE_SPAN = re.compile(r"(`+)(?:.+?)\1", re.S)
@@ -138,10 +138,7 @@ def main(arguments):
     for path in source_files(source_dir, (".md",)):
         count += 1
         problems += check_text(source_dir, path, read(path), anchor_cache)
-    for problem in problems:
-        print(problem)
-    print(f"{count} Markdown file(s), {len(problems)} problem(s)")
-    return 1 if problems else 0
+    return report(problems, f"{count} Markdown file(s), ")
 
 
 if __name__ == "__main__":

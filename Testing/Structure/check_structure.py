@@ -265,6 +265,14 @@ def check_sizes(source_dir):
     return problems
 
 
+def report(problems, summary):
+    """Prints each problem, then the summary with their number; the exit status."""
+    for problem in problems:
+        print(problem)
+    print(f"{summary}{len(problems)} problem(s)")
+    return 1 if problems else 0
+
+
 def main(arguments):
     if len(arguments) < 2 or arguments[0] not in ("layers", "sizes"):
         raise SystemExit(__doc__)
@@ -272,10 +280,7 @@ def main(arguments):
         problems = check_layers(arguments[1], arguments[2] if len(arguments) > 2 else None)
     else:
         problems = check_sizes(arguments[1])
-    for problem in problems:
-        print(problem)
-    print(f"{len(problems)} problem(s)")
-    return 1 if problems else 0
+    return report(problems, "")
 
 
 if __name__ == "__main__":
