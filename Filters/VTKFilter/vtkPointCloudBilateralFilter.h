@@ -55,7 +55,10 @@
  * point. The input's field data passes through, with more one-value arrays: "BilateralRadius",
  * "BilateralNormalRadius" and "BilateralNumberOfIterations", the parameters used, and, when the
  * cloud was measured, "BilateralPointSpacing", "BilateralNoiseSigma" and the three-component
- * "BilateralNearestNeighbourDistances" (GetNearestNeighbourDistances). The input's other cells
+ * "BilateralNearestNeighbourDistances" (GetNearestNeighbourDistances) and "BilateralSpacingSpread";
+ * where the radius followed the density, "BilateralRadiusRange" and "BilateralNormalRadiusRange"
+ * (two components each) and the point array "BilateralPointRadius"; and "BilateralMode"
+ * ("paper" or "edge-aware"). The input's other cells
  * (lines, polygons, volumes) are not carried over, with one warning. Optional arrays: the estimated
  * normals ("EstimatedNormals", see GenerateEstimatedNormals) and the distance each point
  * moved ("DisplacementLength", see GenerateDisplacementLength).
@@ -241,6 +244,22 @@ public:
    */
   vtkGetVector3Macro(NearestNeighbourDistances, double);
 
+  ///@{
+  /**
+   * Whether the last update's automatic radius followed the density: on a cloud whose local
+   * spacing varies more than a few times (SpacingSpread: the 95th over the 5th percentile of the
+   * local spacing, read on a coarse grid), each point's radius comes from its local spacing
+   * (beyond the paper; given radii are never changed). RadiusRange and NormalRadiusRange are then
+   * the smallest and largest used, and the output has the point array "BilateralPointRadius";
+   * RadiusUsed stays the radius at the whole cloud's spacing. The rule: pcbilateral::
+   * DescribeAutomaticRule (Filters/Core/Measurement/AutomaticRule.h).
+   */
+  vtkGetMacro(RadiusFollowsDensity, bool);
+  vtkGetVector2Macro(RadiusRange, double);
+  vtkGetVector2Macro(NormalRadiusRange, double);
+  vtkGetMacro(SpacingSpread, double);
+  ///@}
+
   /**
    * The last update in one line, for a user interface: "not run yet" before the first, then the
    * parameters used and where they came from (e.g. "r 0.0628, rn 0.0471, N 2 (measured)": from
@@ -285,6 +304,10 @@ protected:
   double PointSpacing = 0.0;
   double NoiseSigma = 0.0;
   double NearestNeighbourDistances[3] = { 0.0, 0.0, 0.0 };
+  bool RadiusFollowsDensity = false;
+  double RadiusRange[2] = { 0.0, 0.0 };
+  double NormalRadiusRange[2] = { 0.0, 0.0 };
+  double SpacingSpread = 0.0;
   int ProcessingDepth = 0;
   vtkIdType NumberOfRemovedPoints = 0;
   vtkIdType NumberOfNonFinitePoints = 0;

@@ -737,9 +737,19 @@ void Sampling()
   const double unevenDistances[3] = { h, h, 10 * h };
   const pcbilateral::CloudScales scales = pcbilateral::MeasureScales(ViewOf(uneven));
   CheckDistances(scales, unevenDistances, 1e-9, "dense and sparse grids");
-  PCB_CHECK(scales.NumberOfDistanceSamples == 8192,
-    "%zu distances measured, expected 8192",
+  PCB_CHECK(scales.NumberOfDistanceSamples == 16384,
+    "%zu distances measured, expected 16384",
     scales.NumberOfDistanceSamples);
+  // The spacing varies 10 times across the surface (the dense square covers 9% of the area, so
+  // the 5th percentile by area is its spacing), and not at all on the even grid: the
+  // automatic radius follows the density on the first alone.
+  const pcbilateral::CloudScales evenScales = pcbilateral::MeasureScales(ViewOf(even));
+  const double evenSpread = evenScales.LocalSpacing ? evenScales.LocalSpacing->GetSpread() : 0.0;
+  const double unevenSpread = scales.LocalSpacing ? scales.LocalSpacing->GetSpread() : 0.0;
+  std::printf(
+    "spacing spread: even grid %.3g, dense and sparse grids %.3g\n", evenSpread, unevenSpread);
+  PCB_CHECK(evenSpread > 0.99 && evenSpread < 1.01, "even grid: spread %g", evenSpread);
+  PCB_CHECK(unevenSpread > 9.0 && unevenSpread < 11.0, "uneven grids: spread %g", unevenSpread);
 
   // Points at random over the same two squares, and a quarter of them picked at random as a
   // distributed run's selection is: a random thinning of random points has distances twice as

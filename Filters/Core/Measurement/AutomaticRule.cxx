@@ -1,5 +1,6 @@
 #include "AutomaticRule.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -18,6 +19,28 @@ bool IsSmoothWithThinNoise(const CloudScales& scales, const AutomaticRule& rule)
          scales.CreaseFraction < rule.SmoothCreaseFraction &&
          scales.NoiseSigma < rule.ThinNoiseInSpacings * scales.PointSpacing;
 }
+
+namespace
+{
+/// The radius's factor on a flat cloud and on a smooth one with thin noise.
+double RadiusFactor(const CloudScales& scales, const AutomaticRule& rule)
+{
+  return IsFlat(scales, rule)                  ? rule.FlatRadiusFactor
+         : IsSmoothWithThinNoise(scales, rule) ? rule.SmoothRadiusFactor
+                                               : 1.0;
+}
+
+double NormalRadiusFor(const CloudScales& scales, double radius, const AutomaticRule& rule)
+{
+  // A noise-free cloud measures sigma 0 (or round-off): the floor keeps the normal radius
+  // positive and computable, far below anything a real noise would give. A smooth surface
+  // with thin noise has nothing for the range weight to keep: the normal radius is the
+  // radius (plain averaging along the normal), the paper's own choice.
+  return IsSmoothWithThinNoise(scales, rule)
+           ? radius
+           : std::max(rule.NormalRadiusInSigmas * scales.NoiseSigma, 1e-3 * radius);
+}
+} // namespace
 
 BilateralParameters ChooseParameters(const CloudScales& scales,
   const BilateralParameters& userParameters,
@@ -38,23 +61,47 @@ BilateralParameters ChooseParameters(const CloudScales& scales,
   }
   if (!(parameters.Radius > 0.0))
   {
-    parameters.Radius =
-      (flat      ? rule.FlatRadiusFactor
-        : smooth ? rule.SmoothRadiusFactor
-                 : 1.0) *
-      (rule.RadiusInSpacings * scales.PointSpacing + rule.RadiusInSigmas * scales.NoiseSigma);
+    parameters.Radius = RadiusAt(scales,
+      RadiusFollowsDensity(scales, userParameters, rule) ? SurfaceSpacing(scales)
+                                                         : scales.PointSpacing,
+      rule);
   }
   if (!(parameters.NormalRadius > 0.0))
   {
-    // A noise-free cloud measures sigma 0 (or round-off): the floor keeps the normal radius
-    // positive and computable, far below anything a real noise would give. A smooth surface
-    // with thin noise has nothing for the range weight to keep: the normal radius is the
-    // radius (plain averaging along the normal), the paper's own choice.
-    parameters.NormalRadius =
-      smooth ? parameters.Radius
-             : std::max(rule.NormalRadiusInSigmas * scales.NoiseSigma, 1e-3 * parameters.Radius);
+    parameters.NormalRadius = NormalRadiusFor(scales, parameters.Radius, rule);
   }
   return parameters;
+}
+
+bool RadiusFollowsDensity(const CloudScales& scales,
+  const BilateralParameters& userParameters,
+  const AutomaticRule& rule)
+{
+  return scales.Valid && !(userParameters.Radius > 0.0) && scales.LocalSpacing &&
+         scales.SpacingPerNeighbourDistance > 0.0 &&
+         scales.LocalSpacing->GetSpread() > rule.FollowDensitySpread;
+}
+
+double SurfaceSpacing(const CloudScales& scales)
+{
+  return scales.LocalSpacing
+           ? scales.SpacingPerNeighbourDistance * scales.LocalSpacing->GetAreaWeightedMedian()
+           : scales.PointSpacing;
+}
+
+double RadiusAt(const CloudScales& scales, double localSpacing, const AutomaticRule& rule)
+{
+  return RadiusFactor(scales, rule) *
+         (rule.RadiusInSpacings * localSpacing + rule.RadiusInSigmas * scales.NoiseSigma);
+}
+
+double NormalRadiusAt(const CloudScales& scales,
+  const BilateralParameters& userParameters,
+  double radius,
+  const AutomaticRule& rule)
+{
+  return userParameters.NormalRadius > 0.0 ? userParameters.NormalRadius
+                                           : NormalRadiusFor(scales, radius, rule);
 }
 
 std::string DescribeAutomaticRule(const AutomaticRule& rule)
@@ -66,7 +113,9 @@ std::string DescribeAutomaticRule(const AutomaticRule& rule)
        << " times that r and N = " << rule.FlatIterations
        << "; on a smooth cloud (no crease) with noise below " << rule.ThinNoiseInSpacings
        << " spacing, " << rule.SmoothRadiusFactor
-       << " times that r, rn = r and N = " << rule.SmoothIterations;
+       << " times that r, rn = r and N = " << rule.SmoothIterations
+       << "; where the local spacing varies more than " << rule.FollowDensitySpread
+       << " times across the cloud, each point's r from its local spacing (in steps of sqrt 2)";
   return text.str();
 }
 
