@@ -6,7 +6,7 @@ whose shape is known: planes (walls, floors, table tops) and the sharp lines whe
 This script finds that structure on the INPUT only, then measures, on the same point indices
 before and after a filter (which keeps the points' order and count):
 
-- plane residual: plane patches (the k nearest points of seeds drawn with a fixed seed, kept
+- plane residual: plane patches (the k nearest points of seeds spread over the area, kept
   when a RANSAC plane holds most of them and they are flat, not curved nor a blob); for each
   patch, the RMS distance of its inlier points to the least-squares plane of those same points,
   refitted on the filtered positions for "after". Reported: the median over patches of the
