@@ -55,16 +55,15 @@ BilateralParameters ChooseParameters(const CloudScales& scales,
   const bool smooth = IsSmoothWithThinNoise(scales, rule);
   if (parameters.NumberOfIterations <= 0)
   {
-    parameters.NumberOfIterations = flat     ? rule.FlatIterations
-                                    : smooth ? rule.SmoothIterations
-                                             : rule.NumberOfIterations;
+    parameters.NumberOfIterations = flat                     ? rule.FlatIterations
+                                    : smooth                 ? rule.SmoothIterations
+                                    : scales.StructuredNoise ? rule.StructuredNoiseIterations
+                                                             : rule.NumberOfIterations;
   }
   if (!(parameters.Radius > 0.0))
   {
-    parameters.Radius = RadiusAt(scales,
-      RadiusFollowsDensity(scales, userParameters, rule) ? SurfaceSpacing(scales)
-                                                         : scales.PointSpacing,
-      rule);
+    parameters.Radius = RadiusAt(
+      scales, SpacingVaries(scales, rule) ? SurfaceSpacing(scales) : scales.PointSpacing, rule);
   }
   if (!(parameters.NormalRadius > 0.0))
   {
@@ -73,13 +72,17 @@ BilateralParameters ChooseParameters(const CloudScales& scales,
   return parameters;
 }
 
+bool SpacingVaries(const CloudScales& scales, const AutomaticRule& rule)
+{
+  return scales.Valid && scales.LocalSpacing && scales.SpacingPerNeighbourDistance > 0.0 &&
+         scales.LocalSpacing->GetSpread() > rule.FollowDensitySpread;
+}
+
 bool RadiusFollowsDensity(const CloudScales& scales,
   const BilateralParameters& userParameters,
   const AutomaticRule& rule)
 {
-  return scales.Valid && !(userParameters.Radius > 0.0) && scales.LocalSpacing &&
-         scales.SpacingPerNeighbourDistance > 0.0 &&
-         scales.LocalSpacing->GetSpread() > rule.FollowDensitySpread;
+  return !(userParameters.Radius > 0.0) && SpacingVaries(scales, rule);
 }
 
 double SurfaceSpacing(const CloudScales& scales)
@@ -91,7 +94,8 @@ double SurfaceSpacing(const CloudScales& scales)
 
 double RadiusAt(const CloudScales& scales, double localSpacing, const AutomaticRule& rule)
 {
-  return RadiusFactor(scales, rule) *
+  return (SpacingVaries(scales, rule) ? rule.FollowDensityRadiusFactor : 1.0) *
+         RadiusFactor(scales, rule) *
          (rule.RadiusInSpacings * localSpacing + rule.RadiusInSigmas * scales.NoiseSigma);
 }
 
@@ -114,8 +118,11 @@ std::string DescribeAutomaticRule(const AutomaticRule& rule)
        << "; on a smooth cloud (no crease) with noise below " << rule.ThinNoiseInSpacings
        << " spacing, " << rule.SmoothRadiusFactor
        << " times that r, rn = r and N = " << rule.SmoothIterations
-       << "; where the local spacing varies more than " << rule.FollowDensitySpread
-       << " times across the cloud, each point's r from its local spacing (in steps of sqrt 2)";
+       << "; with structured noise (a depth camera's quantised depths) N = "
+       << rule.StructuredNoiseIterations << "; where the local spacing varies more than "
+       << rule.FollowDensitySpread << " times across the cloud, each point's r is "
+       << rule.FollowDensityRadiusFactor
+       << " times that r at its local spacing (in steps of sqrt 2)";
   return text.str();
 }
 

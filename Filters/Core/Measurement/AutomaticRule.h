@@ -46,6 +46,13 @@ struct AutomaticRule
   /// (RadiusAt). A scan from one position spans 100 to 300 times; an evenly sampled cloud about
   /// 1.5 to 2.
   double FollowDensitySpread = 4.0;
+  /// Where the radius follows the density, it is this many times the rule's radius at the local
+  /// spacing: measured on a terrestrial scan (docs/structure-metrics.md), whose scan lines make
+  /// the nearest-neighbour distance (along a line) shorter than the spacing between lines.
+  double FollowDensityRadiusFactor = 2.0;
+  /// Structured noise (CloudScales::StructuredNoise, e.g. a depth camera's quantised depths):
+  /// the terraces need this many iterations to be smoothed into one surface.
+  int StructuredNoiseIterations = 3;
 };
 
 /// Whether the rule treats the cloud as flat.
@@ -63,6 +70,10 @@ bool IsSmoothWithThinNoise(const CloudScales& scales, const AutomaticRule& rule 
 BilateralParameters ChooseParameters(const CloudScales& scales,
   const BilateralParameters& userParameters,
   const AutomaticRule& rule = AutomaticRule());
+
+/// Whether the spacing varies more than FollowDensitySpread times across the cloud (the scales
+/// were measured with their spacing field).
+bool SpacingVaries(const CloudScales& scales, const AutomaticRule& rule = AutomaticRule());
 
 /// (Where the radius follows the density, the chosen Radius is the rule's at SurfaceSpacing.)
 /// Whether the automatic radius follows the density: the radius is automatic, the scales were

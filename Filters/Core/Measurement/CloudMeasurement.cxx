@@ -126,6 +126,14 @@ constexpr double CreaseVariance = 2.0;
 /// Points whose nearest-neighbour distance is measured for its percentiles: enough for the 5th
 /// percentile to be read on some 400 points, a small cost next to the fits.
 constexpr std::size_t NearestNeighbourSamples = 16384;
+/// The structured-noise check (CheckStructuredNoise): the ball's radius in units of the noise
+/// fits' radius, and how much more noise it must read there to count as structured.
+constexpr double StructureScale = 4.0;
+constexpr double StructuredNoiseRatio = 3.0;
+/// ... and the fraction of the small balls it needs that fit their points exactly: with a
+/// residual below ExactFit times the noise read at the larger scale.
+constexpr double ExactFit = 0.01;
+constexpr double ExactFitFraction = 0.1;
 /// Points in the disc that measures the density.
 constexpr double DiscPoints = 40.0;
 
@@ -187,6 +195,7 @@ public:
     if (this->FindNoise() && this->MeasureSpacing())
     {
       this->MeasureFlatness();
+      this->CheckStructuredNoise();
       this->Scales.Valid = true;
     }
     return this->Scales;
@@ -702,6 +711,50 @@ private:
     this->Scales.CurvatureExcess = measured.empty() ? 0.0 : Median(measured);
     this->Scales.FeatureFraction = measured.empty() ? 1.0 : static_cast<double>(featured) / count;
     this->Scales.CreaseFraction = measured.empty() ? 1.0 : static_cast<double>(creased) / count;
+  }
+
+  /// Noise with structure at a larger scale than the fits' balls: a depth camera's quantised
+  /// depths put the points of a wall on flat terraces a few millimetres apart, so a small ball,
+  /// on one terrace, sees no noise at all, while the filter must smooth the steps. Gaussian noise
+  /// reads the same in a ball StructureScale times wider (the quadric takes the curvature, and
+  /// the quantile keeps the edges out); where it reads StructuredNoiseRatio times more, that is
+  /// the noise the filter has to remove.
+  void CheckStructuredNoise()
+  {
+    const double rho = StructureScale * this->Scales.NeighbourhoodRadius;
+    if (!(rho < 0.5 * this->Extent.LargestExtent()))
+    {
+      return;
+    }
+    // The fits, the density and the levels stay those of the measurement.
+    const std::vector<LocalFit> fits = this->Fits;
+    const std::vector<std::size_t> levels = this->LevelUsed;
+    const double density = this->Density;
+    const std::size_t fitted = this->Scales.NumberOfFittedSamples;
+    this->FitAll(rho);
+    double deviation = 0.0, sigma = 0.0;
+    const bool read = this->ReadRound(rho, deviation, sigma);
+    this->Fits = fits;
+    this->LevelUsed = levels;
+    this->Density = density;
+    this->Scales.NumberOfFittedSamples = fitted;
+    if (!(read && std::isfinite(sigma) && sigma > StructuredNoiseRatio * this->Scales.NoiseSigma))
+    {
+      return;
+    }
+    // Terraces: the small balls of many samples fit their points exactly. (Vegetation on a
+    // terrain also reads more at a larger scale, but no small ball of it is exact.)
+    std::size_t exact = 0, count = 0;
+    for (const LocalFit& fit : this->Fits)
+    {
+      count += fit.Fitted;
+      exact += fit.Fitted && std::sqrt(fit.Variance) < ExactFit * sigma;
+    }
+    if (exact >= ExactFitFraction * static_cast<double>(count))
+    {
+      this->Scales.NoiseSigma = sigma;
+      this->Scales.StructuredNoise = true;
+    }
   }
 
   const PointCloudView& Cloud;

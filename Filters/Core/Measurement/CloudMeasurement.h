@@ -61,6 +61,10 @@ struct CloudScales
   /// The standard deviation of the points' offsets from the underlying surface (the noise),
   /// curvature removed by a local quadric fit.
   double NoiseSigma = 0.0;
+  /// Whether the noise was read at a larger scale than the fits (CloudMeasurement.cxx:
+  /// CheckStructuredNoise): where a small ball sees almost none, e.g. the quantised depths of a
+  /// depth camera, whose points lie on terraces.
+  bool StructuredNoise = false;
   /// The median number of points per unit area of surface.
   double SurfaceDensity = 0.0;
   /// The radius of the neighbourhoods the fits used (about 5 sigma, at least ~50 points).
