@@ -737,8 +737,8 @@ void Sampling()
   const double unevenDistances[3] = { h, h, 10 * h };
   const pcbilateral::CloudScales scales = pcbilateral::MeasureScales(ViewOf(uneven));
   CheckDistances(scales, unevenDistances, 1e-9, "dense and sparse grids");
-  PCB_CHECK(scales.NumberOfDistanceSamples == 16384,
-    "%zu distances measured, expected 16384",
+  PCB_CHECK(scales.NumberOfDistanceSamples == 8192,
+    "%zu distances measured, expected 8192",
     scales.NumberOfDistanceSamples);
   // The spacing varies 10 times across the surface (the dense square covers 9% of the area, so
   // the 5th percentile by area is its spacing), and not at all on the even grid: the

@@ -125,7 +125,7 @@ constexpr double FeatureExcess = 0.5;
 constexpr double CreaseVariance = 2.0;
 /// Points whose nearest-neighbour distance is measured for its percentiles: enough for the 5th
 /// percentile to be read on some 400 points, a small cost next to the fits.
-constexpr std::size_t NearestNeighbourSamples = 16384;
+constexpr std::size_t NearestNeighbourSamples = 8192;
 /// The structured-noise check (CheckStructuredNoise): the ball's radius in units of the noise
 /// fits' radius, and how much more noise it must read there to count as structured.
 constexpr double StructureScale = 4.0;
@@ -399,7 +399,7 @@ private:
       std::copy_n(this->Cloud.Positions + 3 * this->DistanceSamples[s], 3, &positions[3 * s]);
       scaled[s] = thinning * distances[s];
     }
-    auto field = std::make_shared<SpacingField>(positions, scaled);
+    auto field = std::make_shared<SpacingField>(positions, scaled, this->Threads);
     if (field->IsValid())
     {
       this->Scales.LocalSpacing = std::move(field);

@@ -64,7 +64,8 @@ constexpr double IsolatedSpacing = 4.0;
 } // namespace
 
 SpacingField::SpacingField(const std::vector<double>& positions,
-  const std::vector<double>& distances)
+  const std::vector<double>& distances,
+  int threads)
 {
   std::vector<std::size_t> usable;
   std::vector<double> usablePositions;
@@ -114,10 +115,22 @@ SpacingField::SpacingField(const std::vector<double>& positions,
   {
     this->SortedDistances[fill[cellOfSample[k]]++] = distances[usable[k]];
   }
+  // Each cell that holds samples computed once (the samples' cells, in increasing order).
+  std::vector<std::size_t> sampleCells(cellOfSample);
+  std::sort(sampleCells.begin(), sampleCells.end());
+  sampleCells.erase(std::unique(sampleCells.begin(), sampleCells.end()), sampleCells.end());
+  std::vector<double> cellValues(sampleCells.size());
+#pragma omp parallel for schedule(dynamic, 64) num_threads(ResolveThreadCount(threads))
+  for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(sampleCells.size()); ++c)
+  {
+    cellValues[c] = this->MedianAround(sampleCells[c]);
+  }
   std::vector<double> atSamples;
   for (std::size_t k = 0; k < usable.size(); ++k)
   {
-    const double value = this->MedianAround(cellOfSample[k]);
+    const double value = cellValues[static_cast<std::size_t>(
+      std::lower_bound(sampleCells.begin(), sampleCells.end(), cellOfSample[k]) -
+      sampleCells.begin())];
     if (distances[usable[k]] <= IsolatedSpacing * value)
     {
       atSamples.push_back(value);
