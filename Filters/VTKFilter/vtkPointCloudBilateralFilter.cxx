@@ -501,7 +501,7 @@ void vtkPointCloudBilateralFilter::BuildOutput(vtkPointSet* input,
   {
     outPD->AddArray(DisplacementLengths(cloud.Positions, result.Positions, kept));
   }
-  if (!result.PointRadius.empty())
+  if (this->GeneratePointRadius && !result.PointRadius.empty())
   {
     vtkNew<vtkDoubleArray> radii;
     radii->SetName("BilateralPointRadius");
@@ -534,6 +534,7 @@ void vtkPointCloudBilateralFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "GenerateEstimatedNormals: " << this->GenerateEstimatedNormals << "\n";
   os << indent << "GenerateDisplacementLength: " << this->GenerateDisplacementLength << "\n";
+  os << indent << "GeneratePointRadius: " << this->GeneratePointRadius << "\n";
   os << indent << "EdgeAware: " << this->EdgeAware << "\n";
   os << indent << "RadiusUsed: " << this->RadiusUsed << "\n";
   os << indent << "NormalRadiusUsed: " << this->NormalRadiusUsed << "\n";

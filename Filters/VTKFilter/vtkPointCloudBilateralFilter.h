@@ -57,7 +57,8 @@
  * cloud was measured, "BilateralPointSpacing", "BilateralNoiseSigma" and the three-component
  * "BilateralNearestNeighbourDistances" (GetNearestNeighbourDistances) and "BilateralSpacingSpread";
  * where the radius followed the density, "BilateralRadiusRange" and "BilateralNormalRadiusRange"
- * (two components each) and the point array "BilateralPointRadius"; and "BilateralMode"
+ * (two components each; the point array "BilateralPointRadius" with GeneratePointRadius); and
+ * "BilateralMode"
  * ("paper" or "edge-aware"). The input's other cells
  * (lines, polygons, volumes) are not carried over, with one warning. Optional arrays: the estimated
  * normals ("EstimatedNormals", see GenerateEstimatedNormals) and the distance each point
@@ -220,6 +221,17 @@ public:
 
   ///@{
   /**
+   * Where the automatic radius followed the density (GetRadiusFollowsDensity), add each point's
+   * radius as the point array "BilateralPointRadius" (default off; nothing is added where the
+   * radius is one for all).
+   */
+  vtkSetMacro(GeneratePointRadius, bool);
+  vtkGetMacro(GeneratePointRadius, bool);
+  vtkBooleanMacro(GeneratePointRadius, bool);
+  ///@}
+
+  ///@{
+  /**
    * What the last update used and did: the radius, normal radius and number of iterations
    * (after the automatic choices), the point spacing and noise sigma measured for them (0 when
    * the cloud was not measured: every parameter given, the paper's heuristic, or a cloud too
@@ -296,6 +308,7 @@ protected:
   int NumberOfThreads;
   bool GenerateEstimatedNormals = false;
   bool GenerateDisplacementLength = false;
+  bool GeneratePointRadius = false;
   bool EdgeAware;
 
   double RadiusUsed = 0.0;

@@ -713,6 +713,10 @@ void TestFollowsDensity()
   filter->SetInputData(sheet);
   filter->SetNumberOfIterations(1);
   filter->Update();
+  PCB_CHECK(!filter->GetOutput()->GetPointData()->GetArray("BilateralPointRadius"),
+    "BilateralPointRadius without GeneratePointRadius");
+  filter->GeneratePointRadiusOn();
+  filter->Update();
   const double* radii = filter->GetRadiusRange();
   std::printf("spacing varies %.3g times: radius %s, %g to %g (at the surface's spacing %g)\n",
     filter->GetSpacingSpread(),
