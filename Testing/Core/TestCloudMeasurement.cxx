@@ -435,22 +435,31 @@ pcbilateral::CloudScales ScalesWithEdges()
   return scales;
 }
 
-/// The general rule's radius for ScalesWithEdges, which the flat and smooth rules scale.
+/// The general rule's radius for the spacing and noise of ScalesWithEdges, which the flat and
+/// smooth rules scale.
 double GeneralRadius(const pcbilateral::AutomaticRule& rule)
 {
   return rule.RadiusInSpacings * 0.01 + rule.RadiusInSigmas * 0.002;
 }
 
-/// The general rule, and any parameter the user gave overrides only itself.
+/// The rule's radius with edges, for ScalesWithEdges.
+double EdgeRadius(const pcbilateral::AutomaticRule& rule)
+{
+  return rule.EdgeRadiusInSpacings * 0.01 + rule.EdgeRadiusInSigmas * 0.002;
+}
+
+/// The rule with edges, and any parameter the user gave overrides only itself; the general rule
+/// where too few samples see a feature.
 void CheckGeneralRule()
 {
-  const pcbilateral::CloudScales scales = ScalesWithEdges();
+  pcbilateral::CloudScales scales = ScalesWithEdges();
   pcbilateral::BilateralParameters user; // all automatic
   user.NumberOfThreads = 3;
   const pcbilateral::AutomaticRule rule;
+  PCB_CHECK(pcbilateral::HasEdges(scales), "20%% of the samples see a feature: edges expected");
   pcbilateral::BilateralParameters chosen = pcbilateral::ChooseParameters(scales, user);
-  PCB_CHECK(chosen.Radius == GeneralRadius(rule) &&
-              chosen.NormalRadius == rule.NormalRadiusInSigmas * 0.002 &&
+  PCB_CHECK(chosen.Radius == EdgeRadius(rule) &&
+              chosen.NormalRadius == rule.EdgeNormalRadiusInSigmas * 0.002 &&
               chosen.NumberOfIterations == rule.NumberOfIterations && chosen.NumberOfThreads == 3,
     "automatic: r %g rn %g N %d",
     chosen.Radius,
@@ -458,7 +467,7 @@ void CheckGeneralRule()
     chosen.NumberOfIterations);
   user.Radius = 0.5;
   chosen = pcbilateral::ChooseParameters(scales, user);
-  PCB_CHECK(chosen.Radius == 0.5 && chosen.NormalRadius == rule.NormalRadiusInSigmas * 0.002,
+  PCB_CHECK(chosen.Radius == 0.5 && chosen.NormalRadius == rule.EdgeNormalRadiusInSigmas * 0.002,
     "given r: r %g rn %g",
     chosen.Radius,
     chosen.NormalRadius);
@@ -466,9 +475,19 @@ void CheckGeneralRule()
   user.NormalRadius = 0.3;
   user.NumberOfIterations = 7;
   chosen = pcbilateral::ChooseParameters(scales, user);
-  PCB_CHECK(chosen.Radius == GeneralRadius(rule) && chosen.NormalRadius == 0.3 &&
+  PCB_CHECK(chosen.Radius == EdgeRadius(rule) && chosen.NormalRadius == 0.3 &&
               chosen.NumberOfIterations == 7,
     "given rn and N: r %g rn %g N %d",
+    chosen.Radius,
+    chosen.NormalRadius,
+    chosen.NumberOfIterations);
+  scales.FeatureFraction = 0.005; // (creases 20%, bent: neither flat nor smooth)
+  scales.CurvatureExcess = 0.3;
+  chosen = pcbilateral::ChooseParameters(scales, pcbilateral::BilateralParameters());
+  PCB_CHECK(!pcbilateral::HasEdges(scales) && chosen.Radius == GeneralRadius(rule) &&
+              chosen.NormalRadius == rule.NormalRadiusInSigmas * 0.002 &&
+              chosen.NumberOfIterations == rule.NumberOfIterations,
+    "few features: r %g rn %g N %d",
     chosen.Radius,
     chosen.NormalRadius,
     chosen.NumberOfIterations);

@@ -442,10 +442,12 @@ void CheckAutomaticParameters(vtkPointCloudBilateralFilter* filter)
     "measured spacing %g, sigma %g",
     filter->GetPointSpacing(),
     filter->GetNoiseSigma());
-  const double measuredRadius = 5.0 * filter->GetPointSpacing() + 4.0 * filter->GetNoiseSigma();
+  // A cube has edges: the rule's r = 8 spacings + 3 sigma, rn = 3.3 sigma
+  // (pcbilateral::AutomaticRule's Edge* constants).
+  const double measuredRadius = 8.0 * filter->GetPointSpacing() + 3.0 * filter->GetNoiseSigma();
   PCB_CHECK(
     std::abs(filter->GetRadiusUsed() / measuredRadius - 1.0) < 1e-12 &&
-      std::abs(filter->GetNormalRadiusUsed() / (5.0 * filter->GetNoiseSigma()) - 1.0) < 1e-12 &&
+      std::abs(filter->GetNormalRadiusUsed() / (3.3 * filter->GetNoiseSigma()) - 1.0) < 1e-12 &&
       filter->GetNumberOfIterationsUsed() == 2,
     "automatic r %g, rn %g, N %d",
     filter->GetRadiusUsed(),

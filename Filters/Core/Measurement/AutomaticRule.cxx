@@ -20,6 +20,12 @@ bool IsSmoothWithThinNoise(const CloudScales& scales, const AutomaticRule& rule)
          scales.NoiseSigma < rule.ThinNoiseInSpacings * scales.PointSpacing;
 }
 
+bool HasEdges(const CloudScales& scales, const AutomaticRule& rule)
+{
+  return scales.Valid && !IsFlat(scales, rule) && !IsSmoothWithThinNoise(scales, rule) &&
+         scales.FeatureFraction >= rule.EdgeFeatureFraction;
+}
+
 namespace
 {
 /// The radius's factor on a flat cloud and on a smooth one with thin noise.
@@ -36,9 +42,11 @@ double NormalRadiusFor(const CloudScales& scales, double radius, const Automatic
   // positive and computable, far below anything a real noise would give. A smooth surface
   // with thin noise has nothing for the range weight to keep: the normal radius is the
   // radius (plain averaging along the normal), the paper's own choice.
+  const double inSigmas =
+    HasEdges(scales, rule) ? rule.EdgeNormalRadiusInSigmas : rule.NormalRadiusInSigmas;
   return IsSmoothWithThinNoise(scales, rule)
            ? radius
-           : std::max(rule.NormalRadiusInSigmas * scales.NoiseSigma, 1e-3 * radius);
+           : std::max(inSigmas * scales.NoiseSigma, 1e-3 * radius);
 }
 } // namespace
 
@@ -94,9 +102,11 @@ double SurfaceSpacing(const CloudScales& scales)
 
 double RadiusAt(const CloudScales& scales, double localSpacing, const AutomaticRule& rule)
 {
+  const bool edges = HasEdges(scales, rule);
+  const double inSpacings = edges ? rule.EdgeRadiusInSpacings : rule.RadiusInSpacings;
+  const double inSigmas = edges ? rule.EdgeRadiusInSigmas : rule.RadiusInSigmas;
   return (SpacingVaries(scales, rule) ? rule.FollowDensityRadiusFactor : 1.0) *
-         RadiusFactor(scales, rule) *
-         (rule.RadiusInSpacings * localSpacing + rule.RadiusInSigmas * scales.NoiseSigma);
+         RadiusFactor(scales, rule) * (inSpacings * localSpacing + inSigmas * scales.NoiseSigma);
 }
 
 double NormalRadiusAt(const CloudScales& scales,
@@ -117,8 +127,11 @@ std::string DescribeAutomaticRule(const AutomaticRule& rule)
        << " times that r and N = " << rule.FlatIterations
        << "; on a smooth cloud (no crease) with noise below " << rule.ThinNoiseInSpacings
        << " spacing, " << rule.SmoothRadiusFactor
-       << " times that r, rn = r and N = " << rule.SmoothIterations
-       << "; with structured noise (a depth camera's quantised depths) N = "
+       << " times that r, rn = r and N = " << rule.SmoothIterations << "; with edges ("
+       << 100.0 * rule.EdgeFeatureFraction
+       << "% of the samples see one) r = " << rule.EdgeRadiusInSpacings << " spacings + "
+       << rule.EdgeRadiusInSigmas << " sigma and rn = " << rule.EdgeNormalRadiusInSigmas
+       << " sigma; with structured noise (a depth camera's quantised depths) N = "
        << rule.StructuredNoiseIterations << "; where the local spacing varies more than "
        << rule.FollowDensitySpread << " times across the cloud, each point's r is "
        << rule.FollowDensityRadiusFactor

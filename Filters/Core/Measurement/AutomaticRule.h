@@ -16,7 +16,8 @@ namespace pcbilateral
 
 /// The automatic rule's constants (where they come from: docs/parameters.md):
 ///   r = RadiusInSpacings x spacing + RadiusInSigmas x sigma,
-///   rn = NormalRadiusInSigmas x sigma, N = NumberOfIterations;
+///   rn = NormalRadiusInSigmas x sigma, N = NumberOfIterations (with edges, the Edge* constants
+///   below);
 /// on a flat cloud (CurvatureExcess below FlatExcess and FeatureFraction below
 /// FlatFeatureFraction: no edge, no bend at that scale), r is FlatRadiusFactor times larger and
 /// N = FlatIterations, since nothing limits the smoothing there but the noise.
@@ -40,6 +41,15 @@ struct AutomaticRule
   double ThinNoiseInSpacings = 0.5;
   double SmoothRadiusFactor = 1.25;
   int SmoothIterations = 1;
+  /// With edges (neither flat nor smooth with thin noise, and at least EdgeFeatureFraction of
+  /// the samples see a feature), r = EdgeRadiusInSpacings x spacing + EdgeRadiusInSigmas x
+  /// sigma and rn = EdgeNormalRadiusInSigmas x sigma: a tighter normal radius keeps the points
+  /// right at an edge (within 3 sigma of it) on their own face, a wider ball flattens the faces
+  /// (fitted to pcb_quality's grid with the 3-sigma edge band, docs/parameters.md).
+  double EdgeFeatureFraction = 0.01;
+  double EdgeRadiusInSpacings = 8.0;
+  double EdgeRadiusInSigmas = 3.0;
+  double EdgeNormalRadiusInSigmas = 3.3;
   /// Where the local spacing varies more than this many times across the cloud (the ratio of
   /// the 95th to the 5th percentile of SpacingField, read at the samples), one radius cannot
   /// serve it: the automatic radius follows the density, each point's from its local spacing
@@ -57,6 +67,10 @@ struct AutomaticRule
 
 /// Whether the rule treats the cloud as flat.
 bool IsFlat(const CloudScales& scales, const AutomaticRule& rule = AutomaticRule());
+
+/// Whether the rule treats the cloud as having edges (never when it is flat or smooth with thin
+/// noise).
+bool HasEdges(const CloudScales& scales, const AutomaticRule& rule = AutomaticRule());
 
 /// Whether the rule treats the cloud as smooth with thin noise (never when it is flat).
 bool IsSmoothWithThinNoise(const CloudScales& scales, const AutomaticRule& rule = AutomaticRule());
