@@ -1,19 +1,23 @@
-// pcb_edges: sharp edges under strong noise (issue 15). For generated shapes with exact ground
+// pcb_edges: sharp edges under noise (issues 15 and 25). For generated shapes with exact ground
 // truth, the best of a grid search over each method's parameters, judged by the RMS distance to
-// the true surface of the points near sharp edges (edge RMS) and of all points (RMS), in 1e-3 of
-// the shape's bounding-box diagonal, with the time of one run (1 thread, processor time, the
-// minimum of 5) at the best edge setting:
+// the true surface of the points near sharp edges (edge RMS: the points whose noise-free
+// position is within 3 sigma of an edge; "wide": within 3 sigma + 3% of the diagonal) and of all
+// points (RMS), in 1e-3 of the shape's bounding-box diagonal, with the time of one run (2
+// threads unless --threads says otherwise, elapsed time, the minimum of 5) at the best edge
+// setting:
 //   - the paper's filter (r, rn, N),
 //   - the edge-aware mode (EdgeAware on; r, rn, N),
 //   - CGAL's jet_smooth_point_set (k) and bilateral_smooth_point_set (Huang et al. 2013: k,
 //     sharpness angle, iterations, after pca_estimate_normals with the same k), when CGAL was
 //     found at configure time (Debian's libcgal-dev; for this benchmark only);
 // then the cheapest edge-aware setting that reaches CGAL bilateral's best edge RMS and the
-// paper's best RMS, with its time, and the automatic mode's rule (ChooseParameters) in both
-// modes.
+// paper's best RMS, with its time, and the automatic mode (ChooseParameters) in both modes, the
+// edge-aware one with its time and that of the automatic choice (MeasureScales and the rule).
 // Built with the project, run by hand (see docs/edge-aware.md):
 //
-//   pcb_edges [--only SUBSTRING] [--no-cgal]
+//   pcb_edges [--only SUBSTRING] [--no-cgal] [--no-grid] [--threads N]
+//       --no-grid leaves out the grids of the paper's filter and of the edge-aware mode (the
+//       quick check of a change to the automatic rule).
 #include "AutomaticRule.h"
 #include "BilateralFilter.h"
 #include "CloudMeasurement.h"
@@ -21,6 +25,7 @@
 #include "SampleShapes.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -30,6 +35,9 @@
 
 #ifdef PCB_HAVE_CGAL
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
+#endif
 #include <CGAL/bilateral_smooth_point_set.h>
 #include <CGAL/jet_smooth_point_set.h>
 #include <CGAL/pca_estimate_normals.h>
@@ -41,12 +49,29 @@ namespace
 using namespace pcbilateral_samples;
 using namespace pcbilateral_benchmark;
 
+/// Threads of every method's runs (--threads).
+int Threads = 2;
+
+/// The elapsed time of one run, the minimum of 5: the methods run on the same threads, and the
+/// minimum is the least disturbed by the other work of a shared machine.
+double TimeRuns(const std::function<void()>& run)
+{
+  double best = 1e300;
+  for (int k = 0; k < 5; ++k)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    run();
+    best = std::min(best, Seconds(start));
+  }
+  return best;
+}
+
 /// The best of a method over its grid: each setting is a function giving the positions after
 /// 1, 2, ... steps of it (a chain), so that every number of iterations is measured on the way.
 struct Best
 {
-  Quality ByEdge{ 1e300, 1e300 }; // the setting with the best edge RMS (its RMS too)
-  Quality ByRms{ 1e300, 1e300 };  // the setting with the best RMS
+  Quality ByEdge{ 1e300, 1e300, 1e300 }; // the setting with the best edge RMS (its RMS too)
+  Quality ByRms{ 1e300, 1e300, 1e300 };  // the setting with the best RMS
   std::string EdgeAt, RmsAt;
   std::function<std::vector<double>()> RunBestEdge; // one whole run at the best edge setting
   double Time = 0.0;
@@ -79,20 +104,25 @@ struct Best
     }
   }
 
-  /// The processor time of one run (every method runs on one thread), the minimum of 5: less
-  /// sensitive than the elapsed time to the other work of a shared machine, which must not
-  /// weigh on one method's time and not on another's.
   void TimeBest()
   {
-    this->Time = 1e300;
-    for (int k = 0; k < 5; ++k)
-    {
-      const double start = CpuSeconds();
-      this->RunBestEdge();
-      this->Time = std::min(this->Time, CpuSeconds() - start);
-    }
+    this->Time = TimeRuns([this] { this->RunBestEdge(); });
   }
 };
+
+std::vector<double> RunFilter(const std::vector<double>& input,
+  pcbilateral::BilateralParameters parameters)
+{
+  parameters.NumberOfThreads = Threads;
+  pcbilateral::BilateralResult result =
+    pcbilateral::RunBilateralFilter(pcbilateral_testing::ViewOf(input), parameters);
+  if (result.Status != pcbilateral::BilateralStatus::Completed)
+  {
+    std::fprintf(stderr, "run failed: %s\n", result.Error.c_str());
+    std::exit(EXIT_FAILURE);
+  }
+  return std::move(result.Positions);
+}
 
 std::vector<double> RunFilter(const std::vector<double>& input,
   double r,
@@ -104,16 +134,8 @@ std::vector<double> RunFilter(const std::vector<double>& input,
   parameters.Radius = r;
   parameters.NormalRadius = rn;
   parameters.NumberOfIterations = iterations;
-  parameters.NumberOfThreads = 1;
   parameters.EdgeAware = edgeAware;
-  pcbilateral::BilateralResult result =
-    pcbilateral::RunBilateralFilter(pcbilateral_testing::ViewOf(input), parameters);
-  if (result.Status != pcbilateral::BilateralStatus::Completed)
-  {
-    std::fprintf(stderr, "run failed: %s\n", result.Error.c_str());
-    std::exit(EXIT_FAILURE);
-  }
-  return std::move(result.Positions);
+  return RunFilter(input, parameters);
 }
 
 Best SearchFilter(const Truth& truth, double s, double sigma, bool edgeAware)
@@ -149,6 +171,11 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using Vector = Kernel::Vector_3;
 using PointWithNormal = std::pair<Point, Vector>;
+#ifdef CGAL_LINKED_WITH_TBB
+using CgalConcurrency = CGAL::Parallel_tag;
+#else
+using CgalConcurrency = CGAL::Sequential_tag;
+#endif
 
 std::vector<double> Flatten(const std::vector<Point>& points)
 {
@@ -174,7 +201,7 @@ std::vector<Point> Points(const std::vector<double>& positions)
 std::vector<double> RunJet(const std::vector<double>& input, unsigned k)
 {
   std::vector<Point> points = Points(input);
-  CGAL::jet_smooth_point_set<CGAL::Sequential_tag>(points, k);
+  CGAL::jet_smooth_point_set<CgalConcurrency>(points, k);
   return Flatten(points);
 }
 
@@ -209,11 +236,11 @@ std::vector<double> RunCgalBilateral(const std::vector<double>& input,
   }
   const auto maps = CGAL::parameters::point_map(CGAL::First_of_pair_property_map<PointWithNormal>())
                       .normal_map(CGAL::Second_of_pair_property_map<PointWithNormal>());
-  CGAL::pca_estimate_normals<CGAL::Sequential_tag>(points, k, maps);
+  CGAL::pca_estimate_normals<CgalConcurrency>(points, k, maps);
   std::vector<double> positions;
   for (int n = 1; n <= iterations; ++n)
   {
-    CGAL::bilateral_smooth_point_set<CGAL::Sequential_tag>(points, k, maps.sharpness_angle(angle));
+    CGAL::bilateral_smooth_point_set<CgalConcurrency>(points, k, maps.sharpness_angle(angle));
     positions.clear();
     for (const PointWithNormal& p : points)
     {
@@ -267,6 +294,8 @@ std::vector<Case> Cases()
   auto sharpEdge = [] { return SharpEdge(); };
   auto cutCylinder = [] { return std::unique_ptr<Shape>(new CutCylinder(0.2)); };
   auto sphere = [] { return std::unique_ptr<Shape>(new Sphere()); };
+  auto cylinder = [] { return std::unique_ptr<Shape>(new CutCylinder()); };
+  // The first eight keep their seeds (501 to 508) from the first measurements.
   return { { "cube", cube, 0.005 },
     { "cube", cube, 0.01 },
     { "sharp edge", sharpEdge, 0.005 },
@@ -274,13 +303,18 @@ std::vector<Case> Cases()
     { "cut cylinder", cutCylinder, 0.005 },
     { "cut cylinder", cutCylinder, 0.01 },
     { "sphere", sphere, 0.005 },
-    { "sphere", sphere, 0.01 } };
+    { "sphere", sphere, 0.01 },
+    { "cube", cube, 0.001 },
+    { "sharp edge", sharpEdge, 0.001 },
+    { "cut cylinder", cutCylinder, 0.001 },
+    { "cylinder", cylinder, 0.005 } };
 }
 
 struct Options
 {
   std::string Only;
   bool Cgal = true;
+  bool Grid = true;
 };
 
 /// The options; false for an unknown one.
@@ -297,6 +331,14 @@ bool ParseArguments(int argc, char* argv[], Options& options)
     {
       options.Cgal = false;
     }
+    else if (argument == "--no-grid")
+    {
+      options.Grid = false;
+    }
+    else if (argument == "--threads" && i + 1 < argc)
+    {
+      Threads = std::max(1, std::atoi(argv[++i]));
+    }
     else
     {
       return false;
@@ -310,15 +352,19 @@ bool ParseArguments(int argc, char* argv[], Options& options)
 
 void PrintHeader()
 {
-  std::printf("Edge RMS / RMS in 1e-3 of the diagonal (20k points, uniform), each method at its "
-              "best edge setting; then its best RMS; time of one run at the best edge setting "
-              "(1 thread, processor time, minimum of 5)\n\n");
+  std::printf("Edge RMS (3 sigma band) / wide edge RMS (3 sigma + 3%% of the diagonal) / RMS in "
+              "1e-3 of the diagonal (20k points, uniform), each method at its best edge setting "
+              "(3 sigma band; the best RMS without edges); then its best RMS; time of one run at "
+              "that setting (%d threads, elapsed, minimum of 5)\n\n",
+    Threads);
   std::printf(
-    "| case | noisy | paper: edge / RMS (setting) | paper best RMS | edge-aware: edge / "
-    "RMS (setting) | edge-aware best RMS | CGAL jet: edge / RMS (k) | CGAL bilateral: "
-    "edge / RMS (setting) | time paper / edge-aware / jet / CGAL bilateral | cheapest edge-aware "
-    "setting reaching the targets: edge / RMS, time | automatic rule: paper, edge-aware |\n");
-  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+    "| case | noisy | paper: edge / wide / RMS (setting) | paper best RMS | edge-aware: edge / "
+    "wide / RMS (setting) | edge-aware best RMS | CGAL jet: edge / wide / RMS (k) | CGAL "
+    "bilateral: edge / wide / RMS (setting) | time paper / edge-aware / jet / CGAL bilateral | "
+    "cheapest edge-aware setting reaching the targets: edge / RMS, time | automatic paper: edge "
+    "/ wide / RMS | automatic edge-aware: edge / wide / RMS (setting), time (choice) | automatic "
+    "edge-aware against CGAL bilateral's best: edge, time; RMS / noisy RMS |\n");
+  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
 }
 
 /// The first four characters of the value's decimal text (truncated, not rounded).
@@ -327,53 +373,25 @@ std::string FourCharacters(double value)
   return std::to_string(value).substr(0, 4);
 }
 
-/// The noisy cloud's column: edge RMS / RMS, "–" for the edge without edges.
-std::string NoisyText(const Quality& noisy, bool hasEdges)
+/// "edge / wide / RMS", "–" for the edges without edges.
+std::string Measures(const Quality& q, bool hasEdges)
 {
-  return (hasEdges ? FourCharacters(noisy.EdgeRms) : std::string("–")) + " / " +
-         FourCharacters(noisy.Rms);
-}
-
-/// The automatic mode's rule (ChooseParameters) as it is, in both modes: "paper, edge-aware
-/// (setting)".
-std::string AutomaticText(const Truth& truth, const pcbilateral::CloudScales& scales)
-{
-  const bool hasEdges = truth.EdgePoints > 0;
-  pcbilateral::BilateralParameters automatic =
-    pcbilateral::ChooseParameters(scales, pcbilateral::BilateralParameters());
-  automatic.NumberOfThreads = 1;
-  const std::vector<double>& input = truth.Cloud->Positions;
-  const Quality autoPaper = truth.Measure(RunFilter(
-    input, automatic.Radius, automatic.NormalRadius, automatic.NumberOfIterations, false));
-  const Quality autoAware = truth.Measure(
-    RunFilter(input, automatic.Radius, automatic.NormalRadius, automatic.NumberOfIterations, true));
-  char autoText[160];
-  std::snprintf(autoText,
-    sizeof autoText,
-    "%s%.2f, %s%.2f (r %.1fs, rn %.1fσ, N %d)",
-    hasEdges ? (FourCharacters(autoPaper.EdgeRms) + " / ").c_str() : "– / ",
-    autoPaper.Rms,
-    hasEdges ? (FourCharacters(autoAware.EdgeRms) + " / ").c_str() : "– / ",
-    autoAware.Rms,
-    automatic.Radius / scales.PointSpacing,
-    automatic.NormalRadius / scales.NoiseSigma,
-    automatic.NumberOfIterations);
-  return autoText;
-}
-
-/// A method at its best edge setting: "edge / RMS (setting)", "–" for the edge without edges.
-std::string QualityText(const Best& b, bool hasEdges)
-{
-  char text[160];
+  char text[96];
   if (hasEdges)
   {
-    std::snprintf(text, sizeof text, "%.2f / %.2f", b.ByEdge.EdgeRms, b.ByEdge.Rms);
+    std::snprintf(text, sizeof text, "%.2f / %.2f / %.2f", q.EdgeRms, q.WideEdgeRms, q.Rms);
   }
   else
   {
-    std::snprintf(text, sizeof text, "– / %.2f", b.ByEdge.Rms);
+    std::snprintf(text, sizeof text, "– / – / %.2f", q.Rms);
   }
-  return std::string(text) + " (" + b.EdgeAt + ")";
+  return text;
+}
+
+/// A method at its best edge setting: "edge / wide / RMS (setting)".
+std::string QualityText(const Best& b, bool hasEdges)
+{
+  return Measures(b.ByEdge, hasEdges) + " (" + b.EdgeAt + ")";
 }
 
 /// A method at its best RMS setting: "RMS (setting)".
@@ -382,6 +400,49 @@ std::string BestRmsText(const Best& b)
   char text[96];
   std::snprintf(text, sizeof text, "%.2f (%s)", b.ByRms.Rms, b.RmsAt.c_str());
   return text;
+}
+
+/// The automatic mode (ChooseParameters) in both modes, the edge-aware one timed with the
+/// automatic choice.
+struct Automatic
+{
+  std::string PaperText, AwareText;
+  Quality Aware;
+  double Time = 0.0;
+};
+
+Automatic RunAutomatic(const Truth& truth, const pcbilateral::CloudScales& scales)
+{
+  const bool hasEdges = truth.EdgePoints > 0;
+  const std::vector<double>& input = truth.Cloud->Positions;
+  Automatic automatic;
+  pcbilateral::BilateralParameters user;
+  const pcbilateral::BilateralParameters paper = pcbilateral::ChooseParameters(scales, user);
+  automatic.PaperText = Measures(truth.Measure(RunFilter(input, paper)), hasEdges);
+  user.EdgeAware = true;
+  const pcbilateral::BilateralParameters aware = pcbilateral::ChooseParameters(scales, user);
+  automatic.Aware = truth.Measure(RunFilter(input, aware));
+  automatic.Time = TimeRuns([&] { RunFilter(input, aware); });
+  pcbilateral::ScaleMeasurementOptions options;
+  options.NumberOfThreads = Threads;
+  const double choice = TimeRuns(
+    [&]
+    {
+      const pcbilateral::CloudScales measured =
+        pcbilateral::MeasureScales(pcbilateral_testing::ViewOf(input), options);
+      pcbilateral::ChooseParameters(measured, user);
+    });
+  char text[200];
+  std::snprintf(text,
+    sizeof text,
+    " (r %.1fs, rn %.1fσ, N %d), %.3f s (%.3f s)",
+    aware.Radius / scales.PointSpacing,
+    aware.NormalRadius / scales.NoiseSigma,
+    aware.NumberOfIterations,
+    automatic.Time,
+    choice);
+  automatic.AwareText = Measures(automatic.Aware, hasEdges) + text;
+  return automatic;
 }
 
 /// CGAL's columns, their times and CGAL bilateral's edge target ("–" and no target without
@@ -457,29 +518,53 @@ std::string CheapestText(const Best& edgeAware,
   return text;
 }
 
-void RunCase(const Case& c, const char* name, std::uint64_t seed, [[maybe_unused]] bool cgal)
+/// The automatic edge-aware mode against CGAL bilateral's best: "edge ratio, time ratio; RMS
+/// ratio to the noisy cloud's".
+std::string AgainstText(const Automatic& automatic,
+  const CgalColumns& cgal,
+  const Quality& noisy,
+  bool hasEdges)
+{
+  char text[160];
+  std::snprintf(text,
+    sizeof text,
+    "%s, %s; %.3fx",
+    hasEdges && cgal.BilateralTime > 0
+      ? (FourCharacters(automatic.Aware.EdgeRms / cgal.BilateralEdgeRms) + "x").c_str()
+      : "–",
+    cgal.BilateralTime > 0 ? (FourCharacters(automatic.Time / cgal.BilateralTime) + "x").c_str()
+                           : "–",
+    automatic.Aware.Rms / noisy.Rms);
+  return text;
+}
+
+void RunCase(const Case& c, const char* name, std::uint64_t seed, const Options& options)
 {
   const std::unique_ptr<Shape> shape = c.Make();
   const NoisyCloud cloud = MakeNoisyCloud(*shape, 20000, c.Noise, false, 0.0, seed);
   const Truth truth(*shape, cloud, 1e3 / shape->Diagonal());
   const bool hasEdges = truth.EdgePoints > 0;
   const Quality noisy = truth.Measure(cloud.Positions);
-  pcbilateral::ScaleMeasurementOptions options;
-  options.NumberOfThreads = 1;
+  pcbilateral::ScaleMeasurementOptions measurement;
+  measurement.NumberOfThreads = Threads;
   const pcbilateral::CloudScales scales =
-    pcbilateral::MeasureScales(pcbilateral_testing::ViewOf(cloud.Positions), options);
-  const std::string autoText = AutomaticText(truth, scales);
-  Best paper = SearchFilter(truth, scales.PointSpacing, scales.NoiseSigma, false);
-  Best edgeAware = SearchFilter(truth, scales.PointSpacing, scales.NoiseSigma, true);
-  paper.TimeBest();
-  edgeAware.TimeBest();
+    pcbilateral::MeasureScales(pcbilateral_testing::ViewOf(cloud.Positions), measurement);
+  const Automatic automatic = RunAutomatic(truth, scales);
+  Best paper, edgeAware;
+  if (options.Grid)
+  {
+    paper = SearchFilter(truth, scales.PointSpacing, scales.NoiseSigma, false);
+    edgeAware = SearchFilter(truth, scales.PointSpacing, scales.NoiseSigma, true);
+    paper.TimeBest();
+    edgeAware.TimeBest();
+  }
   // The targets of the cheapest edge-aware setting: an edge RMS at most CGAL bilateral's best
   // (or, without CGAL, the paper's best) and an RMS at most the paper's best.
   CgalColumns columns;
   columns.BilateralEdgeRms = hasEdges ? paper.ByEdge.EdgeRms : 1e300;
   columns.Times = " s";
 #ifdef PCB_HAVE_CGAL
-  if (cgal)
+  if (options.Cgal)
   {
     columns = CompareWithCgal(truth);
   }
@@ -487,20 +572,25 @@ void RunCase(const Case& c, const char* name, std::uint64_t seed, [[maybe_unused
   char times[160];
   std::snprintf(
     times, sizeof times, "%.3f / %.3f%s", paper.Time, edgeAware.Time, columns.Times.c_str());
-  const std::string cheapText = CheapestText(
-    edgeAware, columns.BilateralEdgeRms, paper.ByRms.Rms, hasEdges, columns.BilateralTime);
-  std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
+  const std::string cheapText =
+    options.Grid
+      ? CheapestText(
+          edgeAware, columns.BilateralEdgeRms, paper.ByRms.Rms, hasEdges, columns.BilateralTime)
+      : "–";
+  std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
     name,
-    NoisyText(noisy, hasEdges).c_str(),
-    QualityText(paper, hasEdges).c_str(),
-    BestRmsText(paper).c_str(),
-    QualityText(edgeAware, hasEdges).c_str(),
-    BestRmsText(edgeAware).c_str(),
+    Measures(noisy, hasEdges).c_str(),
+    options.Grid ? QualityText(paper, hasEdges).c_str() : "–",
+    options.Grid ? BestRmsText(paper).c_str() : "–",
+    options.Grid ? QualityText(edgeAware, hasEdges).c_str() : "–",
+    options.Grid ? BestRmsText(edgeAware).c_str() : "–",
     columns.Jet.c_str(),
     columns.Bilateral.c_str(),
     times,
     cheapText.c_str(),
-    autoText.c_str());
+    automatic.PaperText.c_str(),
+    automatic.AwareText.c_str(),
+    AgainstText(automatic, columns, noisy, hasEdges).c_str());
   std::fflush(stdout);
 }
 } // namespace
@@ -510,9 +600,13 @@ int main(int argc, char* argv[])
   Options options;
   if (!ParseArguments(argc, argv, options))
   {
-    std::fprintf(stderr, "usage: %s [--only SUBSTRING] [--no-cgal]\n", argv[0]);
+    std::fprintf(
+      stderr, "usage: %s [--only SUBSTRING] [--no-cgal] [--no-grid] [--threads N]\n", argv[0]);
     return EXIT_FAILURE;
   }
+#if defined(PCB_HAVE_CGAL) && defined(CGAL_LINKED_WITH_TBB)
+  const tbb::global_control threads(tbb::global_control::max_allowed_parallelism, Threads);
+#endif
   PrintHeader();
   std::uint64_t seed = 500;
   for (const Case& c : Cases())
@@ -522,7 +616,7 @@ int main(int argc, char* argv[])
     std::snprintf(name, sizeof name, "%s %.1f%%", c.Name.c_str(), 100 * c.Noise);
     if (options.Only.empty() || std::string(name).find(options.Only) != std::string::npos)
     {
-      RunCase(c, name, seed, options.Cgal);
+      RunCase(c, name, seed, options);
     }
   }
   return EXIT_SUCCESS;
