@@ -1,5 +1,7 @@
 #include "AutomaticRule.h"
 
+#include "EdgeAwareRule.h"
+
 #include <cmath>
 #include <sstream>
 
@@ -23,6 +25,10 @@ BilateralParameters ChooseParameters(const CloudScales& scales,
   const BilateralParameters& userParameters,
   const AutomaticRule& rule)
 {
+  if (userParameters.EdgeAware)
+  {
+    return ChooseEdgeAwareParameters(scales, userParameters);
+  }
   BilateralParameters parameters = userParameters;
   if (!scales.Valid)
   {
