@@ -35,12 +35,9 @@ BilateralParameters ChooseEdgeAwareParameters(const CloudScales& scales,
   }
   const double s = scales.PointSpacing, sigma = scales.NoiseSigma;
   const bool smooth = IsSmoothForEdgeAware(scales, rule);
-  const bool thin = sigma < rule.ThinNoiseInSpacings * s;
   if (parameters.NumberOfIterations <= 0)
   {
-    parameters.NumberOfIterations = smooth ? rule.SmoothIterations
-                                    : thin ? rule.ThinNoiseIterations
-                                           : rule.NumberOfIterations;
+    parameters.NumberOfIterations = smooth ? rule.SmoothIterations : rule.NumberOfIterations;
   }
   if (!(parameters.Radius > 0.0))
   {
@@ -64,8 +61,7 @@ std::string DescribeEdgeAwareRule(const EdgeAwareRule& rule)
   std::ostringstream text;
   text << "edge-aware mode: r = " << rule.RadiusInSpacings << " spacings + " << rule.RadiusInSigmas
        << " sigma, rn = " << rule.NormalRadiusInSigmas << " sigma, N = " << rule.NumberOfIterations
-       << " (N = " << rule.ThinNoiseIterations << " with noise below " << rule.ThinNoiseInSpacings
-       << " spacing); on a smooth cloud (crease fraction at most " << rule.SmoothCreaseFraction
+       << "; on a smooth cloud (crease fraction at most " << rule.SmoothCreaseFraction
        << ", feature fraction at most " << rule.SmoothFeatureFraction
        << ") r = " << rule.SmoothRadiusInSpacings << " spacings + " << rule.SmoothRadiusInSigmas
        << " sigma, rn = " << rule.SmoothNormalRadiusInSigmas
