@@ -125,8 +125,9 @@ void pqPointCloudBilateralRunBehavior::startup()
     vtkPVRepresentedArrayListSettings::GetInstance();
   const int count = colourArrays->GetNumberOfFilterExpressions();
   colourArrays->SetNumberOfFilterExpressions(count + 1);
-  colourArrays->SetFilterExpression(
-    count, "^Bilateral(Radius|NormalRadius|NumberOfIterations|PointSpacing|NoiseSigma)$");
+  colourArrays->SetFilterExpression(count,
+    "^Bilateral(Radius|NormalRadius|NumberOfIterations|PointSpacing|NoiseSigma|"
+    "NearestNeighbourDistances|SpacingSpread|RadiusRange|NormalRadiusRange|Mode)$");
   // A .xyz file opens with the Point Cloud Text Reader: ParaView 5.11's open dialog offers the
   // PLOT3D reader first (it claims .xyz too, and gives an empty multiblock for a point file).
   // This is ParaView's "default reader" setting, at a priority below the user's own settings

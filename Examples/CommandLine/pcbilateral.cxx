@@ -343,26 +343,50 @@ void PrintParametersUsed(vtkPointCloudBilateralFilter* filter, const Options& op
       filter->GetPointSpacing(),
       filter->GetNoiseSigma());
     const double* distances = filter->GetNearestNeighbourDistances();
-    std::printf(
-      "sampling:      nearest-neighbour distance %.6g (5%%), %.6g (median), %.6g (95%%)\n",
+    std::printf("sampling:      nearest-neighbour distance %.6g (5%%), %.6g (median), %.6g "
+                "(95%%); local spacing varies %.3g times\n",
       distances[0],
       distances[1],
-      distances[2]);
+      distances[2],
+      filter->GetSpacingSpread());
   }
   const char* automatic =
     measured ? " (automatic, from the measured spacing and noise)" : " (automatic: the paper's)";
-  std::printf(
-    "radius:        %.9g%s\n", filter->GetRadiusUsed(), options.Radius > 0.0 ? "" : automatic);
-  std::printf("normal radius: %.9g%s\n",
-    filter->GetNormalRadiusUsed(),
-    options.NormalRadius > 0.0 ? "" : automatic);
+  if (filter->GetRadiusFollowsDensity())
+  {
+    const double* radii = filter->GetRadiusRange();
+    const double* normalRadii = filter->GetNormalRadiusRange();
+    std::printf("radius:        %.9g to %.9g, following the density (automatic, each point's from "
+                "its local spacing)\n",
+      radii[0],
+      radii[1]);
+    if (normalRadii[0] != normalRadii[1])
+    {
+      std::printf("normal radius: %.9g to %.9g%s\n",
+        normalRadii[0],
+        normalRadii[1],
+        options.NormalRadius > 0.0 ? "" : automatic);
+    }
+    else
+    {
+      std::printf(
+        "normal radius: %.9g%s\n", normalRadii[0], options.NormalRadius > 0.0 ? "" : automatic);
+    }
+  }
+  else
+  {
+    std::printf(
+      "radius:        %.9g%s\n", filter->GetRadiusUsed(), options.Radius > 0.0 ? "" : automatic);
+    std::printf("normal radius: %.9g%s\n",
+      filter->GetNormalRadiusUsed(),
+      options.NormalRadius > 0.0 ? "" : automatic);
+  }
   std::printf("iterations:    %d%s\n",
     filter->GetNumberOfIterationsUsed(),
     options.Iterations > 0 ? "" : automatic);
-  if (options.EdgeAware)
-  {
-    std::printf("mode:          edge-aware (normals filtered bilaterally, beyond the paper)\n");
-  }
+  std::printf("mode:          %s\n",
+    options.EdgeAware ? "edge-aware (normals filtered bilaterally, beyond the paper)"
+                      : "the paper's filter");
   if (options.RemoveIsolated)
   {
     std::printf("removed:       %lld isolated points\n",

@@ -7,6 +7,7 @@
 #include "EdgeAwareNormals.h"
 #include "HugePages.h"
 #include "ProcessingOctree.h"
+#include "RadiusBands.h"
 #include "Threads.h"
 
 #include <algorithm>
@@ -172,6 +173,13 @@ struct BilateralRun::Internals
   BilateralResult Result;
   /// The engine of a run without ghosts, kept from one iteration to the next.
   std::unique_ptr<IterationEngine> Engine;
+  /// Where the radius follows the density: each point's band (else empty).
+  RadiusBands Bands;
+  /// The share of the current iteration done before the points being filtered now, and theirs
+  /// (a radius band is a share of an iteration).
+  double StepDone = 0.0;
+  double StepShare = 1.0;
+  bool WarnedAboutNeighbours = false;
 
   void Warn(const std::string& warning)
   {
@@ -210,12 +218,14 @@ struct BilateralRun::Internals
     }
   }
 
-  std::unique_ptr<IterationEngine> MakeEngine(PointState state, const double* positions)
+  std::unique_ptr<IterationEngine> MakeEngine(PointState state,
+    const double* positions,
+    const RadiiUsed& radii)
   {
     auto engine = std::make_unique<IterationEngine>(std::move(state),
       positions,
       this->WholeExtent,
-      this->Radii,
+      radii,
       this->Parameters.RemoveIsolatedPoints,
       this->Threads);
     this->Result.ProcessingDepth = engine->Octree.GetProcessingDepth();
@@ -224,28 +234,33 @@ struct BilateralRun::Internals
     scheduler.ReportPoints = [this, &scheduler](std::size_t pointsDone)
     {
       const std::size_t total = std::max<std::size_t>(1, scheduler.GetNumberOfPointsProcessed());
-      this->Report(
-        (this->Iteration + static_cast<double>(pointsDone) / static_cast<double>(total)) /
-        this->Parameters.NumberOfIterations);
+      this->ReportWithinStep(static_cast<double>(pointsDone) / static_cast<double>(total));
     };
     return engine;
   }
 
-  /// One iteration of an engine; false if aborted.
-  bool Iterate(IterationEngine& engine)
+  /// Progress within the current iteration's share being filtered.
+  void ReportWithinStep(double fraction)
+  {
+    this->Report((this->Iteration + this->StepDone + this->StepShare * fraction) /
+                 this->Parameters.NumberOfIterations);
+  }
+
+  /// One iteration of an engine at `radius`; false if aborted.
+  bool Iterate(IterationEngine& engine, double radius)
   {
     if (engine.PointsPlaced)
     {
       engine.Octree.Compact(this->Threads);
     }
-    if (this->Iteration == 0)
+    if (this->Iteration == 0 && !this->WarnedAboutNeighbours)
     {
       const double neighbours = engine.Scheduler.EstimateNeighboursPerPoint(32);
       if (neighbours > ManyNeighbours)
       {
+        this->WarnedAboutNeighbours = true;
         std::ostringstream warning;
-        warning << "the radius " << this->Radii.Radius << " gives about "
-                << static_cast<long long>(neighbours)
+        warning << "the radius " << radius << " gives about " << static_cast<long long>(neighbours)
                 << " neighbours per point, so the run will be slow (its time grows with that "
                    "number): lower the radius, a few times the point spacing is usually enough";
         this->Warn(warning.str());
@@ -262,19 +277,18 @@ struct BilateralRun::Internals
 
   /// One iteration of the edge-aware mode on `state` (no octree: EdgeAwareNormals.h); false
   /// if aborted.
-  bool IterateEdgeAware(PointState& state)
+  bool IterateEdgeAware(PointState& state, const RadiiUsed& radii)
   {
     EdgeAwareSettings settings;
-    settings.Radius = this->Radii.Radius;
-    settings.NormalRadius = this->Radii.NormalRadius;
+    settings.Radius = radii.Radius;
+    settings.NormalRadius = radii.NormalRadius;
     std::copy(this->WholeExtent.Min, this->WholeExtent.Min + 3, settings.Origin);
     settings.CloudReach = this->WholeExtent.LargestExtent() +
-                          (this->Parameters.NumberOfIterations + 1.0) * this->Radii.Radius;
+                          (this->Parameters.NumberOfIterations + 1.0) * radii.Radius;
     settings.RemoveIsolatedPoints = this->Parameters.RemoveIsolatedPoints;
     settings.NumberOfThreads = this->Threads;
     settings.ShouldAbort = this->Observer.ShouldAbort;
-    settings.Progress = [this](double fraction)
-    { this->Report((this->Iteration + fraction) / this->Parameters.NumberOfIterations); };
+    settings.Progress = [this](double fraction) { this->ReportWithinStep(fraction); };
     std::uint64_t evaluations = 0;
     if (!RunEdgeAwareIteration(state, settings, evaluations))
     {
@@ -282,6 +296,191 @@ struct BilateralRun::Internals
     }
     this->Result.NumberOfNeighbourEvaluations += evaluations;
     return true;
+  }
+
+  /// The automatic parameters from the whole cloud's scales, and the radius bands where the
+  /// radius follows the density.
+  void ChooseAutomaticParameters(const CloudScales& scales)
+  {
+    BilateralResult& result = this->Result;
+    if (scales.Valid)
+    {
+      result.Measured = true;
+      result.PointSpacing = scales.PointSpacing;
+      result.NoiseSigma = scales.NoiseSigma;
+      std::copy_n(scales.NearestNeighbourDistance, 3, result.NearestNeighbourDistance);
+      result.SpacingSpread = scales.LocalSpacing ? scales.LocalSpacing->GetSpread() : 0.0;
+    }
+    else if (scales.Measurable)
+    {
+      // (A cloud too small or of no extent has nothing to measure: that needs no warning, and
+      // the one of no extent comes below.)
+      this->Warn("the cloud's point spacing and noise could not be measured (" + scales.Problem +
+                 "): the parameters not given follow the paper's heuristic (r = sqrt(20 / "
+                 "points) x largest extent, rn = r, N = 1)");
+    }
+    const BilateralParameters userParameters = this->Parameters;
+    this->Parameters = ChooseParameters(scales, userParameters);
+    if (RadiusFollowsDensity(scales, userParameters))
+    {
+      this->Bands = AssignRadiusBands(
+        this->Cloud, scales, userParameters, this->Parameters.Radius, this->Threads);
+      if (!this->Bands.Empty())
+      {
+        result.RadiusFollowsDensity = true;
+        result.PointSpacing = SurfaceSpacing(scales);
+        result.RadiusRange[0] = this->Bands.SmallestRadius();
+        result.RadiusRange[1] = this->Bands.LargestRadius();
+        const auto normal =
+          std::minmax_element(this->Bands.NormalRadius.begin(), this->Bands.NormalRadius.end());
+        result.NormalRadiusRange[0] = *normal.first;
+        result.NormalRadiusRange[1] = *normal.second;
+      }
+    }
+  }
+
+  /// One iteration of the points `active` (ids) at `radii`: `view` holds their positions, then
+  /// the ghosts' (neighbours only). Writes their moved positions and removals by id into
+  /// `positions` and `removed`, and their normals into the result's in the last iteration.
+  /// False if aborted.
+  bool FilterPart(const std::vector<std::size_t>& active,
+    std::vector<double> view,
+    const RadiiUsed& radii,
+    std::vector<double>& positions,
+    std::vector<std::uint8_t>& removed)
+  {
+    if (active.empty())
+    {
+      return true;
+    }
+    // Orientation changes only the reported normals, which only the last iteration gives.
+    const bool last = this->Iteration + 1 == this->Parameters.NumberOfIterations;
+    const bool computeNormals = last && this->Parameters.ComputeNormals;
+    std::vector<double> orientation;
+    if (computeNormals && this->Cloud.OrientationNormals)
+    {
+      orientation.assign(view.size(), 0.0);
+      for (std::size_t j = 0; j < active.size(); ++j)
+      {
+        const double* o = this->Cloud.OrientationNormals + 3 * active[j];
+        std::copy(o, o + 3, orientation.begin() + 3 * j);
+      }
+    }
+    PointState partState;
+    partState.Positions = std::move(view);
+    partState.Removed.assign(partState.Positions.size() / 3, 0);
+    if (computeNormals)
+    {
+      partState.Normals.assign(partState.Positions.size(), 0.0);
+    }
+    partState.OrientationNormals = orientation.empty() ? nullptr : orientation.data();
+    partState.FirstGhost = active.size();
+    std::unique_ptr<IterationEngine> engine;
+    if (!this->Parameters.EdgeAware)
+    {
+      engine = this->MakeEngine(std::move(partState), nullptr, radii);
+    }
+    const bool completed =
+      engine ? this->Iterate(*engine, radii.Radius) : this->IterateEdgeAware(partState, radii);
+    if (!completed)
+    {
+      return false;
+    }
+    if (engine)
+    {
+      engine->ScatterMoves();
+    }
+    const PointState& state = engine ? engine->State : partState;
+    for (std::size_t j = 0; j < active.size(); ++j)
+    {
+      const std::size_t i = active[j];
+      std::copy_n(state.Positions.data() + 3 * j, 3, positions.data() + 3 * i);
+      removed[i] = state.Removed[j];
+      if (computeNormals)
+      {
+        std::copy_n(state.Normals.data() + 3 * j, 3, this->Result.Normals.data() + 3 * i);
+      }
+    }
+    return true;
+  }
+
+  /// One iteration where the radius follows the density: each band runs on the positions the
+  /// last iteration wrote, with every other point within its reach (this run's, and the
+  /// `ghosts` of other parts) as neighbours only. False if aborted.
+  bool IterateBands(const std::vector<double>& ghosts)
+  {
+    this->CopyInputPositions();
+    BilateralResult& result = this->Result;
+    std::vector<double> nextPositions = result.Positions;
+    std::vector<std::uint8_t> nextRemoved = result.Removed;
+    std::vector<std::vector<std::size_t>> members(this->Bands.Radius.size());
+    std::size_t total = 0;
+    for (std::size_t i = 0; i < result.Removed.size(); ++i)
+    {
+      if (!result.Removed[i] && this->Bands.BandOfPoint[i] != RadiusBands::NoBand)
+      {
+        members[this->Bands.BandOfPoint[i]].push_back(i);
+        ++total;
+      }
+    }
+    std::size_t done = 0;
+    for (std::size_t band = 0; band < members.size(); ++band)
+    {
+      const std::vector<std::size_t>& active = members[band];
+      this->StepDone =
+        static_cast<double>(done) / static_cast<double>(std::max<std::size_t>(total, 1));
+      this->StepShare =
+        static_cast<double>(active.size()) / static_cast<double>(std::max<std::size_t>(total, 1));
+      done += active.size();
+      const RadiiUsed radii{ this->Bands.Radius[band], this->Bands.NormalRadius[band] };
+      if (!active.empty() &&
+          !this->FilterPart(
+            active, this->BandView(active, band, ghosts), radii, nextPositions, nextRemoved))
+      {
+        return false;
+      }
+    }
+    this->StepDone = 0.0;
+    this->StepShare = 1.0;
+    result.Positions = std::move(nextPositions);
+    result.Removed = std::move(nextRemoved);
+    return true;
+  }
+
+  /// The positions of a band's points `active`, then of the others within its reach: this
+  /// run's points of other bands that are not removed, and the other parts' `ghosts`.
+  std::vector<double> BandView(const std::vector<std::size_t>& active,
+    std::size_t band,
+    const std::vector<double>& ghosts) const
+  {
+    const std::vector<double>& positions = this->Result.Positions;
+    std::vector<double> view;
+    view.reserve(3 * active.size());
+    for (std::size_t i : active)
+    {
+      view.insert(view.end(), &positions[3 * i], &positions[3 * i] + 3);
+    }
+    const double reachInRadii = this->Parameters.EdgeAware ? EdgeAwareReachInRadii : 1.0;
+    const NearPoints near(view,
+      GhostMargin(reachInRadii * this->Bands.Radius[band], this->WholeExtent.LargestMagnitude()),
+      this->WholeExtent.Min);
+    for (std::size_t i = 0; i < this->Result.Removed.size(); ++i)
+    {
+      const double* p = &positions[3 * i];
+      if (!this->Result.Removed[i] && this->Bands.BandOfPoint[i] != band &&
+          this->Bands.BandOfPoint[i] != RadiusBands::NoBand && near.Near(p))
+      {
+        view.insert(view.end(), p, p + 3);
+      }
+    }
+    for (std::size_t g = 0; g + 2 < ghosts.size(); g += 3)
+    {
+      if (near.Near(&ghosts[g]))
+      {
+        view.insert(view.end(), &ghosts[g], &ghosts[g] + 3);
+      }
+    }
+    return view;
   }
 
   BilateralStatus EndIteration(bool completed)
@@ -401,24 +600,8 @@ bool BilateralRun::Start(const CloudExtent& wholeCloud, const CloudScales* whole
   }
   if (this->NeedsScales() && wholeCloud.NumberOfFinitePoints > 0)
   {
-    const CloudScales scales =
-      wholeCloudScales != nullptr ? *wholeCloudScales : MeasureWholeCloud(run.Cloud, run.Threads);
-    if (scales.Valid)
-    {
-      result.Measured = true;
-      result.PointSpacing = scales.PointSpacing;
-      result.NoiseSigma = scales.NoiseSigma;
-      std::copy_n(scales.NearestNeighbourDistance, 3, result.NearestNeighbourDistance);
-    }
-    else if (scales.Measurable)
-    {
-      // (A cloud too small or of no extent has nothing to measure: that needs no warning, and
-      // the one of no extent comes below.)
-      run.Warn("the cloud's point spacing and noise could not be measured (" + scales.Problem +
-               "): the parameters not given follow the paper's heuristic (r = sqrt(20 / points) "
-               "x largest extent, rn = r, N = 1)");
-    }
-    run.Parameters = ChooseParameters(scales, run.Parameters);
+    run.ChooseAutomaticParameters(
+      wholeCloudScales != nullptr ? *wholeCloudScales : MeasureWholeCloud(run.Cloud, run.Threads));
   }
   if (run.Parameters.NumberOfIterations == 0)
   {
@@ -439,7 +622,15 @@ bool BilateralRun::Start(const CloudExtent& wholeCloud, const CloudScales* whole
              "left where they are");
     return false;
   }
-  const std::string problem = CheckPrecisionLimits(run.Parameters, wholeCloud, run.Radii);
+  // Where the radius follows the density, the smallest radius sets the octree's finest
+  // lattice and the largest how far points reach.
+  std::string problem = CheckPrecisionLimits(run.Parameters, wholeCloud, run.Radii);
+  for (std::size_t band = 0; band < run.Bands.Radius.size() && problem.empty(); ++band)
+  {
+    problem = CheckPrecisionLimits(run.Parameters,
+      wholeCloud,
+      RadiiUsed{ run.Bands.Radius[band], run.Bands.NormalRadius[band] });
+  }
   if (!problem.empty())
   {
     this->Stop(BilateralStatus::Failed, problem);
@@ -500,7 +691,9 @@ void BilateralRun::GetGhostReach(double box[6]) const
   // positions, so one radius of reach is enough.
   // The edge-aware mode reads its neighbours' normals, which read theirs: it reaches further.
   const double reach = this->Impl->Parameters.EdgeAware ? EdgeAwareReachInRadii : 1.0;
-  const double margin = GhostMargin(reach * this->Impl->Radii.Radius, magnitude);
+  const double radius =
+    this->Impl->Bands.Empty() ? this->Impl->Radii.Radius : this->Impl->Bands.LargestRadius();
+  const double margin = GhostMargin(reach * radius, magnitude);
   for (int axis = 0; axis < 3; ++axis)
   {
     box[2 * axis] -= margin;
@@ -515,6 +708,10 @@ BilateralStatus BilateralRun::Step()
   {
     return run.Result.Status;
   }
+  if (!run.Bands.Empty())
+  {
+    return run.EndIteration(run.IterateBands(std::vector<double>()));
+  }
   if (run.Parameters.EdgeAware)
   {
     // Every point by id, in place, for each iteration.
@@ -526,7 +723,7 @@ BilateralStatus BilateralRun::Step()
     state.Removed = std::move(result.Removed);
     state.OrientationNormals = run.Cloud.OrientationNormals;
     state.FirstGhost = run.Cloud.NumberOfPoints;
-    const bool completed = run.IterateEdgeAware(state);
+    const bool completed = run.IterateEdgeAware(state, run.Radii);
     result.Positions = std::move(state.Positions);
     result.Normals = std::move(state.Normals);
     result.Removed = std::move(state.Removed);
@@ -542,9 +739,9 @@ BilateralStatus BilateralRun::Step()
     state.Removed = std::move(run.Result.Removed);
     state.OrientationNormals = run.Cloud.OrientationNormals;
     state.FirstGhost = run.Cloud.NumberOfPoints;
-    run.Engine = run.MakeEngine(std::move(state), run.Cloud.Positions);
+    run.Engine = run.MakeEngine(std::move(state), run.Cloud.Positions, run.Radii);
   }
-  return run.EndIteration(run.Iterate(*run.Engine));
+  return run.EndIteration(run.Iterate(*run.Engine, run.Radii.Radius));
 }
 
 BilateralStatus BilateralRun::Step(const std::vector<double>& ghosts)
@@ -553,6 +750,10 @@ BilateralStatus BilateralRun::Step(const std::vector<double>& ghosts)
   if (!this->HasNextIteration())
   {
     return run.Result.Status;
+  }
+  if (!run.Bands.Empty())
+  {
+    return run.EndIteration(run.IterateBands(ghosts));
   }
   run.CopyInputPositions();
   BilateralResult& result = run.Result;
@@ -568,58 +769,9 @@ BilateralStatus BilateralRun::Step(const std::vector<double>& ghosts)
       view.insert(view.end(), &result.Positions[3 * i], &result.Positions[3 * i] + 3);
     }
   }
-  if (active.empty())
-  {
-    return run.EndIteration(true);
-  }
   view.insert(view.end(), ghosts.begin(), ghosts.end());
-  // Orientation changes only the reported normals, which only the last iteration gives.
-  const bool last = run.Iteration + 1 == run.Parameters.NumberOfIterations;
-  const bool computeNormals = last && run.Parameters.ComputeNormals;
-  std::vector<double> orientation;
-  if (computeNormals && run.Cloud.OrientationNormals)
-  {
-    orientation.assign(view.size(), 0.0);
-    for (std::size_t j = 0; j < active.size(); ++j)
-    {
-      const double* o = run.Cloud.OrientationNormals + 3 * active[j];
-      std::copy(o, o + 3, orientation.begin() + 3 * j);
-    }
-  }
-  PointState partState;
-  partState.Positions = std::move(view);
-  partState.Removed.assign(partState.Positions.size() / 3, 0);
-  if (computeNormals)
-  {
-    partState.Normals.assign(partState.Positions.size(), 0.0);
-  }
-  partState.OrientationNormals = orientation.empty() ? nullptr : orientation.data();
-  partState.FirstGhost = active.size();
-  std::unique_ptr<IterationEngine> engine;
-  if (!run.Parameters.EdgeAware)
-  {
-    engine = run.MakeEngine(std::move(partState), nullptr);
-  }
-  const bool completed = engine ? run.Iterate(*engine) : run.IterateEdgeAware(partState);
-  if (completed)
-  {
-    if (engine)
-    {
-      engine->ScatterMoves();
-    }
-    const PointState& state = engine ? engine->State : partState;
-    for (std::size_t j = 0; j < active.size(); ++j)
-    {
-      const std::size_t i = active[j];
-      std::copy_n(state.Positions.data() + 3 * j, 3, result.Positions.data() + 3 * i);
-      result.Removed[i] = state.Removed[j];
-      if (computeNormals)
-      {
-        std::copy_n(state.Normals.data() + 3 * j, 3, result.Normals.data() + 3 * i);
-      }
-    }
-  }
-  return run.EndIteration(completed);
+  return run.EndIteration(
+    run.FilterPart(active, std::move(view), run.Radii, result.Positions, result.Removed));
 }
 
 void BilateralRun::Stop(BilateralStatus status, const std::string& error)
@@ -668,6 +820,15 @@ BilateralResult BilateralRun::Finish()
   else if (run.Accepted)
   {
     run.CopyInputPositions();
+  }
+  if (!run.Bands.Empty())
+  {
+    result.PointRadius.assign(run.Bands.BandOfPoint.size(), 0.0);
+    for (std::size_t i = 0; i < result.PointRadius.size(); ++i)
+    {
+      const std::uint16_t band = run.Bands.BandOfPoint[i];
+      result.PointRadius[i] = band == RadiusBands::NoBand ? 0.0 : run.Bands.Radius[band];
+    }
   }
   result.NumberOfRemovedPoints = static_cast<std::size_t>(
     std::count(result.Removed.begin(), result.Removed.end(), std::uint8_t{ 1 }));

@@ -64,6 +64,18 @@ struct BilateralResult
   /// The 5th, 50th and 95th percentiles of the distance from a point to its nearest neighbour,
   /// measured with them (CloudScales), else 0.
   double NearestNeighbourDistance[3] = { 0.0, 0.0, 0.0 };
+  /// Whether the automatic radius followed the density (RadiusFollowsDensity in
+  /// AutomaticRule.h): each point's radius from its local spacing, between RadiusRange[0] and
+  /// RadiusRange[1] (RadiusUsed is then the radius at the whole cloud's spacing), its normal
+  /// radius in NormalRadiusRange; and how many times the local spacing varies across the cloud
+  /// (the 95th over the 5th percentile of the local spacing, whenever the cloud was measured).
+  bool RadiusFollowsDensity = false;
+  double RadiusRange[2] = { 0.0, 0.0 };
+  double NormalRadiusRange[2] = { 0.0, 0.0 };
+  double SpacingSpread = 0.0;
+  /// Where the radius followed the density: each point's radius (0 for points that are not
+  /// finite), else empty.
+  std::vector<double> PointRadius;
   int ProcessingDepth = 0;
   std::size_t NumberOfRemovedPoints = 0;
   /// Points with a NaN or infinite coordinate: passed through, never neighbours.

@@ -20,6 +20,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
 
 #include <algorithm>
 #include <cmath>
@@ -140,9 +141,28 @@ vtkSmartPointer<vtkPoints> KeptPoints(int dataType,
   return points;
 }
 
+/// A field-data array of one tuple.
+void AddTuple(vtkFieldData* fieldData,
+  const char* name,
+  const double* values,
+  const std::vector<const char*>& components)
+{
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(name);
+  array->SetNumberOfComponents(static_cast<int>(components.size()));
+  for (std::size_t c = 0; c < components.size(); ++c)
+  {
+    array->SetComponentName(static_cast<vtkIdType>(c), components[c]);
+  }
+  array->InsertNextTuple(values);
+  fieldData->AddArray(array);
+}
+
 /// One-value arrays of the radii and iterations used, and of the measured scales when the
-/// cloud was measured.
-void AddParametersUsed(const pcbilateral::BilateralResult& result, vtkFieldData* fieldData)
+/// cloud was measured; the mode, and the radii's ranges where the radius followed the density.
+void AddParametersUsed(const pcbilateral::BilateralResult& result,
+  bool edgeAware,
+  vtkFieldData* fieldData)
 {
   std::vector<std::pair<const char*, double>> used = { { "BilateralRadius", result.RadiusUsed },
     { "BilateralNormalRadius", result.NormalRadiusUsed },
@@ -151,17 +171,17 @@ void AddParametersUsed(const pcbilateral::BilateralResult& result, vtkFieldData*
   {
     used.emplace_back("BilateralPointSpacing", result.PointSpacing);
     used.emplace_back("BilateralNoiseSigma", result.NoiseSigma);
+    used.emplace_back("BilateralSpacingSpread", result.SpacingSpread);
+    AddTuple(fieldData,
+      "BilateralNearestNeighbourDistances",
+      result.NearestNeighbourDistance,
+      { "5th percentile", "median", "95th percentile" });
   }
-  if (result.Measured)
+  if (result.RadiusFollowsDensity)
   {
-    vtkNew<vtkDoubleArray> distances;
-    distances->SetName("BilateralNearestNeighbourDistances");
-    distances->SetNumberOfComponents(3);
-    distances->SetComponentName(0, "5th percentile");
-    distances->SetComponentName(1, "median");
-    distances->SetComponentName(2, "95th percentile");
-    distances->InsertNextTuple(result.NearestNeighbourDistance);
-    fieldData->AddArray(distances);
+    AddTuple(fieldData, "BilateralRadiusRange", result.RadiusRange, { "smallest", "largest" });
+    AddTuple(
+      fieldData, "BilateralNormalRadiusRange", result.NormalRadiusRange, { "smallest", "largest" });
   }
   for (const auto& [name, number] : used)
   {
@@ -170,6 +190,10 @@ void AddParametersUsed(const pcbilateral::BilateralResult& result, vtkFieldData*
     value->InsertNextValue(number);
     fieldData->AddArray(value);
   }
+  vtkNew<vtkStringArray> mode;
+  mode->SetName("BilateralMode");
+  mode->InsertNextValue(edgeAware ? "edge-aware" : "paper");
+  fieldData->AddArray(mode);
 }
 
 /// The input's point arrays (of `count` points), for the kept points.
@@ -404,6 +428,10 @@ void vtkPointCloudBilateralFilter::RecordRunInformation(const pcbilateral::Bilat
   this->PointSpacing = result.PointSpacing;
   this->NoiseSigma = result.NoiseSigma;
   std::copy_n(result.NearestNeighbourDistance, 3, this->NearestNeighbourDistances);
+  this->RadiusFollowsDensity = result.RadiusFollowsDensity;
+  std::copy_n(result.RadiusRange, 2, this->RadiusRange);
+  std::copy_n(result.NormalRadiusRange, 2, this->NormalRadiusRange);
+  this->SpacingSpread = result.SpacingSpread;
   this->ProcessingDepth = result.ProcessingDepth;
   this->NumberOfRemovedPoints = static_cast<vtkIdType>(result.NumberOfRemovedPoints);
   this->NumberOfNonFinitePoints = static_cast<vtkIdType>(result.NumberOfNonFinitePoints);
@@ -415,8 +443,20 @@ std::string vtkPointCloudBilateralFilter::DescribeRun(
   // Short enough for the Properties panel's field; the measured scales have their own getters.
   std::ostringstream summary;
   summary.precision(3);
-  summary << "r " << result.RadiusUsed << ", rn " << result.NormalRadiusUsed << ", N "
-          << result.NumberOfIterationsUsed;
+  if (result.RadiusFollowsDensity)
+  {
+    summary << "r " << result.RadiusRange[0] << "-" << result.RadiusRange[1]
+            << " (follows density), rn " << result.NormalRadiusRange[0];
+    if (result.NormalRadiusRange[1] != result.NormalRadiusRange[0])
+    {
+      summary << "-" << result.NormalRadiusRange[1];
+    }
+  }
+  else
+  {
+    summary << "r " << result.RadiusUsed << ", rn " << result.NormalRadiusUsed;
+  }
+  summary << ", N " << result.NumberOfIterationsUsed;
   const bool allGiven =
     this->Radius > 0.0 && this->NormalRadius > 0.0 && this->NumberOfIterations > 0;
   summary << (allGiven ? " (given)" : (result.Measured ? " (measured)" : " (paper's rule)"));
@@ -445,7 +485,7 @@ void vtkPointCloudBilateralFilter::BuildOutput(vtkPointSet* input,
   // The parameters used and the scales they came from travel with the data (ParaView's
   // Information panel shows them).
   output->GetFieldData()->PassData(input->GetFieldData());
-  AddParametersUsed(result, output->GetFieldData());
+  AddParametersUsed(result, this->EdgeAware, output->GetFieldData());
 
   vtkPointData* outPD = output->GetPointData();
   CopyKeptPointData(input->GetPointData(), input->GetNumberOfPoints(), kept, outPD);
@@ -460,6 +500,17 @@ void vtkPointCloudBilateralFilter::BuildOutput(vtkPointSet* input,
   if (this->GenerateDisplacementLength)
   {
     outPD->AddArray(DisplacementLengths(cloud.Positions, result.Positions, kept));
+  }
+  if (this->GeneratePointRadius && !result.PointRadius.empty())
+  {
+    vtkNew<vtkDoubleArray> radii;
+    radii->SetName("BilateralPointRadius");
+    radii->SetNumberOfValues(outputCount);
+    for (vtkIdType k = 0; k < outputCount; ++k)
+    {
+      radii->SetValue(k, result.PointRadius[static_cast<std::size_t>(kept[k])]);
+    }
+    outPD->AddArray(radii);
   }
 }
 
@@ -483,6 +534,7 @@ void vtkPointCloudBilateralFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "GenerateEstimatedNormals: " << this->GenerateEstimatedNormals << "\n";
   os << indent << "GenerateDisplacementLength: " << this->GenerateDisplacementLength << "\n";
+  os << indent << "GeneratePointRadius: " << this->GeneratePointRadius << "\n";
   os << indent << "EdgeAware: " << this->EdgeAware << "\n";
   os << indent << "RadiusUsed: " << this->RadiusUsed << "\n";
   os << indent << "NormalRadiusUsed: " << this->NormalRadiusUsed << "\n";
@@ -491,6 +543,11 @@ void vtkPointCloudBilateralFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NoiseSigma: " << this->NoiseSigma << "\n";
   os << indent << "NearestNeighbourDistances: " << this->NearestNeighbourDistances[0] << " "
      << this->NearestNeighbourDistances[1] << " " << this->NearestNeighbourDistances[2] << "\n";
+  os << indent << "RadiusFollowsDensity: " << this->RadiusFollowsDensity << "\n";
+  os << indent << "RadiusRange: " << this->RadiusRange[0] << " " << this->RadiusRange[1] << "\n";
+  os << indent << "NormalRadiusRange: " << this->NormalRadiusRange[0] << " "
+     << this->NormalRadiusRange[1] << "\n";
+  os << indent << "SpacingSpread: " << this->SpacingSpread << "\n";
   os << indent << "ProcessingDepth: " << this->ProcessingDepth << "\n";
   os << indent << "NumberOfRemovedPoints: " << this->NumberOfRemovedPoints << "\n";
   os << indent << "NumberOfNonFinitePoints: " << this->NumberOfNonFinitePoints << "\n";

@@ -55,7 +55,11 @@
  * point. The input's field data passes through, with more one-value arrays: "BilateralRadius",
  * "BilateralNormalRadius" and "BilateralNumberOfIterations", the parameters used, and, when the
  * cloud was measured, "BilateralPointSpacing", "BilateralNoiseSigma" and the three-component
- * "BilateralNearestNeighbourDistances" (GetNearestNeighbourDistances). The input's other cells
+ * "BilateralNearestNeighbourDistances" (GetNearestNeighbourDistances) and "BilateralSpacingSpread";
+ * where the radius followed the density, "BilateralRadiusRange" and "BilateralNormalRadiusRange"
+ * (two components each; the point array "BilateralPointRadius" with GeneratePointRadius); and
+ * "BilateralMode"
+ * ("paper" or "edge-aware"). The input's other cells
  * (lines, polygons, volumes) are not carried over, with one warning. Optional arrays: the estimated
  * normals ("EstimatedNormals", see GenerateEstimatedNormals) and the distance each point
  * moved ("DisplacementLength", see GenerateDisplacementLength).
@@ -217,6 +221,17 @@ public:
 
   ///@{
   /**
+   * Where the automatic radius followed the density (GetRadiusFollowsDensity), add each point's
+   * radius as the point array "BilateralPointRadius" (default off; nothing is added where the
+   * radius is one for all).
+   */
+  vtkSetMacro(GeneratePointRadius, bool);
+  vtkGetMacro(GeneratePointRadius, bool);
+  vtkBooleanMacro(GeneratePointRadius, bool);
+  ///@}
+
+  ///@{
+  /**
    * What the last update used and did: the radius, normal radius and number of iterations
    * (after the automatic choices), the point spacing and noise sigma measured for them (0 when
    * the cloud was not measured: every parameter given, the paper's heuristic, or a cloud too
@@ -240,6 +255,22 @@ public:
    * spans a hundred times and more.
    */
   vtkGetVector3Macro(NearestNeighbourDistances, double);
+
+  ///@{
+  /**
+   * Whether the last update's automatic radius followed the density: on a cloud whose local
+   * spacing varies more than a few times (SpacingSpread: the 95th over the 5th percentile of the
+   * local spacing, read on a coarse grid), each point's radius comes from its local spacing
+   * (beyond the paper; given radii are never changed). RadiusRange and NormalRadiusRange are then
+   * the smallest and largest used, and the output has the point array "BilateralPointRadius";
+   * RadiusUsed stays the radius at the whole cloud's spacing. The rule: pcbilateral::
+   * DescribeAutomaticRule (Filters/Core/Measurement/AutomaticRule.h).
+   */
+  vtkGetMacro(RadiusFollowsDensity, bool);
+  vtkGetVector2Macro(RadiusRange, double);
+  vtkGetVector2Macro(NormalRadiusRange, double);
+  vtkGetMacro(SpacingSpread, double);
+  ///@}
 
   /**
    * The last update in one line, for a user interface: "not run yet" before the first, then the
@@ -277,6 +308,7 @@ protected:
   int NumberOfThreads;
   bool GenerateEstimatedNormals = false;
   bool GenerateDisplacementLength = false;
+  bool GeneratePointRadius = false;
   bool EdgeAware;
 
   double RadiusUsed = 0.0;
@@ -285,6 +317,10 @@ protected:
   double PointSpacing = 0.0;
   double NoiseSigma = 0.0;
   double NearestNeighbourDistances[3] = { 0.0, 0.0, 0.0 };
+  bool RadiusFollowsDensity = false;
+  double RadiusRange[2] = { 0.0, 0.0 };
+  double NormalRadiusRange[2] = { 0.0, 0.0 };
+  double SpacingSpread = 0.0;
   int ProcessingDepth = 0;
   vtkIdType NumberOfRemovedPoints = 0;
   vtkIdType NumberOfNonFinitePoints = 0;

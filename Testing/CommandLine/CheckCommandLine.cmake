@@ -82,7 +82,7 @@ elseif (CASE STREQUAL "automatic-parameters")
   # then r, rn and N chosen from the measurement; a given radius overrides only itself.
   set(arguments "${SAMPLE}" "${out}")
   set(expect_exit 0)
-  set(expect "measured: +point spacing 0.0[0-9]+, noise sigma 0.00[789][0-9]*\nsampling: +nearest-neighbour distance 0.00[0-9]+ \\(5%\\), 0.00[0-9]+ \\(median\\), 0.0[0-9]+ \\(95%\\)\nradius: +0.[0-9]+ \\(automatic, from the measured spacing and noise\\)\nnormal radius: +0.0[0-9]+ \\(automatic, from the measured spacing and noise\\)\niterations: +2 \\(automatic, from the measured spacing and noise\\)\n")
+  set(expect "measured: +point spacing 0.0[0-9]+, noise sigma 0.00[789][0-9]*\nsampling: +nearest-neighbour distance 0.00[0-9]+ \\(5%\\), 0.00[0-9]+ \\(median\\), 0.0[0-9]+ \\(95%\\); local spacing varies 1.[0-9]+ times\nradius: +0.[0-9]+ \\(automatic, from the measured spacing and noise\\)\nnormal radius: +0.0[0-9]+ \\(automatic, from the measured spacing and noise\\)\niterations: +2 \\(automatic, from the measured spacing and noise\\)\nmode: +the paper's filter\n")
 elseif (CASE STREQUAL "given-radius")
   set(arguments "${SAMPLE}" "${out}" -r 0.05)
   set(expect_exit 0)

@@ -740,6 +740,16 @@ void Sampling()
   PCB_CHECK(scales.NumberOfDistanceSamples == 8192,
     "%zu distances measured, expected 8192",
     scales.NumberOfDistanceSamples);
+  // The spacing varies 10 times across the surface (the dense square covers 9% of the area, so
+  // the 5th percentile by area is its spacing), and not at all on the even grid: the
+  // automatic radius follows the density on the first alone.
+  const pcbilateral::CloudScales evenScales = pcbilateral::MeasureScales(ViewOf(even));
+  const double evenSpread = evenScales.LocalSpacing ? evenScales.LocalSpacing->GetSpread() : 0.0;
+  const double unevenSpread = scales.LocalSpacing ? scales.LocalSpacing->GetSpread() : 0.0;
+  std::printf(
+    "spacing spread: even grid %.3g, dense and sparse grids %.3g\n", evenSpread, unevenSpread);
+  PCB_CHECK(evenSpread > 0.99 && evenSpread < 1.01, "even grid: spread %g", evenSpread);
+  PCB_CHECK(unevenSpread > 9.0 && unevenSpread < 11.0, "uneven grids: spread %g", unevenSpread);
 
   // Points at random over the same two squares, and a quarter of them picked at random as a
   // distributed run's selection is: a random thinning of random points has distances twice as
@@ -770,6 +780,56 @@ void Sampling()
 }
 } // namespace
 
+/// A depth camera's wall: a plane seen obliquely, its depths rounded to steps of `step` (points
+/// on flat terraces, as structured-light cameras quantise them) or with Gaussian noise of the
+/// same standard deviation (step / sqrt 12), on a jittered grid.
+std::vector<double> CameraWall(double step, bool quantised, std::uint64_t seed)
+{
+  Random random(seed);
+  std::vector<double> xyz;
+  const int side = 300;
+  const double spacing = 0.004;
+  for (int j = 0; j < side; ++j)
+  {
+    for (int i = 0; i < side; ++i)
+    {
+      const double x = (i + 0.3 * random.Uniform()) * spacing;
+      const double y = (j + 0.3 * random.Uniform()) * spacing;
+      const double depth = 2.0 + 0.6 * x; // the wall turns away from the camera
+      const double seen = quantised ? step * std::round(depth / step)
+                                    : depth + step / std::sqrt(12.0) * random.Gaussian();
+      xyz.insert(xyz.end(), { x, y, seen });
+    }
+  }
+  return xyz;
+}
+
+/// Quantised depths are read as the noise they are (structured: the small balls sit on one
+/// terrace and see none), Gaussian noise of the same deviation as plain noise.
+void StructuredNoise()
+{
+  const double step = 0.015;
+  const double deviation = step / std::sqrt(12.0);
+  for (const bool quantised : { true, false })
+  {
+    const pcbilateral::CloudScales scales =
+      pcbilateral::MeasureScales(ViewOf(CameraWall(step, quantised, 11u)));
+    std::printf("%s depths: sigma %.4g (steps' deviation %.4g), structured %d, N %d\n",
+      quantised ? "quantised" : "Gaussian",
+      scales.NoiseSigma,
+      deviation,
+      scales.StructuredNoise,
+      pcbilateral::ChooseParameters(scales, pcbilateral::BilateralParameters()).NumberOfIterations);
+    PCB_CHECK(
+      scales.Valid && scales.StructuredNoise == quantised, "structured %d", scales.StructuredNoise);
+    PCB_CHECK(scales.NoiseSigma > 0.5 * deviation && scales.NoiseSigma < 2.0 * deviation,
+      "%s depths: sigma %g for steps of deviation %g",
+      quantised ? "quantised" : "Gaussian",
+      scales.NoiseSigma,
+      deviation);
+  }
+}
+
 int main(int argc, char* argv[])
 {
   return RunNamedCase(argc,
@@ -777,5 +837,6 @@ int main(int argc, char* argv[])
     { { "Accuracy", Accuracy },
       { "Determinism", Determinism },
       { "Rule", Rule },
-      { "Sampling", Sampling } });
+      { "Sampling", Sampling },
+      { "StructuredNoise", StructuredNoise } });
 }

@@ -8,6 +8,7 @@
 #include "CloudView.h"
 #include "CoreTesting.h"
 #include "SampleShapes.h"
+#include "TestClouds.h"
 
 #include <algorithm>
 #include <array>
@@ -190,9 +191,12 @@ std::vector<double> RunPartitioned(const std::vector<double>& xyz,
   return result;
 }
 
-void CheckSameBitsAsOneRun(const BilateralParameters& parameters, int parts, unsigned seed)
+/// Returns whether the one run's radius followed the density.
+bool CheckSameBitsAsOneRun(const BilateralParameters& parameters,
+  int parts,
+  unsigned seed,
+  const std::vector<double>& xyz)
 {
-  const std::vector<double> xyz = MakeCloud(6000, seed);
   const PointCloudView cloud = ViewOf(xyz);
   const BilateralResult reference = pcbilateral::RunBilateralFilter(cloud, parameters);
   PCB_CHECK(reference.Status == BilateralStatus::Completed, "%s", reference.Error.c_str());
@@ -212,13 +216,20 @@ void CheckSameBitsAsOneRun(const BilateralParameters& parameters, int parts, uns
     differing,
     cloud.NumberOfPoints);
   PCB_CHECK(moved > cloud.NumberOfPoints / 2, "only %zu points moved", moved);
-  std::printf("%d parts, %d iteration(s), radius %g: %zu points, %zu moved, %zu differ\n",
+  std::printf("%d parts, %d iteration(s), radius %g%s: %zu points, %zu moved, %zu differ\n",
     parts,
     parameters.NumberOfIterations,
     parameters.Radius,
+    reference.RadiusFollowsDensity ? " (following the density)" : "",
     cloud.NumberOfPoints,
     moved,
     differing);
+  return reference.RadiusFollowsDensity;
+}
+
+bool CheckSameBitsAsOneRun(const BilateralParameters& parameters, int parts, unsigned seed)
+{
+  return CheckSameBitsAsOneRun(parameters, parts, seed, MakeCloud(6000, seed));
 }
 
 /// Given parameters on 1, 2, 3 and 5 parts (seeds seed + parts), then the automatic ones,
@@ -239,6 +250,12 @@ void CheckGivenAndAutomatic(bool edgeAware, int iterations, unsigned seed, unsig
   parameters.NumberOfIterations = 2;
   parameters.RemoveIsolatedPoints = true;
   CheckSameBitsAsOneRun(parameters, 3, automaticSeed);
+  // A cloud whose density falls 100 times: the automatic radius follows it (a band of radii,
+  // each run with the points of the other bands and parts within reach as ghosts).
+  const std::vector<double> sheet =
+    pcbilateral_testing::DensityVaryingSheet(8000, 100.0, 0.002, automaticSeed);
+  PCB_CHECK(CheckSameBitsAsOneRun(parameters, 3, automaticSeed, sheet),
+    "the radius did not follow the density");
 }
 } // namespace
 

@@ -18,6 +18,7 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkVariant.h"
 
 #include <algorithm>
 #include <cmath>
@@ -702,6 +703,63 @@ void TestDegenerateNeighbourhoods()
     PCB_CHECK(largestMove < 3 * c.Radius, "%s: a point moved by %g", c.Name, largestMove);
   }
 }
+/// A cloud whose density falls 100 times: the automatic radius follows it, and the filter says
+/// so through its getters, the output's field data and the per-point array of radii; a given
+/// radius is kept, and then none of it is reported.
+void TestFollowsDensity()
+{
+  vtkSmartPointer<vtkPolyData> sheet = MakeCloud(DensityVaryingSheet(12000, 100.0, 0.002, 3u));
+  vtkNew<vtkPointCloudBilateralFilter> filter;
+  filter->SetInputData(sheet);
+  filter->SetNumberOfIterations(1);
+  filter->Update();
+  PCB_CHECK(!filter->GetOutput()->GetPointData()->GetArray("BilateralPointRadius"),
+    "BilateralPointRadius without GeneratePointRadius");
+  filter->GeneratePointRadiusOn();
+  filter->Update();
+  const double* radii = filter->GetRadiusRange();
+  std::printf("spacing varies %.3g times: radius %s, %g to %g (at the surface's spacing %g)\n",
+    filter->GetSpacingSpread(),
+    filter->GetRadiusFollowsDensity() ? "follows the density" : "fixed",
+    radii[0],
+    radii[1],
+    filter->GetRadiusUsed());
+  PCB_CHECK(filter->GetRadiusFollowsDensity() && filter->GetSpacingSpread() > 4.0 &&
+              radii[1] > 2.0 * radii[0] && radii[0] <= filter->GetRadiusUsed() &&
+              filter->GetRadiusUsed() <= radii[1],
+    "the radius does not follow the density: spread %g, radii %g to %g",
+    filter->GetSpacingSpread(),
+    radii[0],
+    radii[1]);
+  vtkPolyData* output = filter->GetOutput();
+  vtkDataArray* perPoint = output->GetPointData()->GetArray("BilateralPointRadius");
+  double range[2] = { 0.0, 0.0 };
+  if (perPoint)
+  {
+    perPoint->GetRange(range);
+  }
+  PCB_CHECK(perPoint && perPoint->GetNumberOfTuples() == sheet->GetNumberOfPoints() &&
+              range[0] == radii[0] && range[1] == radii[1],
+    "BilateralPointRadius: missing or not the range %g to %g",
+    radii[0],
+    radii[1]);
+  vtkFieldData* fd = output->GetFieldData();
+  vtkDataArray* recorded = fd->GetArray("BilateralRadiusRange");
+  PCB_CHECK(recorded && recorded->GetComponent(0, 0) == radii[0] &&
+              recorded->GetComponent(0, 1) == radii[1] &&
+              fd->GetArray("BilateralNormalRadiusRange") &&
+              fd->GetArray("BilateralSpacingSpread") && fd->GetAbstractArray("BilateralMode") &&
+              fd->GetAbstractArray("BilateralMode")->GetVariantValue(0).ToString() == "paper",
+    "the field data does not record the radius range, the spread and the mode");
+
+  filter->SetRadius(0.05);
+  filter->Update();
+  PCB_CHECK(!filter->GetRadiusFollowsDensity() &&
+              !filter->GetOutput()->GetPointData()->GetArray("BilateralPointRadius") &&
+              !filter->GetOutput()->GetFieldData()->GetArray("BilateralRadiusRange"),
+    "a given radius is kept, and nothing follows the density");
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
@@ -715,6 +773,7 @@ int main(int argc, char* argv[])
     { "parameters-and-normals", TestParametersAndNormals },
     { "progress-and-abort", TestProgressAndAbort },
     { "degenerate-neighbourhoods", TestDegenerateNeighbourhoods },
+    { "follows-density", TestFollowsDensity },
   };
   return RunNamedCase(argc, argv, cases);
 }

@@ -42,12 +42,15 @@ parser.add_argument("--radius", type=float, default=0.0)
 parser.add_argument("--normal-radius", type=float, default=0.0)
 parser.add_argument("--remove-isolated", action="store_true")
 parser.add_argument("--edge-aware", action="store_true")
+# A density that falls this many times along u (as a scan's falls with the distance from the
+# scanner): the automatic radius then follows the density.
+parser.add_argument("--density-ratio", type=float, default=1.0)
 args = parser.parse_args()
 
 ranks = vtkMultiProcessController.GetGlobalController().GetNumberOfProcesses()
 check(ranks >= 2, f"{ranks} MPI processes")
 os.makedirs(args.scratch, exist_ok=True)
-path = os.path.join(args.scratch, f"cloud-{args.split}-{ranks}.vtp")
+path = os.path.join(args.scratch, f"cloud-{args.split}-{ranks}-{args.density_ratio:g}.vtp")
 
 
 def make_cloud():
@@ -57,6 +60,9 @@ def make_cloud():
     rng = np.random.default_rng(179)
     count = 12000
     u, v = rng.random(count), rng.random(count)
+    if args.density_ratio > 1.0:  # the inverse of the distribution of a density ratio^-u
+        ratio = args.density_ratio
+        u = -np.log(1.0 - u * (1.0 - 1.0 / ratio)) / np.log(ratio)
     points = np.column_stack([u, v, 0.3 * np.abs(u - 0.5)]) + rng.normal(0, 0.004, (count, 3))
     points[1::97] = points[0:-1:97]  # exact duplicates
     outliers = np.column_stack([rng.random(6), rng.random(6), np.full(6, 0.6)])
@@ -198,6 +204,13 @@ if args.radius == 0 or args.normal_radius == 0 or args.iterations == 0:
     check(distances == list(serial.GetNearestNeighbourDistances()) and 0 < distances[0],
           f"nearest-neighbour distances {distances} "
           f"(serial {list(serial.GetNearestNeighbourDistances())})")
+# A radius that follows the density: the same bands on every rank as serially.
+check(bool(bilateral.RadiusFollowsDensity) == bool(serial.GetRadiusFollowsDensity()) and
+      list(bilateral.RadiusRange) == list(serial.GetRadiusRange()) and
+      bool(serial.GetRadiusFollowsDensity()) == (args.density_ratio > 1.0 and args.radius == 0),
+      f"radius follows the density: {bilateral.RadiusFollowsDensity} "
+      f"{list(bilateral.RadiusRange)} (serial {serial.GetRadiusFollowsDensity()} "
+      f"{list(serial.GetRadiusRange())})")
 removed = total - reference.GetNumberOfPoints()
 print(f"{removed} point(s) removed as isolated")
 if args.remove_isolated:

@@ -2,6 +2,7 @@
 
 #include "EdgeAwareRule.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -21,6 +22,28 @@ bool IsSmoothWithThinNoise(const CloudScales& scales, const AutomaticRule& rule)
          scales.NoiseSigma < rule.ThinNoiseInSpacings * scales.PointSpacing;
 }
 
+namespace
+{
+/// The radius's factor on a flat cloud and on a smooth one with thin noise.
+double RadiusFactor(const CloudScales& scales, const AutomaticRule& rule)
+{
+  return IsFlat(scales, rule)                  ? rule.FlatRadiusFactor
+         : IsSmoothWithThinNoise(scales, rule) ? rule.SmoothRadiusFactor
+                                               : 1.0;
+}
+
+double NormalRadiusFor(const CloudScales& scales, double radius, const AutomaticRule& rule)
+{
+  // A noise-free cloud measures sigma 0 (or round-off): the floor keeps the normal radius
+  // positive and computable, far below anything a real noise would give. A smooth surface
+  // with thin noise has nothing for the range weight to keep: the normal radius is the
+  // radius (plain averaging along the normal), the paper's own choice.
+  return IsSmoothWithThinNoise(scales, rule)
+           ? radius
+           : std::max(rule.NormalRadiusInSigmas * scales.NoiseSigma, 1e-3 * radius);
+}
+} // namespace
+
 BilateralParameters ChooseParameters(const CloudScales& scales,
   const BilateralParameters& userParameters,
   const AutomaticRule& rule)
@@ -38,29 +61,57 @@ BilateralParameters ChooseParameters(const CloudScales& scales,
   const bool smooth = IsSmoothWithThinNoise(scales, rule);
   if (parameters.NumberOfIterations <= 0)
   {
-    parameters.NumberOfIterations = flat     ? rule.FlatIterations
-                                    : smooth ? rule.SmoothIterations
-                                             : rule.NumberOfIterations;
+    parameters.NumberOfIterations = flat                     ? rule.FlatIterations
+                                    : smooth                 ? rule.SmoothIterations
+                                    : scales.StructuredNoise ? rule.StructuredNoiseIterations
+                                                             : rule.NumberOfIterations;
   }
   if (!(parameters.Radius > 0.0))
   {
-    parameters.Radius =
-      (flat      ? rule.FlatRadiusFactor
-        : smooth ? rule.SmoothRadiusFactor
-                 : 1.0) *
-      (rule.RadiusInSpacings * scales.PointSpacing + rule.RadiusInSigmas * scales.NoiseSigma);
+    parameters.Radius = RadiusAt(
+      scales, SpacingVaries(scales, rule) ? SurfaceSpacing(scales) : scales.PointSpacing, rule);
   }
   if (!(parameters.NormalRadius > 0.0))
   {
-    // A noise-free cloud measures sigma 0 (or round-off): the floor keeps the normal radius
-    // positive and computable, far below anything a real noise would give. A smooth surface
-    // with thin noise has nothing for the range weight to keep: the normal radius is the
-    // radius (plain averaging along the normal), the paper's own choice.
-    parameters.NormalRadius =
-      smooth ? parameters.Radius
-             : std::max(rule.NormalRadiusInSigmas * scales.NoiseSigma, 1e-3 * parameters.Radius);
+    parameters.NormalRadius = NormalRadiusFor(scales, parameters.Radius, rule);
   }
   return parameters;
+}
+
+bool SpacingVaries(const CloudScales& scales, const AutomaticRule& rule)
+{
+  return scales.Valid && scales.LocalSpacing && scales.SpacingPerNeighbourDistance > 0.0 &&
+         scales.LocalSpacing->GetSpread() > rule.FollowDensitySpread;
+}
+
+bool RadiusFollowsDensity(const CloudScales& scales,
+  const BilateralParameters& userParameters,
+  const AutomaticRule& rule)
+{
+  return !(userParameters.Radius > 0.0) && SpacingVaries(scales, rule);
+}
+
+double SurfaceSpacing(const CloudScales& scales)
+{
+  return scales.LocalSpacing
+           ? scales.SpacingPerNeighbourDistance * scales.LocalSpacing->GetAreaWeightedMedian()
+           : scales.PointSpacing;
+}
+
+double RadiusAt(const CloudScales& scales, double localSpacing, const AutomaticRule& rule)
+{
+  return (SpacingVaries(scales, rule) ? rule.FollowDensityRadiusFactor : 1.0) *
+         RadiusFactor(scales, rule) *
+         (rule.RadiusInSpacings * localSpacing + rule.RadiusInSigmas * scales.NoiseSigma);
+}
+
+double NormalRadiusAt(const CloudScales& scales,
+  const BilateralParameters& userParameters,
+  double radius,
+  const AutomaticRule& rule)
+{
+  return userParameters.NormalRadius > 0.0 ? userParameters.NormalRadius
+                                           : NormalRadiusFor(scales, radius, rule);
 }
 
 std::string DescribeAutomaticRule(const AutomaticRule& rule)
@@ -72,7 +123,12 @@ std::string DescribeAutomaticRule(const AutomaticRule& rule)
        << " times that r and N = " << rule.FlatIterations
        << "; on a smooth cloud (no crease) with noise below " << rule.ThinNoiseInSpacings
        << " spacing, " << rule.SmoothRadiusFactor
-       << " times that r, rn = r and N = " << rule.SmoothIterations;
+       << " times that r, rn = r and N = " << rule.SmoothIterations
+       << "; with structured noise (a depth camera's quantised depths) N = "
+       << rule.StructuredNoiseIterations << "; where the local spacing varies more than "
+       << rule.FollowDensitySpread << " times across the cloud, each point's r is "
+       << rule.FollowDensityRadiusFactor
+       << " times that r at its local spacing (in steps of sqrt 2)";
   return text.str();
 }
 

@@ -40,6 +40,19 @@ struct AutomaticRule
   double ThinNoiseInSpacings = 0.5;
   double SmoothRadiusFactor = 1.25;
   int SmoothIterations = 1;
+  /// Where the local spacing varies more than this many times across the cloud (the ratio of
+  /// the 95th to the 5th percentile of SpacingField, read at the samples), one radius cannot
+  /// serve it: the automatic radius follows the density, each point's from its local spacing
+  /// (RadiusAt). A scan from one position spans 100 to 300 times; an evenly sampled cloud about
+  /// 1.5 to 2.
+  double FollowDensitySpread = 4.0;
+  /// Where the radius follows the density, it is this many times the rule's radius at the local
+  /// spacing: measured on a terrestrial scan (docs/structure-metrics.md), whose scan lines make
+  /// the nearest-neighbour distance (along a line) shorter than the spacing between lines.
+  double FollowDensityRadiusFactor = 2.0;
+  /// Structured noise (CloudScales::StructuredNoise, e.g. a depth camera's quantised depths):
+  /// the terraces need this many iterations to be smoothed into one surface.
+  int StructuredNoiseIterations = 3;
 };
 
 /// Whether the rule treats the cloud as flat.
@@ -56,6 +69,37 @@ bool IsSmoothWithThinNoise(const CloudScales& scales, const AutomaticRule& rule 
 /// the filter falls back to the paper's heuristic for them.
 BilateralParameters ChooseParameters(const CloudScales& scales,
   const BilateralParameters& userParameters,
+  const AutomaticRule& rule = AutomaticRule());
+
+/// Whether the spacing varies more than FollowDensitySpread times across the cloud (the scales
+/// were measured with their spacing field).
+bool SpacingVaries(const CloudScales& scales, const AutomaticRule& rule = AutomaticRule());
+
+/// (Where the radius follows the density, the chosen Radius is the rule's at SurfaceSpacing.)
+/// Whether the automatic radius follows the density: the radius is automatic, the scales were
+/// measured with their spacing field, and the spacing varies more than FollowDensitySpread times.
+bool RadiusFollowsDensity(const CloudScales& scales,
+  const BilateralParameters& userParameters,
+  const AutomaticRule& rule = AutomaticRule());
+
+/// The spacing of most of the surface (SpacingField::GetAreaWeightedMedian, in PointSpacing's
+/// sense): where the radius follows the density, the spacing of the reference radius
+/// (ChooseParameters' Radius) and the one reported.
+double SurfaceSpacing(const CloudScales& scales);
+
+/// The automatic radius where the spacing (in PointSpacing's sense) is `localSpacing`: the
+/// rule of ChooseParameters with that spacing. Where the radius follows the density, a point's
+/// local spacing is the field's value at it times SpacingPerNeighbourDistance.
+double RadiusAt(const CloudScales& scales,
+  double localSpacing,
+  const AutomaticRule& rule = AutomaticRule());
+
+/// The normal radius that goes with an automatic radius: the user's if given, else the rule's
+/// (which depends on the radius only where it is the radius, on a smooth cloud with thin noise,
+/// or at its floor).
+double NormalRadiusAt(const CloudScales& scales,
+  const BilateralParameters& userParameters,
+  double radius,
   const AutomaticRule& rule = AutomaticRule());
 
 /// The rule in words, with the numbers of `rule`, e.g. "r = 5 spacings + 4 sigma, rn = 5 sigma,

@@ -126,6 +126,14 @@ constexpr double CreaseVariance = 2.0;
 /// Points whose nearest-neighbour distance is measured for its percentiles: enough for the 5th
 /// percentile to be read on some 400 points, a small cost next to the fits.
 constexpr std::size_t NearestNeighbourSamples = 8192;
+/// The structured-noise check (CheckStructuredNoise): the ball's radius in units of the noise
+/// fits' radius, and how much more noise it must read there to count as structured.
+constexpr double StructureScale = 4.0;
+constexpr double StructuredNoiseRatio = 3.0;
+/// ... and the fraction of the small balls it needs that fit their points exactly: with a
+/// residual below ExactFit times the noise read at the larger scale.
+constexpr double ExactFit = 0.01;
+constexpr double ExactFitFraction = 0.1;
 /// Points in the disc that measures the density.
 constexpr double DiscPoints = 40.0;
 
@@ -187,6 +195,7 @@ public:
     if (this->FindNoise() && this->MeasureSpacing())
     {
       this->MeasureFlatness();
+      this->CheckStructuredNoise();
       this->Scales.Valid = true;
     }
     return this->Scales;
@@ -383,6 +392,18 @@ private:
     {
       distances[s] = this->NearestNeighbourDistance(this->DistanceSamples[s]);
     }
+    const double thinning = std::sqrt(this->Options.PointFraction);
+    std::vector<double> positions(3 * count), scaled(count);
+    for (std::size_t s = 0; s < count; ++s)
+    {
+      std::copy_n(this->Cloud.Positions + 3 * this->DistanceSamples[s], 3, &positions[3 * s]);
+      scaled[s] = thinning * distances[s];
+    }
+    auto field = std::make_shared<SpacingField>(positions, scaled, this->Threads);
+    if (field->IsValid())
+    {
+      this->Scales.LocalSpacing = std::move(field);
+    }
     distances.erase(
       std::remove_if(
         distances.begin(), distances.end(), [](double d) { return !std::isfinite(d); }),
@@ -392,7 +413,6 @@ private:
       return;
     }
     std::sort(distances.begin(), distances.end());
-    const double thinning = std::sqrt(this->Options.PointFraction);
     const double quantiles[3] = { 0.05, 0.5, 0.95 };
     for (int k = 0; k < 3; ++k)
     {
@@ -585,32 +605,61 @@ private:
         discDensities[s] = this->DiscDensity(fit, level, disc, 3.0 * sigma);
       }
     }
-    // The mean of the per-sample spacings (points spread unevenly have the mean of their local
-    // spacings as mean nearest-neighbour distance), trimmed by 5% on each side against the few
-    // samples whose disc the fit placed badly. Empty discs are outliers: left out.
+    // The mean of the per-sample spacings weighted by the area each sample's point covers (its
+    // spacing squared): on a cloud sampled a hundred times more densely in one corner, the
+    // spacing of most of the surface, not of most of the points. Trimmed by 5% on each side
+    // against the few samples whose disc the fit placed badly. Empty discs are outliers: left
+    // out.
     std::vector<double> densities, spacings;
-    for (double value : discDensities)
+    std::vector<std::size_t> spacingSamples;
+    for (std::size_t s = 0; s < discDensities.size(); ++s)
     {
-      if (value > 0.0)
+      if (discDensities[s] > 0.0)
       {
-        densities.push_back(value / this->Options.PointFraction);
-        spacings.push_back(0.5 / std::sqrt(value / this->Options.PointFraction));
+        const double density = discDensities[s] / this->Options.PointFraction;
+        densities.push_back(density);
+        spacings.push_back(0.5 / std::sqrt(density));
+        spacingSamples.push_back(s);
       }
     }
     if (densities.empty())
     {
       return this->Fail("no sample has neighbours on its fitted surface");
     }
+    this->RelateToField(spacings, spacingSamples);
     std::sort(spacings.begin(), spacings.end());
     const std::size_t trim = spacings.size() / 20;
-    double spacingSum = 0.0;
+    double areaSum = 0.0, weightedSum = 0.0;
     for (std::size_t k = trim; k < spacings.size() - trim; ++k)
     {
-      spacingSum += spacings[k];
+      areaSum += spacings[k] * spacings[k];
+      weightedSum += spacings[k] * spacings[k] * spacings[k];
     }
-    this->Scales.PointSpacing = spacingSum / static_cast<double>(spacings.size() - 2 * trim);
+    this->Scales.PointSpacing = weightedSum / areaSum;
     this->Scales.SurfaceDensity = Median(densities);
     return true;
+  }
+
+  /// SpacingPerNeighbourDistance: the samples' spacings (of samples spacingSamples) over the
+  /// spacing field's value at them, their median.
+  void RelateToField(const std::vector<double>& spacings,
+    const std::vector<std::size_t>& spacingSamples)
+  {
+    if (!this->Scales.LocalSpacing)
+    {
+      return;
+    }
+    std::vector<double> ratios;
+    for (std::size_t k = 0; k < spacings.size(); ++k)
+    {
+      const double field =
+        this->Scales.LocalSpacing->At(this->Cloud.Positions + 3 * this->Samples[spacingSamples[k]]);
+      if (field > 0.0)
+      {
+        ratios.push_back(spacings[k] / field);
+      }
+    }
+    this->Scales.SpacingPerNeighbourDistance = Median(ratios);
   }
 
   /// Flatness at the scale the filter will work at (1.5 times the automatic radius): on the
@@ -662,6 +711,50 @@ private:
     this->Scales.CurvatureExcess = measured.empty() ? 0.0 : Median(measured);
     this->Scales.FeatureFraction = measured.empty() ? 1.0 : static_cast<double>(featured) / count;
     this->Scales.CreaseFraction = measured.empty() ? 1.0 : static_cast<double>(creased) / count;
+  }
+
+  /// Noise with structure at a larger scale than the fits' balls: a depth camera's quantised
+  /// depths put the points of a wall on flat terraces a few millimetres apart, so a small ball,
+  /// on one terrace, sees no noise at all, while the filter must smooth the steps. Gaussian noise
+  /// reads the same in a ball StructureScale times wider (the quadric takes the curvature, and
+  /// the quantile keeps the edges out); where it reads StructuredNoiseRatio times more, that is
+  /// the noise the filter has to remove.
+  void CheckStructuredNoise()
+  {
+    const double rho = StructureScale * this->Scales.NeighbourhoodRadius;
+    if (!(rho < 0.5 * this->Extent.LargestExtent()))
+    {
+      return;
+    }
+    // The fits, the density and the levels stay those of the measurement.
+    const std::vector<LocalFit> fits = this->Fits;
+    const std::vector<std::size_t> levels = this->LevelUsed;
+    const double density = this->Density;
+    const std::size_t fitted = this->Scales.NumberOfFittedSamples;
+    this->FitAll(rho);
+    double deviation = 0.0, sigma = 0.0;
+    const bool read = this->ReadRound(rho, deviation, sigma);
+    this->Fits = fits;
+    this->LevelUsed = levels;
+    this->Density = density;
+    this->Scales.NumberOfFittedSamples = fitted;
+    if (!(read && std::isfinite(sigma) && sigma > StructuredNoiseRatio * this->Scales.NoiseSigma))
+    {
+      return;
+    }
+    // Terraces: the small balls of many samples fit their points exactly. (Vegetation on a
+    // terrain also reads more at a larger scale, but no small ball of it is exact.)
+    std::size_t exact = 0, count = 0;
+    for (const LocalFit& fit : this->Fits)
+    {
+      count += fit.Fitted;
+      exact += fit.Fitted && std::sqrt(fit.Variance) < ExactFit * sigma;
+    }
+    if (exact >= ExactFitFraction * static_cast<double>(count))
+    {
+      this->Scales.NoiseSigma = sigma;
+      this->Scales.StructuredNoise = true;
+    }
   }
 
   const PointCloudView& Cloud;

@@ -5,8 +5,10 @@
 #define pcbilateral_CloudMeasurement_h
 
 #include "PointCloudView.h"
+#include "SpacingField.h"
 
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -40,8 +42,17 @@ struct CloudScales
   /// such as points on a line.)
   bool Measurable = true;
   /// The mean distance from a point to its nearest neighbour on the noise-free surface,
-  /// 1 / (2 sqrt(density)) (exact for points spread at random), averaged over the samples.
+  /// 1 / (2 sqrt(density)) (exact for points spread at random), averaged over the samples with
+  /// weights proportional to the area each sample's point covers (the square of its spacing):
+  /// the spacing where most of the surface is, not where most of the points are.
   double PointSpacing = 0.0;
+  /// How the nearest-neighbour distance varies across the cloud (SpacingField.h), null when it
+  /// could not be measured; shared by the copies of these scales.
+  std::shared_ptr<const SpacingField> LocalSpacing;
+  /// PointSpacing per unit of LocalSpacing: the median over the fitted samples of their spacing
+  /// over the field's value at them. LocalSpacing times this is a spacing in PointSpacing's
+  /// sense, anywhere in the cloud.
+  double SpacingPerNeighbourDistance = 0.0;
   /// The spread of the sampling: the 5th, 50th and 95th percentiles of the distance from a point
   /// to its nearest neighbour (over a pseudo-random sample of the points), 0 when not measured.
   /// A scan from one position spans a hundred times and more between the first and the last.
@@ -50,6 +61,10 @@ struct CloudScales
   /// The standard deviation of the points' offsets from the underlying surface (the noise),
   /// curvature removed by a local quadric fit.
   double NoiseSigma = 0.0;
+  /// Whether the noise was read at a larger scale than the fits (CloudMeasurement.cxx:
+  /// CheckStructuredNoise): where a small ball sees almost none, e.g. the quantised depths of a
+  /// depth camera, whose points lie on terraces.
+  bool StructuredNoise = false;
   /// The median number of points per unit area of surface.
   double SurfaceDensity = 0.0;
   /// The radius of the neighbourhoods the fits used (about 5 sigma, at least ~50 points).
@@ -82,7 +97,7 @@ CloudScales MeasureScales(const PointCloudView& cloud,
 /// Clouds of more finite points than this are measured on a pseudo-random selection of about
 /// this many of them (SelectMeasurementPoints): enough for the fits, and a bounded cost in time,
 /// memory and, in a distributed run, communication.
-constexpr std::size_t MaximumMeasuredPoints = std::size_t(1) << 21;
+constexpr std::size_t MaximumMeasuredPoints = std::size_t(1) << 18;
 
 /// The fraction of a cloud of numberOfFinitePoints finite points that the automatic mode
 /// measures: 1 up to MaximumMeasuredPoints.
