@@ -1,9 +1,10 @@
 // Build tool: writes the proxy XML with the automatic rule's words filled in from the one place
 // the rule is written (Filters/Core/Measurement/AutomaticRule.h), so that ParaView's help can
 // never state another rule than the filter runs.
-//   FillRuleText IN OUT    replaces {{AUTOMATIC_RULE}} and {{PAPER_RULE}}
-//   FillRuleText --print   prints the two texts, one per line (for the documentation test)
+//   FillRuleText IN OUT    replaces {{AUTOMATIC_RULE}}, {{PAPER_RULE}} and {{EDGE_AWARE_RULE}}
+//   FillRuleText --print   prints the three texts, one per line (for the documentation test)
 #include "AutomaticRule.h"
+#include "EdgeAwareRule.h"
 
 #include <cstdio>
 #include <fstream>
@@ -26,8 +27,10 @@ int main(int argc, char* argv[])
 {
   if (argc == 2 && std::string(argv[1]) == "--print")
   {
-    std::printf(
-      "%s\n%s\n", pcbilateral::DescribeAutomaticRule().c_str(), pcbilateral::DescribePaperRule());
+    std::printf("%s\n%s\n%s\n",
+      pcbilateral::DescribeAutomaticRule().c_str(),
+      pcbilateral::DescribePaperRule(),
+      pcbilateral::DescribeEdgeAwareRule().c_str());
     return 0;
   }
   if (argc != 3)
@@ -46,6 +49,7 @@ int main(int argc, char* argv[])
   std::string xml = text.str();
   ReplaceAll(xml, "{{AUTOMATIC_RULE}}", pcbilateral::DescribeAutomaticRule());
   ReplaceAll(xml, "{{PAPER_RULE}}", pcbilateral::DescribePaperRule());
+  ReplaceAll(xml, "{{EDGE_AWARE_RULE}}", pcbilateral::DescribeEdgeAwareRule());
   std::ofstream out(argv[2], std::ios::binary | std::ios::trunc);
   out << xml;
   if (!out.flush())

@@ -9,6 +9,7 @@
 // -h for the options.
 #include "AutomaticRule.h"
 #include "BilateralFilter.h"
+#include "EdgeAwareRule.h"
 #include "vtkPointCloudBilateralFilter.h"
 #include "vtkPointCloudFileIO.h"
 
@@ -101,8 +102,9 @@ std::string OptionParagraph(const std::string& label, const std::string& text)
 std::string HelpText()
 {
   return UsageHead +
-         OptionParagraph(
-           "", std::string(AutomaticLead) + " (" + pcbilateral::DescribeAutomaticRule() + ")") +
+         OptionParagraph("",
+           std::string(AutomaticLead) + " (" + pcbilateral::DescribeAutomaticRule() + "; " +
+             pcbilateral::DescribeEdgeAwareRule() + ")") +
          OptionParagraph(
            "  --paper", std::string(PaperLead) + " " + pcbilateral::DescribePaperRule()) +
          UsageTail;

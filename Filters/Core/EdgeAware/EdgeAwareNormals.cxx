@@ -20,6 +20,22 @@ constexpr double Pi = 3.14159265358979323846;
 /// progress between blocks.
 constexpr std::size_t PointsPerBlock = 2048;
 
+/// How much of point i's move comes from the mean-normal heights along m_i rather than from the
+/// projections on the neighbours' own tangent planes: 1 where the neighbourhood agrees with m_i
+/// (a smooth surface, where the projections would swell a convex one), 0 where little of it
+/// does (an edge), linear between (see EdgeAwareNormals.h).
+double SmoothShare(const EdgeAwareHeights& sums)
+{
+  if (!(sums.DistanceWeightSum > 0.0))
+  {
+    return 1.0;
+  }
+  const double agreeing = sums.AgreeingWeightSum / sums.DistanceWeightSum;
+  const double share =
+    (agreeing - EdgeAwareEdgeAgreement) / (EdgeAwareSmoothAgreement - EdgeAwareEdgeAgreement);
+  return std::min(1.0, std::max(0.0, share));
+}
+
 /**
  * The points that are neighbours (finite, not removed) in a grid of cells a bit wider than r,
  * anchored at the whole cloud's lower corner: a search that visits the 27 cells around a point
@@ -189,6 +205,7 @@ public:
     , Constants(settings.Radius, settings.NormalRadius)
     , Kernel(GetEdgeAwareKernel())
     , AgreementScale(1.0 / (1.0 - std::cos(EdgeAwareNormalAngle * Pi / 180.0)))
+    , SmoothAgreementScale(1.0 / (1.0 - std::cos(EdgeAwareSmoothAngle * Pi / 180.0)))
     , Scratch(static_cast<std::size_t>(threads))
     , Counts(static_cast<std::size_t>(threads), 0)
   {
@@ -262,7 +279,8 @@ private:
     return p;
   }
 
-  /// 1. The paper's regression-plane normals; zero for points with too few neighbours.
+  /// 1. The paper's regression-plane normals, refitted with a residual weight; zero for points
+  /// with too few neighbours.
   void EstimateNormals()
   {
     this->Normals.assign(3 * this->Grid.Size(), 0.0);
@@ -281,6 +299,9 @@ private:
           hood.Dz.data(),
           hood.Count,
           this->Constants.DistanceScale,
+          // Residuals weighed as the heights of step 3 (sigma_n = rn / 3).
+          this->Constants.NormalScale,
+          EdgeAwareRefits,
           hood.Weight.data(),
           &this->Normals[3 * i]);
       });
@@ -338,8 +359,10 @@ private:
     }
   }
 
-  /// 3. The paper's displacement along the filtered normal, the other side of an edge left out
-  /// by the agreement of the filtered normals. Only this part's own points move.
+  /// 3. The move: the mean-normal height along the filtered normal where the neighbourhood is
+  /// smooth, the projection on the neighbours' tangent planes near an edge, the other side of
+  /// an edge left out by the agreement of the filtered normals. Only this part's own points
+  /// move.
   void Displace()
   {
     const std::size_t n = this->Grid.Size();
@@ -368,24 +391,26 @@ private:
         const SortedNeighbours neighbours = this->Cache->Fetch(
           this->Kernel, this->Grid, this->RadiusSquared, i, hood, this->Normals.data());
         visited += neighbours.Count;
-        double total, weighted;
+        EdgeAwareHeights sums;
         this->Kernel.HeightSums(p,
           neighbours,
           m,
           this->Constants.DistanceScale,
           this->Constants.NormalScale,
           this->AgreementScale,
-          total,
-          weighted);
-        if (!(total > 0.0))
+          this->SmoothAgreementScale,
+          sums);
+        if (!(sums.WeightSum > 0.0))
         {
           this->Isolated[i] = 1;
           return;
         }
-        const double displacement = weighted / total;
+        const double smooth = SmoothShare(sums);
+        const double height = smooth * sums.WeightedHeightSum / sums.WeightSum;
         for (int axis = 0; axis < 3; ++axis)
         {
-          this->Moved[3 * i + axis] = p[axis] + displacement * m[axis];
+          this->Moved[3 * i + axis] =
+            p[axis] + (height * m[axis] + (1.0 - smooth) * sums.Projection[axis] / sums.WeightSum);
         }
       });
   }
@@ -416,6 +441,7 @@ private:
   const KernelConstants Constants;
   const EdgeAwareKernel Kernel;
   const double AgreementScale;
+  const double SmoothAgreementScale;
   std::vector<Neighbourhood> Scratch;
   std::vector<std::uint64_t> Counts;
   PointGrid Grid;

@@ -6,7 +6,12 @@
 // One iteration, on the positions of the previous one (all sums in double, on offsets from the
 // point being computed):
 //  1. every point's normal n_i: the paper's weighted regression plane over |q - p| < r, with
-//     the distance weight exp(-|q - p|^2 / (2 sd^2)), sd = r / 3 (the same fit as Algorithm 1);
+//     the distance weight exp(-|q - p|^2 / (2 sd^2)), sd = r / 3 (the same fit as Algorithm 1),
+//     then EdgeAwareRefits refits with the weights multiplied by exp(-res^2 / (2 sn^2)), sn =
+//     rn / 3, res the neighbour's height over the last plane (through the weighted mean): the
+//     plane of a neighbourhood that straddles an edge is tilted, and the refit leaves out the
+//     points farthest from it, those of the other face (an iteratively reweighted fit, as in
+//     robust moving least squares);
 //  2. EdgeAwareNormalPasses times, the normals filtered bilaterally (Jones et al., "Non-iterative,
 //     feature-preserving mesh smoothing", SIGGRAPH 2003; Zheng et al., "Bilateral normal
 //     filtering for mesh denoising", IEEE TVCG 2011; Huang et al., "Edge-aware point set
@@ -16,13 +21,19 @@
 //     psi = exp(-((1 - |n_i . n_j|) / (1 - cos theta))^2), theta = EdgeAwareNormalAngle: the
 //     neighbours across an edge, whose normals disagree, hardly count, so the normal of a point
 //     near an edge turns toward its own side's;
-//  3. the paper's displacement along the filtered normal m_i, with heights measured along the
-//     mean of the two filtered normals, h_j = <(m_i + s_ij m_j) / 2, q_j - p_i>, and weights
-//     exp(-|q - p|^2 / (2 sd^2)) exp(-h^2 / (2 sn^2)) psi(m_i, m_j): the agreement of the
-//     filtered normals also leaves out the other side of an edge, which the height weight alone
-//     cannot when the noise is as thick as the feature; the mean normal keeps curved surfaces
-//     from shrinking (the chord between two points of a sphere is orthogonal to the sum of their
-//     normals; on a plane h is the paper's <m_i, q_j - p_i>).
+//  3. the move, with the weights w_j = exp(-|q - p|^2 / (2 sd^2)) exp(-h_j^2 / (2 sn^2))
+//     psi(m_i, m_j) (the agreement of the filtered normals leaves out the other side of an
+//     edge, which the height weight alone cannot when the noise is as thick as the feature):
+//       p + a_i (sum w_j h_j / sum w_j) m_i + (1 - a_i) sum w_j <m_j, q_j - p> m_j / sum w_j,
+//     - h_j = <(m_i + s_ij m_j) / 2, q_j - p> the height along the mean of the two normals,
+//       which keeps curved surfaces from shrinking (the chord between two points of a sphere is
+//       orthogonal to the sum of their normals; on a plane h is the paper's <m_i, q_j - p>);
+//     - <m_j, q_j - p> m_j the move onto the neighbour's own tangent plane (Huang et al. 2013's
+//       projection), which keeps a point on its own face up to an edge but swells a convex
+//       smooth surface (the tangent planes lie outside it);
+//     - a_i the share of the first: 1 where at least EdgeAwareSmoothAgreement of the
+//       neighbourhood (by distance weight) has normals within about EdgeAwareSmoothAngle of m_i
+//       (smooth), 0 where at most EdgeAwareEdgeAgreement does (an edge), linear between.
 //
 // Each step reads the neighbours' results of the step before, so a point's result depends on
 // the points within EdgeAwareReachInRadii radii of it: that is the ghost margin of a
@@ -44,10 +55,20 @@ namespace pcbilateral
 {
 
 /// Passes of bilateral normal filtering per iteration (step 2). Chosen by measurement
-/// (Testing/Benchmark/pcb_edges.cxx).
+/// (Testing/Benchmark/pcb_edges.cxx; three passes did not do better on the 3-sigma edge band).
 constexpr int EdgeAwareNormalPasses = 1;
 /// The angle theta of the normal agreement weight, in degrees. Chosen by measurement.
 constexpr double EdgeAwareNormalAngle = 10.0;
+/// Refits of step 1's plane with the residual weight. Chosen by measurement (two gain little
+/// over one on pcb_edges's shapes and cost a pass more).
+constexpr int EdgeAwareRefits = 1;
+/// The wider angle of the agreement that tells a smooth neighbourhood from an edge in step 3,
+/// in degrees, and the shares of agreeing neighbours (by distance weight) at and below which
+/// the move is the mean-normal height's alone (smooth) or the tangent-plane projection's alone
+/// (edge). Chosen by measurement.
+constexpr double EdgeAwareSmoothAngle = 25.0;
+constexpr double EdgeAwareSmoothAgreement = 0.9;
+constexpr double EdgeAwareEdgeAgreement = 0.5;
 /// How far, in radii, the points an iteration reads lie from the points it moves.
 constexpr int EdgeAwareReachInRadii = EdgeAwareNormalPasses + 2;
 

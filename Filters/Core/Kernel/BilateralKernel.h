@@ -144,6 +144,19 @@ struct SortedNeighbours
   const double* Normals = nullptr;
 };
 
+/// The sums of step 3 of the edge-aware mode for one point (see EdgeAwareHeightSums in
+/// BilateralKernelBody.h).
+struct EdgeAwareHeights
+{
+  double WeightSum = 0.0;
+  double WeightedHeightSum = 0.0;
+  /// The weighted sum of the moves onto the neighbours' own tangent planes.
+  double Projection[3] = { 0.0, 0.0, 0.0 };
+  /// The sums of the distance weights, and of the same times the wide agreement weight.
+  double DistanceWeightSum = 0.0;
+  double AgreeingWeightSum = 0.0;
+};
+
 /**
  * The per-point arithmetic of the edge-aware mode (EdgeAwareNormals.h), built with the kernel
  * for each instruction set: the same lanes, sum tree and exponential, so the same bits in every
@@ -167,12 +180,16 @@ struct EdgeAwareKernel
     double* dz,
     std::uint32_t* index,
     std::size_t count);
-  /// The paper's regression plane normal of `count` selected neighbours; false if none.
+  /// The paper's regression plane normal of `count` selected neighbours, then `rounds` refits
+  /// with the weights multiplied by exp(-res^2 * residualScale), res the height over the last
+  /// plane (through the weighted mean); false if none.
   bool (*PlaneNormal)(double* dx,
     double* dy,
     double* dz,
     std::size_t count,
     double distanceScale,
+    double residualScale,
+    int rounds,
     double* distanceWeight,
     double n[3]);
   /// The bilateral sum of the neighbours' normals (step 2).
@@ -182,15 +199,15 @@ struct EdgeAwareKernel
     double distanceScale,
     double agreementScale,
     double sum[3]);
-  /// The sums of the weights and weighted heights of the displacement (step 3).
+  /// The sums of the displacement (step 3).
   void (*HeightSums)(const double p[3],
     const SortedNeighbours& neighbours,
     const double m[3],
     double distanceScale,
     double normalScale,
     double agreementScale,
-    double& weightSum,
-    double& weightedHeightSum);
+    double smoothAgreementScale,
+    EdgeAwareHeights& sums);
 };
 
 /// The edge-aware functions of the instruction set FilterPoint uses (GetKernelInstructionSet).

@@ -653,21 +653,96 @@ inline std::size_t PadNeighbours(double* dx, double* dy, double* dz, std::size_t
 }
 
 /**
+ * The moments of the offsets with the weights distanceWeight x exp(-res^2 * residualScale),
+ * res = <n, d - c> the offset's height over the plane of normal n through c. Padding (distance
+ * weight 0) adds exact zeros.
+ */
+inline DistanceMoments AccumulateResidualMoments(const double* dx,
+  const double* dy,
+  const double* dz,
+  std::size_t padded,
+  const double* distanceWeight,
+  const double n[3],
+  const double c[3],
+  double residualScale)
+{
+  const DoubleLanes zero = {};
+  DoubleLanes weightSum = zero, firstX = zero, firstY = zero, firstZ = zero;
+  DoubleLanes xx = zero, xy = zero, xz = zero, yy = zero, yz = zero, zz = zero;
+  const double offset = (n[0] * c[0] + n[1] * c[1]) + n[2] * c[2];
+  for (std::size_t k = 0; k < padded; k += Lanes)
+  {
+    const DoubleLanes ox = Load(dx + k);
+    const DoubleLanes oy = Load(dy + k);
+    const DoubleLanes oz = Load(dz + k);
+    // Padding: weight 0 already, and its huge offsets must not make inf * 0.
+    const DoubleLanes weight = Load(distanceWeight + k);
+    const IntLanes padding = LessThan(weight, 1e-300);
+    const DoubleLanes residual =
+      Select(padding, zero, ((ox * n[0] + oy * n[1]) + oz * n[2]) - offset);
+    const DoubleLanes w = weight * ExpOfNonPositive(-(residual * residual) * residualScale);
+    const DoubleLanes sx = Select(padding, zero, ox), sy = Select(padding, zero, oy),
+                      sz = Select(padding, zero, oz);
+    weightSum += w;
+    const DoubleLanes wx = w * sx, wy = w * sy, wz = w * sz;
+    firstX += wx;
+    firstY += wy;
+    firstZ += wz;
+    xx += wx * sx;
+    xy += wx * sy;
+    xz += wx * sz;
+    yy += wy * sy;
+    yz += wy * sz;
+    zz += wz * sz;
+  }
+  return DistanceMoments{ weightSum, firstX, firstY, firstZ, xx, xy, xz, yy, yz, zz };
+}
+
+/**
  * Step 1 for a point whose `count` neighbours PackNeighbours<true> packed (room for Lanes more):
  * the paper's regression plane normal, weighted by exp(-|q - p|^2 * distanceScale), with the
- * kernel's own pass 1. Returns false (n untouched) when the weights sum to zero.
+ * kernel's own pass 1; then `rounds` refits with the weights multiplied by
+ * exp(-res^2 * residualScale), res the neighbour's height over the last plane: a plane fitted
+ * across an edge is tilted, the refit leaves out the far side's points (the most off the
+ * plane) and turns toward the point's own face. Returns false (n untouched) when the weights
+ * sum to zero.
  */
 bool EdgeAwarePlaneNormal(double* dx,
   double* dy,
   double* dz,
   std::size_t count,
   double distanceScale,
+  double residualScale,
+  int rounds,
   double* distanceWeight,
   double n[3])
 {
   const std::size_t padded = PadNeighbours(dx, dy, dz, count);
-  return RegressionNormal(
-    AccumulateDistanceMoments(dx, dy, dz, padded, distanceScale, distanceWeight), n);
+  DistanceMoments moments =
+    AccumulateDistanceMoments(dx, dy, dz, padded, distanceScale, distanceWeight);
+  if (!RegressionNormal(moments, n))
+  {
+    return false;
+  }
+  for (int round = 0; round < rounds; ++round)
+  {
+    const double total = SumLanes(moments.WeightSum);
+    const double c[3] = { SumLanes(moments.FirstX) / total,
+      SumLanes(moments.FirstY) / total,
+      SumLanes(moments.FirstZ) / total };
+    const DistanceMoments robust =
+      AccumulateResidualMoments(dx, dy, dz, padded, distanceWeight, n, c, residualScale);
+    double refit[3];
+    if (!RegressionNormal(robust, refit))
+    {
+      break;
+    }
+    moments = robust;
+    n[0] = refit[0];
+    n[1] = refit[1];
+    n[2] = refit[2];
+  }
+  return true;
 }
 
 /// The exponent of the agreement weight of two unit normals of cosine c: -((1 - |c|) s)^2, with
@@ -782,15 +857,16 @@ void EdgeAwareNormalSum(const double p[3],
 
 /**
  * Step 3 for sorted point p of filtered normal m over its neighbours (with their filtered
- * normals): the sums of the weights
- * exp(-|q - p|^2 * distanceScale - h^2 * normalScale) psi(m, m_j) and of the weighted heights
- * h = <(m + s m_j) / 2, q - p>, s the sign of m . m_j.
- *
- * The height is measured along the mean of the two normals rather than along m alone: the chord
- * q - p between two points of a sphere is orthogonal to the sum of their normals, and on any
- * smooth surface the error is of third order in |q - p| (second order along m alone). So a
- * curved surface is not shrunk (the paper's mean height of the neighbours lies inside a convex
- * surface), while on a plane the two normals agree and h is the paper's.
+ * normals m_j, turned to agree with m), with the weights
+ * w = exp(-|q - p|^2 * distanceScale - h^2 * normalScale) psi(m, m_j):
+ *  - the sums of w and of w h, h = <(m + m_j) / 2, q - p> the height along the mean of the two
+ *    normals: the chord q - p between two points of a sphere is orthogonal to the sum of their
+ *    normals, and on any smooth surface the error is of third order in |q - p| (second order
+ *    along m alone), so a curved surface is not shrunk; on a plane h is the paper's;
+ *  - the sum of w <m_j, q - p> m_j: p projected on each neighbour's own tangent plane (Huang et
+ *    al. 2013), which keeps a point on its own face up to an edge;
+ *  - the sums of exp(-|q - p|^2 * distanceScale) and of the same times psi(m, m_j) at the
+ *    wider angle of smoothAgreementScale: how much of the neighbourhood agrees with m.
  */
 void EdgeAwareHeightSums(const double p[3],
   const SortedNeighbours& neighbours,
@@ -798,11 +874,12 @@ void EdgeAwareHeightSums(const double p[3],
   double distanceScale,
   double normalScale,
   double agreementScale,
-  double& weightSum,
-  double& weightedHeightSum)
+  double smoothAgreementScale,
+  EdgeAwareHeights& sums)
 {
   const DoubleLanes zero = {};
-  DoubleLanes weights = zero, heights = zero;
+  DoubleLanes weights = zero, heights = zero, planeX = zero, planeY = zero, planeZ = zero;
+  DoubleLanes near = zero, agreeing = zero;
   for (std::size_t k = 0; k < neighbours.Count; k += Lanes)
   {
     const NeighbourLanes q = LoadNeighbours(p, neighbours, k);
@@ -813,15 +890,28 @@ void EdgeAwareHeightSums(const double p[3],
     const DoubleLanes nx = Select(opposite, -q.Nx, q.Nx);
     const DoubleLanes ny = Select(opposite, -q.Ny, q.Ny);
     const DoubleLanes nz = Select(opposite, -q.Nz, q.Nz);
+    const DoubleLanes own = (q.Dx * nx + q.Dy * ny) + q.Dz * nz;
     const DoubleLanes h = ((q.Dx * (nx + m[0]) + q.Dy * (ny + m[1])) + q.Dz * (nz + m[2])) * 0.5;
-    const DoubleLanes w =
-      ExpOfNonPositive((-distanceSquared * distanceScale - (h * h) * normalScale) +
-                       AgreementExponent(cosine, agreementScale));
+    const DoubleLanes distanceExponent = -distanceSquared * distanceScale;
+    const DoubleLanes w = ExpOfNonPositive(
+      (distanceExponent - (h * h) * normalScale) + AgreementExponent(cosine, agreementScale));
     weights += w;
     heights += w * h;
+    const DoubleLanes projection = w * own;
+    planeX += projection * nx;
+    planeY += projection * ny;
+    planeZ += projection * nz;
+    near += ExpOfNonPositive(distanceExponent);
+    agreeing +=
+      ExpOfNonPositive(distanceExponent + AgreementExponent(cosine, smoothAgreementScale));
   }
-  weightSum = SumLanes(weights);
-  weightedHeightSum = SumLanes(heights);
+  sums.WeightSum = SumLanes(weights);
+  sums.WeightedHeightSum = SumLanes(heights);
+  sums.Projection[0] = SumLanes(planeX);
+  sums.Projection[1] = SumLanes(planeY);
+  sums.Projection[2] = SumLanes(planeZ);
+  sums.DistanceWeightSum = SumLanes(near);
+  sums.AgreeingWeightSum = SumLanes(agreeing);
 }
 
 /// This build's edge-aware functions (declared in BilateralKernel.cxx).

@@ -1,5 +1,7 @@
 #include "AutomaticRule.h"
 
+#include "EdgeAwareRule.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -54,6 +56,10 @@ BilateralParameters ChooseParameters(const CloudScales& scales,
   const BilateralParameters& userParameters,
   const AutomaticRule& rule)
 {
+  if (userParameters.EdgeAware)
+  {
+    return ChooseEdgeAwareParameters(scales, userParameters);
+  }
   BilateralParameters parameters = userParameters;
   if (!scales.Valid)
   {
