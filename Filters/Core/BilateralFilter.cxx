@@ -323,8 +323,8 @@ struct BilateralRun::Internals
     this->Parameters = ChooseParameters(scales, userParameters);
     if (RadiusFollowsDensity(scales, userParameters))
     {
-      this->Bands = AssignRadiusBands(
-        this->Cloud, scales, userParameters, this->Parameters.Radius, this->Threads);
+      this->Bands =
+        AssignRadiusBands(this->Cloud, scales, userParameters, this->Parameters, this->Threads);
       if (!this->Bands.Empty())
       {
         result.RadiusFollowsDensity = true;

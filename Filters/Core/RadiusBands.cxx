@@ -34,9 +34,13 @@ double BandRadius(int k, double reference)
 RadiusBands AssignRadiusBands(const PointCloudView& cloud,
   const CloudScales& scales,
   const BilateralParameters& userParameters,
-  double referenceRadius,
+  const BilateralParameters& chosen,
   int threads)
 {
+  // Each point's radius is the chosen radius (at the spacing of most of the surface) scaled as
+  // the paper's rule scales with the spacing, in either mode.
+  const double referenceRadius = chosen.Radius;
+  const double atSurface = RadiusAt(scales, SurfaceSpacing(scales));
   RadiusBands bands;
   const std::vector<double> fieldValues = scales.LocalSpacing->AtPoints(cloud, threads);
   std::vector<int> indexOfPoint(cloud.NumberOfPoints, 0);
@@ -45,7 +49,9 @@ RadiusBands AssignRadiusBands(const PointCloudView& cloud,
   {
     if (fieldValues[i] > 0.0)
     {
-      const double radius = RadiusAt(scales, scales.SpacingPerNeighbourDistance * fieldValues[i]);
+      const double radius =
+        referenceRadius *
+        (RadiusAt(scales, scales.SpacingPerNeighbourDistance * fieldValues[i]) / atSurface);
       indexOfPoint[i] = BandIndex(radius, referenceRadius);
       used.emplace(indexOfPoint[i], 0);
     }
@@ -55,7 +61,7 @@ RadiusBands AssignRadiusBands(const PointCloudView& cloud,
     band.second = static_cast<std::uint16_t>(bands.Radius.size());
     const double radius = BandRadius(band.first, referenceRadius);
     bands.Radius.push_back(radius);
-    bands.NormalRadius.push_back(NormalRadiusAt(scales, userParameters, radius));
+    bands.NormalRadius.push_back(NormalRadiusAt(scales, userParameters, chosen, radius));
   }
   bands.BandOfPoint.assign(cloud.NumberOfPoints, RadiusBands::NoBand);
   for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)

@@ -39,14 +39,15 @@ struct RadiusBands
 };
 
 /// The bands of the points of `cloud` where the radius follows the density
-/// (RadiusFollowsDensity): each point's radius is the rule's for its local spacing
-/// (RadiusAt), rounded in a geometric sequence of ratio sqrt(2) through `referenceRadius` (the
-/// radius chosen for the whole cloud), so that equal spacings give equal radii in every part of
-/// a distributed cloud. Bands that no point uses are left out.
+/// (RadiusFollowsDensity): each point's radius is the radius `chosen` for the whole cloud (at
+/// its SurfaceSpacing, by the paper's rule or the edge-aware mode's) scaled as the paper's rule
+/// (RadiusAt) scales from that spacing to the point's local spacing, rounded in a geometric
+/// sequence of ratio sqrt(2) through the chosen radius, so that equal spacings give equal radii
+/// in every part of a distributed cloud. Bands that no point uses are left out.
 RadiusBands AssignRadiusBands(const PointCloudView& cloud,
   const CloudScales& scales,
   const BilateralParameters& userParameters,
-  double referenceRadius,
+  const BilateralParameters& chosen,
   int threads);
 
 /// Whether a position lies within `reach` of one of a set of points (more precisely: in one of

@@ -58,7 +58,20 @@ BilateralParameters ChooseParameters(const CloudScales& scales,
 {
   if (userParameters.EdgeAware)
   {
-    return ChooseEdgeAwareParameters(scales, userParameters);
+    if (!SpacingVaries(scales, rule))
+    {
+      return ChooseEdgeAwareParameters(scales, userParameters);
+    }
+    // Where the radius follows the density, the reference radius is the one at the spacing of
+    // most of the surface, widened as for the paper's filter (RadiusAt).
+    CloudScales surface = scales;
+    surface.PointSpacing = SurfaceSpacing(scales);
+    BilateralParameters parameters = ChooseEdgeAwareParameters(surface, userParameters);
+    if (!(userParameters.Radius > 0.0))
+    {
+      parameters.Radius *= rule.FollowDensityRadiusFactor;
+    }
+    return parameters;
   }
   BilateralParameters parameters = userParameters;
   if (!scales.Valid)
@@ -117,10 +130,13 @@ double RadiusAt(const CloudScales& scales, double localSpacing, const AutomaticR
 
 double NormalRadiusAt(const CloudScales& scales,
   const BilateralParameters& userParameters,
+  const BilateralParameters& chosen,
   double radius,
   const AutomaticRule& rule)
 {
+  // (The edge-aware rule's normal radius does not depend on the radius.)
   return userParameters.NormalRadius > 0.0 ? userParameters.NormalRadius
+         : userParameters.EdgeAware        ? chosen.NormalRadius
                                            : NormalRadiusFor(scales, radius, rule);
 }
 

@@ -108,11 +108,13 @@ double RadiusAt(const CloudScales& scales,
   double localSpacing,
   const AutomaticRule& rule = AutomaticRule());
 
-/// The normal radius that goes with an automatic radius: the user's if given, else the rule's
-/// (which depends on the radius only where it is the radius, on a smooth cloud with thin noise,
-/// or at its floor).
+/// The normal radius that goes with an automatic radius where the radius follows the density:
+/// the user's if given; in the edge-aware mode the one its rule chose (`chosen`, which does not
+/// depend on the radius); else the paper rule's (which depends on the radius only where it is
+/// the radius, on a smooth cloud with thin noise, or at its floor).
 double NormalRadiusAt(const CloudScales& scales,
   const BilateralParameters& userParameters,
+  const BilateralParameters& chosen,
   double radius,
   const AutomaticRule& rule = AutomaticRule());
 
