@@ -1,6 +1,7 @@
 #include "EdgeAwareNormals.h"
 
 #include "BilateralKernel.h"
+#include "BitOperations.h"
 #include "PointGrid.h"
 #include "Threads.h"
 
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <unordered_set>
 
 namespace pcbilateral
 {
@@ -222,10 +224,11 @@ public:
     const std::size_t n = this->Grid.Size();
     this->Cache = std::make_unique<NeighbourCache>(n);
     this->Cache->Prepare();
+    this->MeasureDistanceToOwnPoints();
     this->EstimateNormals();
     for (int pass = 0; pass < EdgeAwareNormalPasses; ++pass)
     {
-      this->FilterNormals();
+      this->FilterNormals(EdgeAwareNormalPasses - pass);
     }
     this->Displace();
     if (this->Aborted)
@@ -279,6 +282,82 @@ private:
     return p;
   }
 
+  /// For each sorted point, how many cells (one radius wide) its cell lies from the nearest
+  /// cell holding one of this part's own points, counted up to EdgeAwareNormalPasses + 2. Each
+  /// step reads its neighbours' results of the step before, within one radius, so a point's
+  /// own displacement reads normals filtered within 1 radius, estimated within 2: a ghost more
+  /// cells away than that is never read, and its steps are skipped. (Ghosts reach 3 radii, and
+  /// where the radius follows the density a wide band's ghosts can be a dense part of the
+  /// cloud.) A point within k radii of an own point lies within k cells of its cell.
+  void MeasureDistanceToOwnPoints()
+  {
+    const std::size_t n = this->Grid.Size();
+    this->CellsFromOwn.assign(n, 0);
+    if (this->State.FirstGhost >= this->State.Removed.size())
+    {
+      return; // no ghosts
+    }
+    const std::uint32_t* ids = this->Grid.GetIds();
+    auto key = [](const std::int64_t* c)
+    {
+      // Two cells may share a key: a far ghost then counts as near, which costs only time.
+      return MixBits(
+        MixBits(MixBits(static_cast<std::uint64_t>(c[0])) ^ static_cast<std::uint64_t>(c[1])) ^
+        static_cast<std::uint64_t>(c[2]));
+    };
+    std::unordered_set<std::uint64_t> own;
+    std::vector<std::uint8_t> cellHasOwn(this->Grid.GetNumberOfCells(), 0);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (ids[i] < this->State.FirstGhost)
+      {
+        cellHasOwn[this->Grid.GetCellOfPoint(i)] = 1;
+      }
+    }
+    for (std::uint32_t cell = 0; cell < cellHasOwn.size(); ++cell)
+    {
+      if (cellHasOwn[cell])
+      {
+        own.insert(key(this->Grid.GetCellCoordinates(cell)));
+      }
+    }
+    constexpr int Far = EdgeAwareNormalPasses + 2;
+    std::vector<std::uint8_t> cellDistance(cellHasOwn.size(), 0);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(this->Threads)
+    for (std::ptrdiff_t cell = 0; cell < static_cast<std::ptrdiff_t>(cellHasOwn.size()); ++cell)
+    {
+      if (cellHasOwn[cell])
+      {
+        continue;
+      }
+      const std::int64_t* c = this->Grid.GetCellCoordinates(static_cast<std::uint32_t>(cell));
+      int distance = Far;
+      for (int d = 1; d < Far && distance == Far; ++d)
+      {
+        for (std::int64_t dz = -d; dz <= d && distance == Far; ++dz)
+        {
+          for (std::int64_t dy = -d; dy <= d && distance == Far; ++dy)
+          {
+            for (std::int64_t dx = -d; dx <= d; ++dx)
+            {
+              const std::int64_t q[3] = { c[0] + dx, c[1] + dy, c[2] + dz };
+              if (own.count(key(q)))
+              {
+                distance = d;
+                break;
+              }
+            }
+          }
+        }
+      }
+      cellDistance[cell] = static_cast<std::uint8_t>(distance);
+    }
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      this->CellsFromOwn[i] = cellDistance[this->Grid.GetCellOfPoint(i)];
+    }
+  }
+
   /// 1. The paper's regression-plane normals, refitted with a residual weight; zero for points
   /// with too few neighbours.
   void EstimateNormals()
@@ -287,6 +366,10 @@ private:
     this->ForEachPoint(
       [&](std::size_t i, Neighbourhood& hood, std::uint64_t& visited)
       {
+        if (this->CellsFromOwn[i] > EdgeAwareNormalPasses + 1)
+        {
+          return; // never read (MeasureDistanceToOwnPoints)
+        }
         hood.Select(this->Kernel, this->Grid, this->RadiusSquared, i);
         this->Cache->Keep(i, hood);
         visited += hood.Count;
@@ -307,13 +390,18 @@ private:
       });
   }
 
-  /// 2. Bilateral filtering of the normals, from one array into the other.
-  void FilterNormals()
+  /// 2. Bilateral filtering of the normals, from one array into the other, for the points
+  /// within `reach` cells of an own point (those whose result is read).
+  void FilterNormals(int reach)
   {
     std::vector<double> filtered(3 * this->Grid.Size(), 0.0);
     this->ForEachPoint(
       [&](std::size_t i, Neighbourhood& hood, std::uint64_t& visited)
       {
+        if (this->CellsFromOwn[i] > reach)
+        {
+          return;
+        }
         const double* own = &this->Normals[3 * i];
         double* out = &filtered[3 * i];
         if (own[0] == 0.0 && own[1] == 0.0 && own[2] == 0.0)
@@ -451,6 +539,8 @@ private:
   std::vector<double> Normals;
   std::vector<double> Moved;
   std::vector<std::uint8_t> Isolated;
+  /// By sorted index: MeasureDistanceToOwnPoints.
+  std::vector<std::uint8_t> CellsFromOwn;
   int Step = 0;
   bool Aborted = false;
 };

@@ -64,6 +64,12 @@ public:
   double GetCellSize() const { return this->CellSize; }
   /// The cell of point i of the layout, an index into the cells (0 to the number of cells - 1).
   std::uint32_t GetCellOfPoint(std::size_t i) const { return this->CellOfPoint[i]; }
+  /// The number of cells holding points, and the integer coordinates (3) of one of them.
+  std::size_t GetNumberOfCells() const { return this->CellKey.size() / 3; }
+  const std::int64_t* GetCellCoordinates(std::uint32_t cell) const
+  {
+    return &this->CellKey[3 * static_cast<std::size_t>(cell)];
+  }
 
   /**
    * In the ByCoordinates layout, for cells at least as wide as the search radius: the points of
