@@ -131,8 +131,8 @@ constexpr std::size_t NearestNeighbourSamples = 8192;
 constexpr double StructureScale = 4.0;
 constexpr double StructuredNoiseRatio = 3.0;
 /// ... and the fraction of the small balls it needs that fit their points exactly: with a
-/// residual below ExactFit times the noise read at the larger scale.
-constexpr double ExactFit = 0.01;
+/// residual below ExactFit times the noise the small balls read.
+constexpr double ExactFit = 0.1;
 constexpr double ExactFitFraction = 0.1;
 /// Points in the disc that measures the density.
 constexpr double DiscPoints = 40.0;
@@ -726,6 +726,19 @@ private:
     {
       return;
     }
+    // Terraces first (free): the small balls of many samples fit their points exactly, far
+    // below the noise they read. No Gaussian noise does that; vegetation on a terrain reads
+    // more at a larger scale too, but no small ball of it is exact.
+    std::size_t exact = 0, count = 0;
+    for (const LocalFit& fit : this->Fits)
+    {
+      count += fit.Fitted;
+      exact += fit.Fitted && std::sqrt(fit.Variance) < ExactFit * this->Scales.NoiseSigma;
+    }
+    if (exact < ExactFitFraction * static_cast<double>(count))
+    {
+      return;
+    }
     // The fits, the density and the levels stay those of the measurement.
     const std::vector<LocalFit> fits = this->Fits;
     const std::vector<std::size_t> levels = this->LevelUsed;
@@ -738,19 +751,7 @@ private:
     this->LevelUsed = levels;
     this->Density = density;
     this->Scales.NumberOfFittedSamples = fitted;
-    if (!(read && std::isfinite(sigma) && sigma > StructuredNoiseRatio * this->Scales.NoiseSigma))
-    {
-      return;
-    }
-    // Terraces: the small balls of many samples fit their points exactly. (Vegetation on a
-    // terrain also reads more at a larger scale, but no small ball of it is exact.)
-    std::size_t exact = 0, count = 0;
-    for (const LocalFit& fit : this->Fits)
-    {
-      count += fit.Fitted;
-      exact += fit.Fitted && std::sqrt(fit.Variance) < ExactFit * sigma;
-    }
-    if (exact >= ExactFitFraction * static_cast<double>(count))
+    if (read && std::isfinite(sigma) && sigma > StructuredNoiseRatio * this->Scales.NoiseSigma)
     {
       this->Scales.NoiseSigma = sigma;
       this->Scales.StructuredNoise = true;
