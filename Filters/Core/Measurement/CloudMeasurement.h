@@ -97,7 +97,7 @@ CloudScales MeasureScales(const PointCloudView& cloud,
 /// Clouds of more finite points than this are measured on a pseudo-random selection of about
 /// this many of them (SelectMeasurementPoints): enough for the fits, and a bounded cost in time,
 /// memory and, in a distributed run, communication.
-constexpr std::size_t MaximumMeasuredPoints = std::size_t(1) << 17;
+constexpr std::size_t MaximumMeasuredPoints = std::size_t(1) << 19;
 
 /// The fraction of a cloud of numberOfFinitePoints finite points that the automatic mode
 /// measures: 1 up to MaximumMeasuredPoints.
