@@ -87,7 +87,7 @@ NearPoints::NearPoints(const std::vector<double>& positions, double reach, const
     {
       c[axis] = this->CellOf(&positions[i], axis);
     }
-    if (occupied.insert(this->CellKey(c[0], c[1], c[2])).second)
+    if (occupied.insert(CellHashKey(c[0], c[1], c[2])).second)
     {
       cells.insert(cells.end(), c, c + 3);
     }
@@ -100,24 +100,17 @@ NearPoints::NearPoints(const std::vector<double>& positions, double reach, const
       {
         for (int dx = -1; dx <= 1; ++dx)
         {
-          this->Cells.insert(this->CellKey(cells[k] + dx, cells[k + 1] + dy, cells[k + 2] + dz));
+          this->Cells.insert(CellHashKey(cells[k] + dx, cells[k + 1] + dy, cells[k + 2] + dz));
         }
       }
     }
   }
 }
 
-std::uint64_t NearPoints::CellKey(std::int64_t x, std::int64_t y, std::int64_t z) const
-{
-  // Two cells may share a key: their points then pass as near, which costs only time.
-  return MixBits(MixBits(MixBits(static_cast<std::uint64_t>(x)) ^ static_cast<std::uint64_t>(y)) ^
-                 static_cast<std::uint64_t>(z));
-}
-
 bool NearPoints::Near(const double p[3]) const
 {
   return this->Cells.count(
-           this->CellKey(this->CellOf(p, 0), this->CellOf(p, 1), this->CellOf(p, 2))) > 0;
+           CellHashKey(this->CellOf(p, 0), this->CellOf(p, 1), this->CellOf(p, 2))) > 0;
 }
 
 std::int64_t NearPoints::CellOf(const double p[3], int axis) const

@@ -62,7 +62,6 @@ public:
   bool Near(const double p[3]) const;
 
 private:
-  std::uint64_t CellKey(std::int64_t x, std::int64_t y, std::int64_t z) const;
   std::int64_t CellOf(const double p[3], int axis) const;
   double Reach;
   double Origin[3];

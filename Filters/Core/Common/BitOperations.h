@@ -50,6 +50,14 @@ inline std::uint64_t MixBits(std::uint64_t x)
   return x ^ (x >> 31);
 }
 
+/// A key for the cell of integer coordinates (x, y, z) of a hashed set of cells. Two cells may
+/// share a key: users make that cost only time (a far cell counted as near), never a result.
+inline std::uint64_t CellHashKey(std::int64_t x, std::int64_t y, std::int64_t z)
+{
+  return MixBits(MixBits(MixBits(static_cast<std::uint64_t>(x)) ^ static_cast<std::uint64_t>(y)) ^
+                 static_cast<std::uint64_t>(z));
+}
+
 } // namespace pcbilateral
 
 #endif
