@@ -333,6 +333,21 @@ void ConfigureFilter(vtkPointCloudBilateralFilter* filter, const Options& option
   filter->SetEdgeAware(options.EdgeAware);
 }
 
+/// "low to high", or one value when they are equal.
+std::string Range(double low, double high)
+{
+  char text[64];
+  if (low == high)
+  {
+    std::snprintf(text, sizeof text, "%.9g", low);
+  }
+  else
+  {
+    std::snprintf(text, sizeof text, "%.9g to %.9g", low, high);
+  }
+  return text;
+}
+
 /// The parameters the filter used, and for those the user left automatic, from what.
 void PrintParametersUsed(vtkPointCloudBilateralFilter* filter, const Options& options)
 {
@@ -356,22 +371,12 @@ void PrintParametersUsed(vtkPointCloudBilateralFilter* filter, const Options& op
   {
     const double* radii = filter->GetRadiusRange();
     const double* normalRadii = filter->GetNormalRadiusRange();
-    std::printf("radius:        %.9g to %.9g, following the density (automatic, each point's from "
-                "its local spacing)\n",
-      radii[0],
-      radii[1]);
-    if (normalRadii[0] != normalRadii[1])
-    {
-      std::printf("normal radius: %.9g to %.9g%s\n",
-        normalRadii[0],
-        normalRadii[1],
-        options.NormalRadius > 0.0 ? "" : automatic);
-    }
-    else
-    {
-      std::printf(
-        "normal radius: %.9g%s\n", normalRadii[0], options.NormalRadius > 0.0 ? "" : automatic);
-    }
+    std::printf("radius:        %s, following the density (automatic, each point's from its "
+                "local spacing)\n",
+      Range(radii[0], radii[1]).c_str());
+    std::printf("normal radius: %s%s\n",
+      Range(normalRadii[0], normalRadii[1]).c_str(),
+      options.NormalRadius > 0.0 ? "" : automatic);
   }
   else
   {

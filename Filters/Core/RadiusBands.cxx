@@ -4,8 +4,9 @@
 #include "BilateralParameters.h"
 #include "BitOperations.h"
 
+#include <algorithm>
 #include <cmath>
-#include <map>
+#include <limits>
 
 namespace pcbilateral
 {
@@ -38,37 +39,57 @@ RadiusBands AssignRadiusBands(const PointCloudView& cloud,
   int threads)
 {
   // Each point's radius is the chosen radius (at the spacing of most of the surface) scaled as
-  // the paper's rule scales with the spacing, in either mode.
+  // the paper's rule scales with the spacing, in either mode: the rule's factors cancel.
   const double referenceRadius = chosen.Radius;
-  const double atSurface = RadiusAt(scales, SurfaceSpacing(scales));
-  RadiusBands bands;
+  const RadiusTerms terms = RuleRadiusTerms(scales);
+  const double sigmaTerm = terms.InSigmas * scales.NoiseSigma;
+  const double atSurface = terms.InSpacings * SurfaceSpacing(scales) + sigmaTerm;
+  const double perFieldUnit = terms.InSpacings * scales.SpacingPerNeighbourDistance;
   const std::vector<double> fieldValues = scales.LocalSpacing->AtPoints(cloud, threads);
+  // Band indices, then the used ones numbered in increasing order.
   std::vector<int> indexOfPoint(cloud.NumberOfPoints, 0);
-  std::map<int, std::uint16_t> used;
+  int lowest = std::numeric_limits<int>::max(), highest = std::numeric_limits<int>::min();
   for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
   {
     if (fieldValues[i] > 0.0)
     {
       const double radius =
-        referenceRadius *
-        (RadiusAt(scales, scales.SpacingPerNeighbourDistance * fieldValues[i]) / atSurface);
+        referenceRadius * ((perFieldUnit * fieldValues[i] + sigmaTerm) / atSurface);
       indexOfPoint[i] = BandIndex(radius, referenceRadius);
-      used.emplace(indexOfPoint[i], 0);
+      lowest = std::min(lowest, indexOfPoint[i]);
+      highest = std::max(highest, indexOfPoint[i]);
     }
   }
-  for (auto& band : used)
-  {
-    band.second = static_cast<std::uint16_t>(bands.Radius.size());
-    const double radius = BandRadius(band.first, referenceRadius);
-    bands.Radius.push_back(radius);
-    bands.NormalRadius.push_back(NormalRadiusAt(scales, userParameters, chosen, radius));
-  }
+  RadiusBands bands;
   bands.BandOfPoint.assign(cloud.NumberOfPoints, RadiusBands::NoBand);
+  if (lowest > highest)
+  {
+    return bands;
+  }
+  std::vector<std::uint16_t> bandOfIndex(
+    static_cast<std::size_t>(highest - lowest) + 1, RadiusBands::NoBand);
   for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
   {
     if (fieldValues[i] > 0.0)
     {
-      bands.BandOfPoint[i] = used[indexOfPoint[i]];
+      bandOfIndex[static_cast<std::size_t>(indexOfPoint[i] - lowest)] = 0; // used
+    }
+  }
+  for (std::size_t k = 0; k < bandOfIndex.size(); ++k)
+  {
+    if (bandOfIndex[k] != RadiusBands::NoBand)
+    {
+      bandOfIndex[k] = static_cast<std::uint16_t>(bands.Radius.size());
+      const double radius = BandRadius(lowest + static_cast<int>(k), referenceRadius);
+      bands.Radius.push_back(radius);
+      bands.NormalRadius.push_back(NormalRadiusAt(scales, userParameters, chosen, radius));
+    }
+  }
+  for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
+  {
+    if (fieldValues[i] > 0.0)
+    {
+      bands.BandOfPoint[i] = bandOfIndex[static_cast<std::size_t>(indexOfPoint[i] - lowest)];
     }
   }
   return bands;

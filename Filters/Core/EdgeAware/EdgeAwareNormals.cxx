@@ -195,6 +195,34 @@ private:
   std::atomic<std::uint64_t> Used{ 0 };
 };
 
+/// How many cells (Chebyshev) cell c lies from the nearest cell of `cells` (CellHashKey keys),
+/// up to `far`. (Two cells may share a key: a far cell then counts as near, which costs only
+/// time.)
+int ChebyshevDistanceToSet(const std::int64_t c[3],
+  const std::unordered_set<std::uint64_t>& cells,
+  int far)
+{
+  for (int d = 1; d < far; ++d)
+  {
+    // The ring at distance d: the cube of side 2d + 1 (its inside was searched already, and
+    // is searched again: rings are at most 5 cells wide).
+    for (std::int64_t dz = -d; dz <= d; ++dz)
+    {
+      for (std::int64_t dy = -d; dy <= d; ++dy)
+      {
+        for (std::int64_t dx = -d; dx <= d; ++dx)
+        {
+          if (cells.count(CellHashKey(c[0] + dx, c[1] + dy, c[2] + dz)))
+          {
+            return d;
+          }
+        }
+      }
+    }
+  }
+  return far;
+}
+
 /// One edge-aware iteration's steps over the sorted points of its grid.
 class EdgeAwareIteration
 {
@@ -318,7 +346,8 @@ private:
     {
       if (cellHasOwn[cell])
       {
-        own.insert(key(this->Grid.GetCellCoordinates(cell)));
+        const std::int64_t* c = this->Grid.GetCellCoordinates(cell);
+        own.insert(CellHashKey(c[0], c[1], c[2]));
       }
     }
     constexpr int Far = EdgeAwareNormalPasses + 2;
@@ -330,27 +359,8 @@ private:
       {
         continue;
       }
-      const std::int64_t* c = this->Grid.GetCellCoordinates(static_cast<std::uint32_t>(cell));
-      int distance = Far;
-      for (int d = 1; d < Far && distance == Far; ++d)
-      {
-        for (std::int64_t dz = -d; dz <= d && distance == Far; ++dz)
-        {
-          for (std::int64_t dy = -d; dy <= d && distance == Far; ++dy)
-          {
-            for (std::int64_t dx = -d; dx <= d; ++dx)
-            {
-              const std::int64_t q[3] = { c[0] + dx, c[1] + dy, c[2] + dz };
-              if (own.count(key(q)))
-              {
-                distance = d;
-                break;
-              }
-            }
-          }
-        }
-      }
-      cellDistance[cell] = static_cast<std::uint8_t>(distance);
+      cellDistance[cell] = static_cast<std::uint8_t>(ChebyshevDistanceToSet(
+        this->Grid.GetCellCoordinates(static_cast<std::uint32_t>(cell)), own, Far));
     }
     for (std::size_t i = 0; i < n; ++i)
     {

@@ -119,13 +119,18 @@ double SurfaceSpacing(const CloudScales& scales)
            : scales.PointSpacing;
 }
 
+RadiusTerms RuleRadiusTerms(const CloudScales& scales, const AutomaticRule& rule)
+{
+  return HasEdges(scales, rule) ? RadiusTerms{ rule.EdgeRadiusInSpacings, rule.EdgeRadiusInSigmas }
+                                : RadiusTerms{ rule.RadiusInSpacings, rule.RadiusInSigmas };
+}
+
 double RadiusAt(const CloudScales& scales, double localSpacing, const AutomaticRule& rule)
 {
-  const bool edges = HasEdges(scales, rule);
-  const double inSpacings = edges ? rule.EdgeRadiusInSpacings : rule.RadiusInSpacings;
-  const double inSigmas = edges ? rule.EdgeRadiusInSigmas : rule.RadiusInSigmas;
+  const RadiusTerms terms = RuleRadiusTerms(scales, rule);
   return (SpacingVaries(scales, rule) ? rule.FollowDensityRadiusFactor : 1.0) *
-         RadiusFactor(scales, rule) * (inSpacings * localSpacing + inSigmas * scales.NoiseSigma);
+         RadiusFactor(scales, rule) *
+         (terms.InSpacings * localSpacing + terms.InSigmas * scales.NoiseSigma);
 }
 
 double NormalRadiusAt(const CloudScales& scales,

@@ -101,6 +101,15 @@ bool RadiusFollowsDensity(const CloudScales& scales,
 /// (ChooseParameters' Radius) and the one reported.
 double SurfaceSpacing(const CloudScales& scales);
 
+/// The rule's radius before its factors (flat, smooth, following the density):
+/// InSpacings x spacing + InSigmas x sigma, with the constants of the cloud's case.
+struct RadiusTerms
+{
+  double InSpacings;
+  double InSigmas;
+};
+RadiusTerms RuleRadiusTerms(const CloudScales& scales, const AutomaticRule& rule = AutomaticRule());
+
 /// The automatic radius where the spacing (in PointSpacing's sense) is `localSpacing`: the
 /// rule of ChooseParameters with that spacing. Where the radius follows the density, a point's
 /// local spacing is the field's value at it times SpacingPerNeighbourDistance.

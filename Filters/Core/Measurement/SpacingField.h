@@ -55,18 +55,14 @@ public:
   /// not depend on the number of threads.
   std::vector<double> AtPoints(const PointCloudView& cloud, int threads) const;
 
-  /// The 5th and 95th percentiles of the field at the samples, each sample weighted by the area
-  /// its point covers (the square of its spacing; isolated samples, whose own nearest neighbour
-  /// is 4 times farther than the field there, left out), and their ratio: how many times the
-  /// spacing varies across the surface.
-  double GetLowPercentile() const { return this->LowPercentile; }
-  double GetHighPercentile() const { return this->HighPercentile; }
+  /// The ratio of the 95th to the 5th percentile of the field at the samples, each sample
+  /// weighted by the area its point covers (the square of its spacing; isolated samples, whose
+  /// own nearest neighbour is 4 times farther than the field there, left out): how many times
+  /// the spacing varies across the surface.
   double GetSpread() const;
   /// The median of the field at the samples, each weighted by the area its point covers (the
   /// square of its spacing): the spacing of most of the surface, not of most of the points.
   double GetAreaWeightedMedian() const { return this->AreaWeightedMedian; }
-
-  double GetCellSize() const { return this->CellSize; }
 
 private:
   std::size_t CellIndex(const double p[3]) const;
