@@ -286,6 +286,27 @@ struct DistanceMoments
   DoubleLanes WeightSum, FirstX, FirstY, FirstZ, XX, XY, XZ, YY, YZ, ZZ;
 };
 
+/// Adds offsets (x, y, z), weighted by w, to the moments, lane by lane: pass 1's sums and the
+/// edge-aware refit's, in one order.
+inline void AddWeightedOffsets(DistanceMoments& m,
+  DoubleLanes w,
+  DoubleLanes x,
+  DoubleLanes y,
+  DoubleLanes z)
+{
+  m.WeightSum += w;
+  const DoubleLanes wx = w * x, wy = w * y, wz = w * z;
+  m.FirstX += wx;
+  m.FirstY += wy;
+  m.FirstZ += wz;
+  m.XX += wx * x;
+  m.XY += wx * y;
+  m.XZ += wx * z;
+  m.YY += wy * y;
+  m.YZ += wy * z;
+  m.ZZ += wz * z;
+}
+
 /**
  * Pass 1 over `padded` packed offsets (a multiple of Lanes): the distance weights, stored for
  * pass 2, and the weighted first and second moments of the offsets q - p, for the regression
@@ -298,9 +319,7 @@ inline DistanceMoments AccumulateDistanceMoments(const double* dx,
   double distanceScale,
   double* distanceWeight)
 {
-  const DoubleLanes zero = {};
-  DoubleLanes weightSum = zero, firstX = zero, firstY = zero, firstZ = zero;
-  DoubleLanes xx = zero, xy = zero, xz = zero, yy = zero, yz = zero, zz = zero;
+  DistanceMoments moments = {};
   for (std::size_t k = 0; k < padded; k += Lanes)
   {
     const DoubleLanes ox = Load(dx + k);
@@ -310,19 +329,9 @@ inline DistanceMoments AccumulateDistanceMoments(const double* dx,
     const DoubleLanes distanceSquared = (ox * ox + oy * oy) + oz * oz;
     const DoubleLanes w = ExpOfNonPositive(-distanceSquared * distanceScale);
     Store(distanceWeight + k, w);
-    weightSum += w;
-    const DoubleLanes wx = w * ox, wy = w * oy, wz = w * oz;
-    firstX += wx;
-    firstY += wy;
-    firstZ += wz;
-    xx += wx * ox;
-    xy += wx * oy;
-    xz += wx * oz;
-    yy += wy * oy;
-    yz += wy * oz;
-    zz += wz * oz;
+    AddWeightedOffsets(moments, w, ox, oy, oz);
   }
-  return DistanceMoments{ weightSum, firstX, firstY, firstZ, xx, xy, xz, yy, yz, zz };
+  return moments;
 }
 
 /**
@@ -667,8 +676,7 @@ inline DistanceMoments AccumulateResidualMoments(const double* dx,
   double residualScale)
 {
   const DoubleLanes zero = {};
-  DoubleLanes weightSum = zero, firstX = zero, firstY = zero, firstZ = zero;
-  DoubleLanes xx = zero, xy = zero, xz = zero, yy = zero, yz = zero, zz = zero;
+  DistanceMoments moments = {};
   const double offset = (n[0] * c[0] + n[1] * c[1]) + n[2] * c[2];
   for (std::size_t k = 0; k < padded; k += Lanes)
   {
@@ -681,21 +689,10 @@ inline DistanceMoments AccumulateResidualMoments(const double* dx,
     const DoubleLanes residual =
       Select(padding, zero, ((ox * n[0] + oy * n[1]) + oz * n[2]) - offset);
     const DoubleLanes w = weight * ExpOfNonPositive(-(residual * residual) * residualScale);
-    const DoubleLanes sx = Select(padding, zero, ox), sy = Select(padding, zero, oy),
-                      sz = Select(padding, zero, oz);
-    weightSum += w;
-    const DoubleLanes wx = w * sx, wy = w * sy, wz = w * sz;
-    firstX += wx;
-    firstY += wy;
-    firstZ += wz;
-    xx += wx * sx;
-    xy += wx * sy;
-    xz += wx * sz;
-    yy += wy * sy;
-    yz += wy * sz;
-    zz += wz * sz;
+    AddWeightedOffsets(
+      moments, w, Select(padding, zero, ox), Select(padding, zero, oy), Select(padding, zero, oz));
   }
-  return DistanceMoments{ weightSum, firstX, firstY, firstZ, xx, xy, xz, yy, yz, zz };
+  return moments;
 }
 
 /**
