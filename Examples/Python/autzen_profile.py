@@ -41,7 +41,7 @@ def section(path):
 
 inputs = sys.argv[1:4]
 titles = ["as scanned", "paper's heuristic\n(r = 15.9 ft, rn = r, N = 1)",
-          "automatic\n(r = 5.1 ft, rn = 0.36 ft, N = 2)"]
+          "automatic\n(r = 8.0 ft, rn = 0.24 ft, N = 2)"]
 figure, axes = plt.subplots(1, 3, figsize=(12, 3.0), sharex=True, sharey=True)
 for axis, path, title in zip(axes, inputs, titles):
     x, z, _ = section(path)
