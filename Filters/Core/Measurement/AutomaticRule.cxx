@@ -63,7 +63,12 @@ BilateralParameters ChooseParameters(const CloudScales& scales,
       return ChooseEdgeAwareParameters(scales, userParameters);
     }
     // Where the radius follows the density, the reference radius is the one at the spacing of
-    // most of the surface, widened as for the paper's filter (RadiusAt).
+    // most of the surface, widened as for the paper's filter (RadiusAt). Only the spacing is
+    // swapped: the edge-aware rule judges its cases by creases and features alone. (The paper's
+    // rule judges "thin noise" against the fits' spacing, so it keeps the measured scales and
+    // takes the surface spacing for the radius only: judged at the surface spacing, the room
+    // scan of docs/structure-metrics.md passes for smooth with thin noise and would be averaged
+    // plainly, corners and all.)
     CloudScales surface = scales;
     surface.PointSpacing = SurfaceSpacing(scales);
     BilateralParameters parameters = ChooseEdgeAwareParameters(surface, userParameters);
