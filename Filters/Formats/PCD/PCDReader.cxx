@@ -116,8 +116,9 @@ std::string DecodeASCII(const char* data,
   {
     valuesPerPoint += field.Count;
   }
-  // Each value takes at least a character and a separator.
-  if (count > size / (2 * valuesPerPoint) + 1)
+  // Each value takes at least a character and a separator: a header announcing far more
+  // points than that is refused before their columns are made.
+  if (count > 0 && count > (size + 1) / valuesPerPoint)
   {
     return "the ascii data holds fewer than the " + std::to_string(count) +
            " points the header announces";

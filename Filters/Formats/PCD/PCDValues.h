@@ -175,7 +175,8 @@ struct PCDTextCursor
     }
     const char* first = start + (*start == '+' ? 1 : 0);
     bool good = false;
-    if (field.Type == 'F' && IsPCDPackedColour(field) && *first >= '0' && *first <= '9' &&
+    if (field.Type == 'F' && IsPCDPackedColour(field) && first < this->At && *first >= '0' &&
+        *first <= '9' &&
         std::find_if(first, this->At, [](char c) { return c < '0' || c > '9'; }) == this->At)
     {
       // PCL writes a packed colour's bits as an unsigned integer (a float of them can be NaN).
