@@ -71,7 +71,8 @@ bool SameValues(const pcbilateral::PCDColumn& a, const pcbilateral::PCDColumn& b
   return true;
 }
 
-void CheckWrittenBack(const pcbilateral::PCDCloud& cloud, const pcbilateral::PCDReadOptions& options)
+void CheckWrittenBack(const pcbilateral::PCDCloud& cloud,
+  const pcbilateral::PCDReadOptions& options)
 {
   static const std::string path = FuzzScratchPath("FuzzPCD", ".pcd");
   const std::string error = pcbilateral::WritePCD(path, cloud, cloud.Header.Encoding);
