@@ -59,12 +59,12 @@ std::uint64_t MeasurementKey(const double* p)
   return MixBits(MixBits(MixBits(Bits(p[0])) ^ Bits(p[1])) ^ Bits(p[2]));
 }
 
-/// The key that decides whether a point is in the measured selection (SelectMeasurementPoints):
-/// another hash than MeasurementKey, so that the selection and the levels inside it are
+/// The key that decides whether a point is in the measured selection (SelectMeasurementPoints),
+/// from its MeasurementKey: another hash, so that the selection and the levels inside it are
 /// independent.
-std::uint64_t SelectionKey(const double* p)
+std::uint64_t SelectionKey(std::uint64_t measurementKey)
 {
-  return MixBits(MeasurementKey(p) ^ 0x5bd1e995ull);
+  return MixBits(measurementKey ^ 0x5bd1e995ull);
 }
 
 /// A finite point's MeasurementKey and index.
@@ -179,9 +179,14 @@ double Median(std::vector<double> values)
 class ScaleMeasurement
 {
 public:
-  ScaleMeasurement(const PointCloudView& cloud, const ScaleMeasurementOptions& options)
+  /// pointKeys: the MeasurementKey of each point of the cloud, when the caller has them, or
+  /// null.
+  ScaleMeasurement(const PointCloudView& cloud,
+    const ScaleMeasurementOptions& options,
+    const std::uint64_t* pointKeys = nullptr)
     : Cloud(cloud)
     , Options(options)
+    , PointKeys(pointKeys)
     , Extent(MeasureCloud(cloud))
     , N(Extent.NumberOfFinitePoints)
     , Threads(ResolveThreadCount(options.NumberOfThreads))
@@ -240,13 +245,16 @@ private:
   {
     this->Keyed.reserve(this->N);
     this->Levels.assign(1, {});
+    this->Levels[0].reserve(this->N);
     for (std::size_t i = 0; i < this->Cloud.NumberOfPoints; ++i)
     {
       if (!IsFinitePoint(this->Cloud.Positions + 3 * i))
       {
         continue;
       }
-      const std::uint64_t key = MeasurementKey(this->Cloud.Positions + 3 * i);
+      const std::uint64_t key = this->PointKeys != nullptr
+                                  ? this->PointKeys[i]
+                                  : MeasurementKey(this->Cloud.Positions + 3 * i);
       this->Keyed.push_back({ key, i });
       // Each level keeps the keys whose top 2l bits are zero.
       std::size_t level = 0;
@@ -350,9 +358,24 @@ private:
     const PointCloudView& cloud = this->Cloud;
     // The fits' samples are the first of the nearest-neighbour distances' samples (the keys in
     // order), so that measuring the distances leaves the fits as they were.
-    this->DistanceSamples = SmallestKeys(cloud,
-      std::move(this->Keyed),
-      std::min(std::max(this->Options.NumberOfSamples, NearestNeighbourSamples), this->N));
+    const std::size_t count =
+      std::min(std::max(this->Options.NumberOfSamples, NearestNeighbourSamples), this->N);
+    // The smallest keys are those of the deepest level that holds enough of them (level l:
+    // keys below 2^(64 - 2l)): only its points need to be ordered.
+    std::size_t level = 0;
+    while (level + 1 < this->Levels.size() && this->Levels[level + 1].size() >= count)
+    {
+      ++level;
+    }
+    if (level > 0)
+    {
+      const std::uint64_t bound = std::uint64_t(1) << (64 - 2 * level);
+      this->Keyed.erase(std::remove_if(this->Keyed.begin(),
+                          this->Keyed.end(),
+                          [&](const KeyedPoint& point) { return point.Key >= bound; }),
+        this->Keyed.end());
+    }
+    this->DistanceSamples = SmallestKeys(cloud, std::move(this->Keyed), count);
     this->Samples = this->Options.SampleIndices;
     if (this->Samples.empty())
     {
@@ -791,6 +814,7 @@ private:
 
   const PointCloudView& Cloud;
   const ScaleMeasurementOptions& Options;
+  const std::uint64_t* PointKeys;
   const CloudExtent Extent;
   const std::size_t N;
   const int Threads;
@@ -827,23 +851,50 @@ double MeasuredFraction(std::size_t numberOfFinitePoints)
            : static_cast<double>(MaximumMeasuredPoints) / static_cast<double>(numberOfFinitePoints);
 }
 
-std::vector<double> SelectMeasurementPoints(const PointCloudView& cloud, double fraction)
+namespace
+{
+/// SelectMeasurementPoints, and the selected points' MeasurementKey when keys is not null.
+std::vector<double> Select(const PointCloudView& cloud,
+  double fraction,
+  std::vector<std::uint64_t>* keys)
 {
   // Selected: SelectionKey / 2^64 < fraction.
   const double threshold = std::ldexp(fraction, 64);
   std::vector<double> selection;
+  // (About fraction of the points, and a margin, without growing the arrays on the way.)
+  const double expected = fraction * static_cast<double>(cloud.NumberOfPoints);
+  const auto reserved = static_cast<std::size_t>(std::min(
+    expected + 6.0 * std::sqrt(expected) + 16.0, static_cast<double>(cloud.NumberOfPoints)));
+  selection.reserve(3 * reserved);
+  if (keys != nullptr)
+  {
+    keys->reserve(reserved);
+  }
   for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
   {
     const double* p = cloud.Positions + 3 * i;
-    if (IsFinitePoint(p) && (fraction >= 1.0 || static_cast<double>(SelectionKey(p)) < threshold))
+    if (!IsFinitePoint(p))
+    {
+      continue;
+    }
+    const std::uint64_t key = MeasurementKey(p);
+    if (fraction >= 1.0 || static_cast<double>(SelectionKey(key)) < threshold)
     {
       selection.insert(selection.end(), p, p + 3);
+      if (keys != nullptr)
+      {
+        keys->push_back(key);
+      }
     }
   }
   return selection;
 }
 
-CloudScales MeasureSelection(const std::vector<double>& selection, double fraction, int threads)
+/// MeasureSelection, with the selected points' MeasurementKey at hand (null: computed).
+CloudScales MeasureSelected(const std::vector<double>& selection,
+  double fraction,
+  int threads,
+  const std::uint64_t* keys)
 {
   PointCloudView view;
   view.NumberOfPoints = selection.size() / 3;
@@ -851,7 +902,18 @@ CloudScales MeasureSelection(const std::vector<double>& selection, double fracti
   ScaleMeasurementOptions options;
   options.PointFraction = fraction;
   options.NumberOfThreads = threads;
-  return MeasureScales(view, options);
+  return ScaleMeasurement(view, options, keys).Measure();
+}
+} // namespace
+
+std::vector<double> SelectMeasurementPoints(const PointCloudView& cloud, double fraction)
+{
+  return Select(cloud, fraction, nullptr);
+}
+
+CloudScales MeasureSelection(const std::vector<double>& selection, double fraction, int threads)
+{
+  return MeasureSelected(selection, fraction, threads, nullptr);
 }
 
 CloudScales MeasureWholeCloud(const PointCloudView& cloud, int threads)
@@ -865,7 +927,10 @@ CloudScales MeasureWholeCloud(const PointCloudView& cloud, int threads)
     options.NumberOfThreads = threads;
     return MeasureScales(cloud, options);
   }
-  return MeasureSelection(SelectMeasurementPoints(cloud, fraction), fraction, threads);
+  // (The selection's keys are computed on the way: the levels need them again.)
+  std::vector<std::uint64_t> keys;
+  const std::vector<double> selection = Select(cloud, fraction, &keys);
+  return MeasureSelected(selection, fraction, threads, keys.data());
 }
 
 } // namespace pcbilateral

@@ -70,21 +70,27 @@ void RadixSort(PointArray<PackedPoint>& points, int bits)
 {
   constexpr int DigitBits = 11;
   constexpr std::size_t Digits = std::size_t(1) << DigitBits;
-  PointArray<PackedPoint> sorted(points.size());
-  for (int shift = 0; shift < bits; shift += DigitBits)
+  const int passes = (bits + DigitBits - 1) / DigitBits;
+  // Every pass's digit counts in one reading of the keys.
+  std::vector<std::uint32_t> start(passes * (Digits + 1), 0);
+  for (const PackedPoint& point : points)
   {
-    std::vector<std::uint32_t> start(Digits + 1, 0);
-    for (const PackedPoint& point : points)
+    for (int pass = 0; pass < passes; ++pass)
     {
-      ++start[((point.Key >> shift) & (Digits - 1)) + 1];
+      ++start[pass * (Digits + 1) + ((point.Key >> (pass * DigitBits)) & (Digits - 1)) + 1];
     }
+  }
+  PointArray<PackedPoint> sorted(points.size());
+  for (int pass = 0; pass < passes; ++pass)
+  {
+    std::uint32_t* next = &start[pass * (Digits + 1)];
     for (std::size_t digit = 0; digit < Digits; ++digit)
     {
-      start[digit + 1] += start[digit];
+      next[digit + 1] += next[digit];
     }
     for (const PackedPoint& point : points)
     {
-      sorted[start[(point.Key >> shift) & (Digits - 1)]++] = point;
+      sorted[next[(point.Key >> (pass * DigitBits)) & (Digits - 1)]++] = point;
     }
     std::swap(points, sorted);
   }
@@ -131,7 +137,6 @@ bool PointGrid::Build(const double* positions,
   this->X.resize(n);
   this->Y.resize(n);
   this->Z.resize(n);
-  this->CellOfPoint.resize(n);
   // (At most a cell per point; the first layout of a sparse cloud has nearly that many.)
   this->CellKey.reserve(3 * n);
   this->CellBegin.reserve(n + 1);
@@ -148,6 +153,7 @@ void PointGrid::LayOutByCoordinates(const double* positions,
   const std::vector<std::uint32_t>& ids,
   const PointArray<std::int64_t>& keys)
 {
+  this->CellOfPoint.resize(ids.size());
   PointArray<GridEntry> entries(ids.size());
   for (std::size_t k = 0; k < ids.size(); ++k)
   {
@@ -308,7 +314,10 @@ void PointGrid::Place(std::size_t at,
   this->X[at] = p[0];
   this->Y[at] = p[1];
   this->Z[at] = p[2];
-  this->CellOfPoint[at] = static_cast<std::uint32_t>(this->CellBegin.size() - 1);
+  if (this->Order == PointOrder::ByCoordinates)
+  {
+    this->CellOfPoint[at] = static_cast<std::uint32_t>(this->CellBegin.size() - 1);
+  }
 }
 
 void PointGrid::ComputeNeighbourRuns(int threads)

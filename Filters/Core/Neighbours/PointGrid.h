@@ -66,7 +66,8 @@ public:
   const double* GetY() const { return this->Y.data(); }
   const double* GetZ() const { return this->Z.data(); }
   double GetCellSize() const { return this->CellSize; }
-  /// The cell of point i of the layout, an index into the cells (0 to the number of cells - 1).
+  /// The cell of point i of the layout, an index into the cells (0 to the number of cells - 1);
+  /// ByCoordinates layout only.
   std::uint32_t GetCellOfPoint(std::size_t i) const { return this->CellOfPoint[i]; }
   /// The number of cells holding points, and the integer coordinates (3) of one of them.
   std::size_t GetNumberOfCells() const { return this->CellKey.size() / 3; }
