@@ -2,9 +2,10 @@
 // (IPOL 2017), with the option letters of the authors' program.
 //
 //   pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [--paper] [-R] [-t THREADS]
-//               [--remove-isolated] [--edge-aware] [--classes LIST [--class-array NAME]]
+//               [--remove-isolated] [--edge-aware] [--keep-nan]
+//               [--classes LIST [--class-array NAME]]
 //
-// Formats by extension: .txt and .xyz (the authors' ASCII format), .las, .ply, .vtp. Errors
+// Formats by extension: .txt and .xyz (the authors' ASCII format), .las, .pcd, .ply, .vtp. Errors
 // print one line and exit with status 1; a damaged input file is an error, never a cloud. Run with
 // -h for the options.
 #include "AutomaticRule.h"
@@ -40,11 +41,12 @@ namespace
 // (AutomaticRule.h), inserted by HelpText.
 const char* const UsageHead =
   "usage: pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [--paper] [-R] [-t THREADS]\n"
-  "                   [--remove-isolated] [--edge-aware] [--classes LIST [--class-array NAME]]\n"
+  "                   [--remove-isolated] [--edge-aware] [--keep-nan]\n"
+  "                   [--classes LIST [--class-array NAME]]\n"
   "\n"
   "Denoises a point cloud with the bilateral filter (Digne & de Franchis, IPOL 2017).\n"
   "INPUT and OUTPUT: .txt or .xyz (x y z [nx ny nz] [more columns]), .las (LiDAR,\n"
-  "uncompressed), .ply or .vtp. A text file is written as the text input was: the\n"
+  "uncompressed), .pcd (PCL's), .ply or .vtp. A text file is written as the text input was: the\n"
   "same columns in the same order, a header line only if it had one, spaces or tabs.\n"
   "\n"
   "  -r R               neighbourhood radius\n"
@@ -69,6 +71,9 @@ const char* const UsageTail =
   "                     coordinates and are no one's neighbours (default: every point)\n"
   "  --class-array NAME the integer point array that holds the class (default\n"
   "                     Classification, as LAS files name it)\n"
+  "  --keep-nan         PCD input: keep the points without coordinates (NaN) of an\n"
+  "                     organised frame in place, never as neighbours, so that a .pcd\n"
+  "                     output keeps the frame's WIDTH and HEIGHT (default: left out)\n"
   "  -p                 accepted for compatibility and ignored: the filter always runs in "
   "parallel\n"
   "  -h, --help         this text\n";
@@ -209,6 +214,7 @@ struct Options
   bool EdgeAware = pcbilateral::BilateralParameters().EdgeAware;
   std::vector<long long> Classes;
   std::string ClassArray = "Classification";
+  bool KeepNaNPoints = false;
 };
 
 /// --classes LIST: integers separated by commas.
@@ -297,6 +303,10 @@ bool ParseOption(int argc, char* argv[], int& i, Options& options)
   {
     options.ClassArray = value();
   }
+  else if (argument == "--keep-nan")
+  {
+    options.KeepNaNPoints = true;
+  }
   else if (argument.size() > 1 && argument[0] == '-')
   {
     Fail("unknown option '" + argument + "' (see pcbilateral -h)");
@@ -358,6 +368,11 @@ void ReadInput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData* 
   if (input->GetNumberOfPoints() == 0)
   {
     Fail(options.Input + ": contains no points");
+  }
+  if (files->GetNumberOfDroppedPoints() > 0)
+  {
+    std::printf("input:         dropped %lld points without coordinates (NaN)\n",
+      static_cast<long long>(files->GetNumberOfDroppedPoints()));
   }
 }
 
@@ -477,6 +492,10 @@ void WriteOutput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData
   {
     Fail(files->GetErrorMessage());
   }
+  for (int w = 0; w < files->GetNumberOfWarnings(); ++w)
+  {
+    std::fprintf(stderr, "pcbilateral: warning: %s\n", files->GetWarning(w));
+  }
   std::printf("output:        %s, %lld points\n",
     options.Output.c_str(),
     static_cast<long long>(output->GetNumberOfPoints()));
@@ -515,6 +534,7 @@ int main(int argc, char* argv[])
   // One place picks the reader and writer by extension and checks the file first.
   vtkNew<vtkPointCloudFileIO> files;
   files->SetOrientedNormals(options.OrientedNormals);
+  files->SetKeepNaNPoints(options.KeepNaNPoints);
   vtkNew<vtkPolyData> input;
   ReadInput(files, options, input);
 

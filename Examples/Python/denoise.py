@@ -5,7 +5,7 @@
     pvbatch  Examples/Python/denoise.py IN OUT ...
     mpirun -np 2 pvbatch Examples/Python/denoise.py IN OUT ...
 
-IN and OUT: .ply, .vtp, .las, or the authors' text format (.xyz, .txt). The parameters not given
+IN and OUT: .ply, .vtp, .las, .pcd, or the authors' text format (.xyz, .txt). The parameters not given
 are automatic: chosen from the cloud's measured point spacing and noise, or with --paper by the
 paper's heuristic (r = sqrt(20 / points) x largest extent, rn = r, N = 1). The script loads the
 PointCloudBilateral plugin itself: from --plugin, from PV_PLUGIN_PATH (auto-loaded), or from the
