@@ -169,26 +169,3 @@ bool vtkPCDLoadLayout(vtkFieldData* fieldData, pcbilateral::PCDHeader& header)
   }
   return true;
 }
-
-std::string vtkPCDUnwrittenInformation(vtkFieldData* fieldData)
-{
-  if (!fieldData || !fieldData->GetAbstractArray("LAS Scale"))
-  {
-    return std::string();
-  }
-  bool coordinateSystem = fieldData->GetAbstractArray("LAS CRS WKT") != nullptr;
-  pcbilateral::LASFileInfo info;
-  std::string problem;
-  if (vtkLASLoadFileInfo(fieldData, info, problem))
-  {
-    for (const auto* records : { &info.VLRs, &info.EVLRs })
-    {
-      for (const pcbilateral::LASRecord& record : *records)
-      {
-        coordinateSystem = coordinateSystem || record.UserId == "LASF_Projection";
-      }
-    }
-  }
-  return coordinateSystem ? "the LAS file's coordinate system (CRS), scale and offset"
-                          : "the LAS file's scale and offset";
-}

@@ -26,8 +26,4 @@ void vtkPCDStoreLayout(const pcbilateral::PCDHeader& header, vtkFieldData* field
 /// one), `header` then PCDHeader's defaults.
 bool vtkPCDLoadLayout(vtkFieldData* fieldData, pcbilateral::PCDHeader& header);
 
-/// What a cloud's field data holds that a PCD file cannot: a LAS file's scale and offset and
-/// its coordinate system; empty when nothing.
-std::string vtkPCDUnwrittenInformation(vtkFieldData* fieldData);
-
 #endif

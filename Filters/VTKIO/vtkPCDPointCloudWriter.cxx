@@ -2,6 +2,7 @@
 
 #include "PCDFile.h"
 #include "PCDValues.h"
+#include "vtkLASPointCloudFieldData.h"
 #include "vtkPCDPointCloudFieldData.h"
 
 #include "vtkDataArray.h"
@@ -258,7 +259,7 @@ void vtkPCDPointCloudWriter::WriteData()
     builder.AddCoordinates();
   }
   builder.AddRemainingArrays();
-  const std::string unwritten = vtkPCDUnwrittenInformation(input->GetFieldData());
+  const std::string unwritten = vtkLASInformationNotHeld(input->GetFieldData());
   if (!unwritten.empty())
   {
     vtkWarningMacro(<< this->FileName << ": a PCD file cannot hold " << unwritten

@@ -1,4 +1,5 @@
 #include "vtkPointCloudFileIO.h"
+#include "vtkLASPointCloudFieldData.h"
 
 #include "vtkLASPointCloudReader.h"
 #include "vtkLASPointCloudWriter.h"
@@ -162,6 +163,33 @@ vtkSmartPointer<vtkPolyData> InputForPLY(vtkPolyData* data, vtkPLYWriter* ply)
     }
   }
   return input;
+}
+
+/// What a PLY file written by vtkPLYWriter loses of `data` (its point arrays but the normals and
+/// the colours named to the writer, a LAS file's scale, offset and coordinate system), in
+/// words; empty when nothing.
+std::string NotHeldByPLY(vtkPolyData* data, vtkPLYWriter* ply)
+{
+  std::string arrays;
+  vtkPointData* pointData = data->GetPointData();
+  for (int a = 0; a < pointData->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* array = pointData->GetAbstractArray(a);
+    const char* name = array->GetName() ? array->GetName() : "";
+    if (array == pointData->GetNormals() ||
+        (ply->GetArrayName() && std::strcmp(name, ply->GetArrayName()) == 0))
+    {
+      continue;
+    }
+    arrays += (arrays.empty() ? "" : ", ") + std::string(*name ? name : "(unnamed)");
+  }
+  std::string notHeld = arrays.empty() ? "" : "the point arrays " + arrays;
+  const std::string las = vtkLASInformationNotHeld(data->GetFieldData());
+  if (!las.empty())
+  {
+    notHeld += (notHeld.empty() ? "" : "; ") + las;
+  }
+  return notHeld;
 }
 
 /// Runs a writer of NewWriter(): whether it reported success.
@@ -405,6 +433,15 @@ bool vtkPointCloudFileIO::Write(vtkPolyData* data, const char* path)
   if (type == FileType::PLY || type == FileType::VTP)
   {
     this->ErrorMessage = WriteReplacing(writer, name, messages);
+    this->Warnings = messages.Warnings;
+    const std::string notHeld =
+      type == FileType::PLY ? NotHeldByPLY(input, vtkPLYWriter::SafeDownCast(writer)) : "";
+    if (this->ErrorMessage.empty() && !notHeld.empty())
+    {
+      // (Only points, normals and 8-bit colours are PLY properties here.)
+      this->Warnings.push_back(name + ": a PLY file written here holds points, normals and " +
+                               "8-bit colours only: " + notHeld + " are not written");
+    }
     return this->ErrorMessage.empty();
   }
   // The text, LAS and PCD writers replace the file themselves (pcbilateral::ReplacingFile).

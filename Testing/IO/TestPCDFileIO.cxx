@@ -255,7 +255,24 @@ void LASWarning()
   PCB_CHECK(
     io->Read("from-las.pcd", pcd) && io->Write(pcd, "again.pcd") && io->GetNumberOfWarnings() == 0,
     "a warning for PCD to PCD");
-  PCB_CHECK(io->Write(las, "from-las.ply") && io->GetNumberOfWarnings() == 0, "a warning for PLY");
+  // PLY loses the LAS arrays and the scale and offset: one warning that names both; VTP keeps all.
+  PCB_CHECK(
+    io->Write(las, "from-las.ply") && io->GetNumberOfWarnings() == 1 &&
+      std::string(io->GetWarning(0)).find("the point arrays Intensity, ") != std::string::npos &&
+      std::string(io->GetWarning(0)).find("; the LAS file's scale and offset are not") !=
+        std::string::npos,
+    "LAS to PLY: %d warnings (%s)",
+    io->GetNumberOfWarnings(),
+    io->GetNumberOfWarnings() > 0 ? io->GetWarning(0) : "");
+  PCB_CHECK(io->Write(las, "from-las.vtp") && io->GetNumberOfWarnings() == 0, "a warning for VTP");
+  // Text keeps the arrays as columns, not the scale and offset.
+  PCB_CHECK(io->Write(las, "from-las.txt") && io->GetNumberOfWarnings() == 1 &&
+              std::string(io->GetWarning(0)) ==
+                "from-las.txt: a text file cannot hold the LAS file's scale and offset, which are "
+                "not written (the coordinates are)",
+    "LAS to text: %d warnings (%s)",
+    io->GetNumberOfWarnings(),
+    io->GetNumberOfWarnings() > 0 ? io->GetWarning(0) : "");
 }
 
 /// A LAS file with a coordinate system (the shared autzen_trim.las): the warning names it.
