@@ -352,6 +352,9 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  // An abort asked of an earlier run ends there: VTK 9.2 never clears the flag, and every later
+  // update would stop at once. (Set directly: SetAbortExecute would mark the filter modified.)
+  this->AbortExecute = 0;
   vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   output->Initialize();

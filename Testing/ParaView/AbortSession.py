@@ -6,7 +6,8 @@ the driving script can follow the run and click Abort:
   warning      a warning reached the output window (the Output Messages window)
   returned     the filter returned (aborted or not)
   aborted-message   the plugin's message after an aborted run reached the output window
-  end N        the run ended with N output points (0 after an abort)"""
+  end N        the run ended with N output points (0 after an abort)
+  again N      a later Apply, with radius 0.06 then 0.07, ended with N output points"""
 import os
 import time
 
@@ -44,4 +45,10 @@ note("start")
 simple.Show(bilateral)
 simple.Render()
 note(f"end {bilateral.GetDataInformation().GetNumberOfPoints()}")
+# Two Applies after the abort, with an ordinary radius: each must run to the end (the abort once
+# stuck, and every later Apply of the filter aborted within a second).
+for radius in (0.06, 0.07):
+    bilateral.Radius = radius
+    simple.Render()
+    note(f"again {bilateral.GetDataInformation().GetNumberOfPoints()}")
 log.close()
