@@ -1,5 +1,6 @@
 // Version 2 of the items of point formats 0 to 5 (LASzip 2.0 and later): point10, gpstime11,
 // rgb12 and the extra bytes.
+#include "LAZGPSTime.h"
 #include "LAZItemDecoders.h"
 #include "LAZPointContexts.h"
 
@@ -18,24 +19,6 @@ namespace
 {
 using las::Load;
 using las::Store;
-
-/// A model per value of the previous byte, made when first needed (most never are).
-class ModelPerByte
-{
-public:
-  SymbolModel& operator[](std::uint8_t previous)
-  {
-    std::unique_ptr<SymbolModel>& model = this->Models[previous];
-    if (!model)
-    {
-      model = std::make_unique<SymbolModel>(256);
-    }
-    return *model;
-  }
-
-private:
-  std::array<std::unique_ptr<SymbolModel>, 256> Models;
-};
 
 /// The 20 bytes of x, y, z, intensity, the return bits, classification, scan angle, user data
 /// and point source of formats 0 to 5.
@@ -141,162 +124,27 @@ private:
   IntegerDecoder Intensity{ 16, 4 };
   SymbolModel ScanAngle[2] = { SymbolModel(256), SymbolModel(256) };
   IntegerDecoder PointSource{ 16 };
-  ModelPerByte BitByte;
-  ModelPerByte Classification;
-  ModelPerByte UserData;
+  LazyModels BitByte{ 256, 256 };
+  LazyModels Classification{ 256, 256 };
+  LazyModels UserData{ 256, 256 };
   IntegerDecoder DX{ 32, 2 };
   IntegerDecoder DY{ 32, 22 };
   IntegerDecoder Z{ 32, 20 };
 };
 
-/// Multiples of the previous difference of GPS times that have a code of their own.
-constexpr std::int32_t GPSMulti = 500;
-constexpr std::int32_t GPSMultiMinus = -10;
-/// The code after the multiples: the time is unchanged (no correction follows).
-constexpr std::uint32_t GPSMultiUnchanged = GPSMulti - GPSMultiMinus + 1;
-/// The code of a time in full; the three after it jump to another sequence.
-constexpr std::uint32_t GPSMultiCodeFull = GPSMulti - GPSMultiMinus + 2;
-constexpr std::uint32_t GPSMultiTotal = GPSMulti - GPSMultiMinus + 6;
-
-/**
- * The GPS time (a double, coded as its 64-bit pattern): up to four sequences of times are
- * followed at once (a scanner may interleave them), each with its last time and its last
- * difference; a time is coded as a multiple of that difference plus a correction, or as a jump to
- * another sequence, or in full.
- */
+/// The GPS time of formats 1 and 3.
 class GPSTimeDecoder final : public ItemDecoder
 {
 public:
-  void Start(const std::uint8_t* item) override { this->LastTime[0] = Load<std::int64_t>(item); }
+  void Start(const std::uint8_t* item) override { this->Times.Start(Load<std::int64_t>(item)); }
 
   void Decode(ArithmeticDecoder& decoder, std::uint8_t* item) override
   {
-    // A jump to another sequence is followed by the time itself; at most three jumps in a row
-    // make sense, which bounds the loop on damaged data.
-    for (int jumps = 0; jumps < 4 && !this->DecodeTime(decoder); ++jumps)
-    {
-    }
-    Store<std::int64_t>(item, this->LastTime[this->Current]);
+    Store<std::int64_t>(item, this->Times.Decode(decoder));
   }
 
 private:
-  static std::int32_t Multiply(std::int64_t multiple, std::int32_t difference)
-  {
-    return static_cast<std::int32_t>(static_cast<std::uint32_t>(multiple * difference));
-  }
-
-  /// Decodes the time, or returns false after a jump to another sequence.
-  bool DecodeTime(ArithmeticDecoder& decoder)
-  {
-    const unsigned last = this->Current;
-    if (this->LastDifference[last] == 0)
-    {
-      const std::uint32_t code = decoder.DecodeSymbol(this->ZeroDifference);
-      if (code == 1)
-      {
-        this->LastDifference[last] = this->Differences.Decode(decoder, 0, 0);
-        this->LastTime[last] += this->LastDifference[last];
-        this->ExtremeCounter[last] = 0;
-      }
-      else if (code == 2)
-      {
-        this->DecodeFullTime(decoder);
-      }
-      else if (code > 2)
-      {
-        this->Current = (last + code - 2) & 3;
-        return false;
-      }
-      return true;
-    }
-    const std::uint32_t multi = decoder.DecodeSymbol(this->Multiple);
-    if (multi == 1)
-    {
-      this->LastTime[last] += this->Differences.Decode(decoder, this->LastDifference[last], 1);
-      this->ExtremeCounter[last] = 0;
-    }
-    else if (multi < GPSMultiUnchanged)
-    {
-      this->LastTime[last] += this->DecodeMultiple(decoder, multi);
-    }
-    else if (multi == GPSMultiCodeFull)
-    {
-      this->DecodeFullTime(decoder);
-    }
-    else if (multi > GPSMultiCodeFull)
-    {
-      this->Current = (last + multi - GPSMultiCodeFull) & 3;
-      return false;
-    }
-    return true;
-  }
-
-  std::int32_t DecodeMultiple(ArithmeticDecoder& decoder, std::uint32_t multi)
-  {
-    const unsigned last = this->Current;
-    const std::int32_t previous = this->LastDifference[last];
-    std::int32_t difference;
-    bool extreme = false;
-    if (multi == 0)
-    {
-      difference = this->Differences.Decode(decoder, 0, 7);
-      extreme = true;
-    }
-    else if (multi < static_cast<std::uint32_t>(GPSMulti))
-    {
-      difference = this->Differences.Decode(decoder, Multiply(multi, previous), multi < 10 ? 2 : 3);
-    }
-    else if (multi == static_cast<std::uint32_t>(GPSMulti))
-    {
-      difference = this->Differences.Decode(decoder, Multiply(GPSMulti, previous), 4);
-      extreme = true;
-    }
-    else
-    {
-      const std::int32_t negative = GPSMulti - static_cast<std::int32_t>(multi);
-      if (negative > GPSMultiMinus)
-      {
-        difference = this->Differences.Decode(decoder, Multiply(negative, previous), 5);
-      }
-      else
-      {
-        difference = this->Differences.Decode(decoder, Multiply(GPSMultiMinus, previous), 6);
-        extreme = true;
-      }
-    }
-    // A run of differences far from the last one makes the latest the new reference.
-    if (extreme && ++this->ExtremeCounter[last] > 3)
-    {
-      this->LastDifference[last] = difference;
-      this->ExtremeCounter[last] = 0;
-    }
-    return difference;
-  }
-
-  /// A time in full, which starts a new sequence.
-  void DecodeFullTime(ArithmeticDecoder& decoder)
-  {
-    const unsigned last = this->Current;
-    const unsigned next = (this->Newest + 1) & 3;
-    this->Newest = next;
-    const auto high = static_cast<std::uint32_t>(this->Differences.Decode(decoder,
-      static_cast<std::int32_t>(static_cast<std::uint64_t>(this->LastTime[last]) >> 32),
-      8));
-    const std::uint64_t bits = (static_cast<std::uint64_t>(high) << 32) | decoder.ReadInt();
-    this->LastTime[next] = static_cast<std::int64_t>(bits);
-    this->Current = next;
-    this->LastDifference[next] = 0;
-    this->ExtremeCounter[next] = 0;
-  }
-
-  unsigned Current = 0;
-  unsigned Newest = 0;
-  std::int64_t LastTime[4] = {};
-  std::int32_t LastDifference[4] = {};
-  std::int32_t ExtremeCounter[4] = {};
-  SymbolModel Multiple{ GPSMultiTotal };
-  SymbolModel ZeroDifference{ 6 };
-  IntegerDecoder Differences{ 32, 9 };
+  GPSTimeSequences Times{ GPSTimeCodesV2 };
 };
 
 /// Red, green and blue: which bytes changed, then each changed byte; green and blue are

@@ -7,7 +7,10 @@
 #include "LAZEntropyDecoder.h"
 #include "LAZItemDecoders.h"
 
+#include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <vector>
 
 namespace pcbilateral
 {
@@ -126,6 +129,31 @@ public:
 private:
   std::int32_t Values[5] = {};
   bool High = true;
+};
+
+/// Models chosen by a previous value, each made when first needed (most never are).
+class LazyModels
+{
+public:
+  LazyModels(std::size_t count, std::uint32_t symbols)
+    : Models(count)
+    , Symbols(symbols)
+  {
+  }
+
+  SymbolModel& operator[](std::size_t index)
+  {
+    std::unique_ptr<SymbolModel>& model = this->Models[index];
+    if (!model)
+    {
+      model = std::make_unique<SymbolModel>(this->Symbols);
+    }
+    return *model;
+  }
+
+private:
+  std::vector<std::unique_ptr<SymbolModel>> Models;
+  std::uint32_t Symbols;
 };
 
 /// The models of one colour coder: which of the six bytes changed, and each byte's change.
