@@ -226,7 +226,7 @@ std::string vtkPointCloudFileIO::EventMessage(const char* callData)
 
 const char* vtkPointCloudFileIO::GetSupportedExtensions()
 {
-  return ".txt, .xyz, .las, .ply or .vtp";
+  return ".txt, .xyz, .las, .laz (read), .ply or .vtp";
 }
 
 bool vtkPointCloudFileIO::IsSupported(const char* path)
@@ -241,7 +241,7 @@ vtkAlgorithm* vtkPointCloudFileIO::NewReader(const char* path)
     case FileType::Text:
       return WithFileName(vtkPointCloudTextReader::New(), path);
     case FileType::LAS:
-    case FileType::LAZ: // the reader explains that it must be decompressed first
+    case FileType::LAZ:
       return WithFileName(vtkLASPointCloudReader::New(), path);
     case FileType::PLY:
       return WithFileName(vtkPLYReader::New(), path);

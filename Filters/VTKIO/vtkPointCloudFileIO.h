@@ -3,8 +3,8 @@
  * @brief   the one place that picks a reader or a writer by a file's extension
  *
  * Used by pcbilateral, pcbilateral_picture and Python scripts. Extensions (any case):
- * .txt and .xyz (the authors' text format, vtkPointCloudTextReader/Writer), .las (and .laz,
- * to say that compressed files must be decompressed first; vtkLASPointCloudReader/Writer),
+ * .txt and .xyz (the authors' text format, vtkPointCloudTextReader/Writer), .las and .laz
+ * (LASzip-compressed LAS, read only; vtkLASPointCloudReader/Writer),
  * .ply (vtkPLYReader/Writer, binary) and .vtp (vtkXMLPolyDataReader/Writer).
  *
  * Read() checks PLY and VTP files before VTK's readers see them, since those readers do not
@@ -49,10 +49,11 @@ public:
   vtkBooleanMacro(OrientedNormals, bool);
   ///@}
 
-  /// The extensions read and written, for messages: ".txt, .xyz, .las, .ply or .vtp".
+  /// The extensions read and written, for messages: ".txt, .xyz, .las, .laz (read), .ply or
+  /// .vtp".
   static const char* GetSupportedExtensions();
 
-  /// Whether the path's extension is one of them (.laz counts: the reader explains it).
+  /// Whether the path's extension is one of them.
   static bool IsSupported(const char* path);
 
   /**

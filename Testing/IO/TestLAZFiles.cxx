@@ -183,6 +183,120 @@ void COPCPointsAreTheTwins()
     missing,
     twin.size());
 }
+/// Points asked for across a chunk boundary are those of the whole file; any number of threads
+/// gives the same records.
+void PartsAndThreads()
+{
+  const std::string path = LAZPath("autzen_trim.laz");
+  pcbilateral::LASFileBytes file;
+  pcbilateral::LASFileInfo info;
+  PCB_CHECK(file.Open(path).empty() &&
+              pcbilateral::ParseLASHeader(file.Data(), file.Size(), path, info, true).empty(),
+    "%s",
+    path.c_str());
+  const std::size_t length = info.Header.RecordLength;
+  const std::size_t count = info.Header.NumberOfPoints;
+  std::vector<std::uint8_t> whole(count * length);
+  std::vector<std::uint8_t> alone(count * length);
+#ifdef _OPENMP
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+#endif
+  std::string error =
+    pcbilateral::DecompressLAZPoints(file.Data(), file.Size(), info, path, 0, count, alone.data());
+#ifdef _OPENMP
+  omp_set_num_threads(threads > 2 ? threads : 3);
+#endif
+  error +=
+    pcbilateral::DecompressLAZPoints(file.Data(), file.Size(), info, path, 0, count, whole.data());
+  PCB_CHECK(error.empty() && whole == alone, "one thread and several: %s", error.c_str());
+  for (const auto& [first, points] : { std::pair<std::size_t, std::size_t>{ 49990, 20 },
+         { 0, 1 },
+         { 50000, 50000 },
+         { 109999, 1 },
+         { 20, 100000 } })
+  {
+    std::vector<std::uint8_t> part(points * length);
+    error = pcbilateral::DecompressLAZPoints(
+      file.Data(), file.Size(), info, path, first, points, part.data());
+    PCB_CHECK(
+      error.empty() && std::memcmp(part.data(), whole.data() + first * length, part.size()) == 0,
+      "points %zu to %zu: %s",
+      first,
+      first + points,
+      error.c_str());
+  }
+  std::vector<std::uint8_t> beyond(length);
+  error =
+    pcbilateral::DecompressLAZPoints(file.Data(), file.Size(), info, path, count, 1, beyond.data());
+  PCB_CHECK(
+    error.find("asked for") != std::string::npos, "a point beyond the last: '%s'", error.c_str());
+}
+
+/// A damaged or unsupported LAZ file gives one line naming the file and the problem.
+void ExpectError(const std::string& name,
+  std::vector<std::uint8_t> bytes,
+  const std::string& expected)
+{
+  pcbilateral::LASFileInfo info;
+  std::string error = pcbilateral::ParseLASHeader(bytes.data(), bytes.size(), name, info, true);
+  if (error.empty())
+  {
+    std::vector<std::uint8_t> decompressed;
+    const std::uint8_t* records = nullptr;
+    error = pcbilateral::UncompressedLASRecords(
+      bytes.data(), bytes.size(), info, name, decompressed, records);
+  }
+  PCB_CHECK(error.find(expected) != std::string::npos && error.rfind(name, 0) == 0 &&
+              error.find('\n') == std::string::npos,
+    "%s: the error is '%s', expected '%s'",
+    name.c_str(),
+    error.c_str(),
+    expected.c_str());
+}
+
+std::vector<std::uint8_t> FileContentsOf(const std::string& path)
+{
+  const std::string text = pcbilateral_testing::FileContents(path);
+  return std::vector<std::uint8_t>(text.begin(), text.end());
+}
+
+/// Where the data of the LASzip record starts in a file.
+std::size_t LASzipRecordAt(const std::vector<std::uint8_t>& bytes)
+{
+  std::size_t at = bytes[94] | (bytes[95] << 8);
+  while (at + 54 < bytes.size() && std::memcmp(&bytes[at + 2], "laszip encoded", 14) != 0)
+  {
+    at += 54 + (bytes[at + 20] | (bytes[at + 21] << 8));
+  }
+  return at + 54;
+}
+
+void DamagedAndUnsupported()
+{
+  const std::vector<std::uint8_t> autzen = FileContentsOf(LAZPath("autzen_trim.laz"));
+  std::vector<std::uint8_t> bytes = autzen;
+  bytes.resize(400000);
+  ExpectError("cut.laz", bytes, "truncated or damaged: the chunk table should be at byte");
+  bytes = autzen;
+  std::memset(&bytes[bytes.size() - 20], 0xAB, 20); // the chunk table's entries
+  ExpectError("table.laz", bytes, "chunk table");
+  bytes = autzen;
+  bytes[104] = 0x84; // point format 4, with waveforms, and its record length
+  bytes[105] = 57;
+  ExpectError("waveform.laz", bytes, "LAZ point format 4 (with waveforms) is not supported");
+  bytes = autzen;
+  bytes[LASzipRecordAt(bytes)] = 7; // the compressor
+  ExpectError("compressor.laz", bytes, "the LAZ compressor 7 is not supported");
+  bytes = autzen;
+  bytes[LASzipRecordAt(bytes) + 34 + 4] = 9; // point10's version
+  ExpectError("version.laz", bytes, "the LAZ item point10 (type 6) version 9 is not supported");
+  // A layered chunk whose first layer announces more bytes than the chunk holds.
+  bytes = FileContentsOf(LAZPath("las_with_several_extra_byte_bloc.laz"));
+  const std::size_t offset = bytes[96] | (bytes[97] << 8) | (bytes[98] << 16);
+  std::memset(&bytes[offset + 8 + 41 + 4], 0xEE, 4);
+  ExpectError("layer.laz", bytes, "layer 1 of 14");
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -197,6 +311,8 @@ int main(int argc, char* argv[])
       { "liblas-generated", [] { SameAsTwin("liblas-generated.laz", "simple.las"); } },
       { "padding", [] { SameAsTwin("laszip-generated_with2bytespadding.laz", "simple.las"); } },
       { "copc", COPCPointsAreTheTwins },
+      { "parts-and-threads", PartsAndThreads },
+      { "damaged-and-unsupported", DamagedAndUnsupported },
       { "format-8-extra-bytes",
         [] {
           SameAsLazPerf("las_with_several_extra_byte_bloc.laz", 8, 697721, 0x869a895b0949485cull);

@@ -11,6 +11,10 @@ namespace
 using las::Load;
 using las::Str;
 
+/// More points than this per compressed byte cannot be real (even identical points take more
+/// than a 200th of a byte each): a damaged count is refused before its memory is asked for.
+constexpr std::uint64_t MostPointsPerByte = 4096;
+
 /// The items a point format is made of, in order; the extra bytes may follow as one byte item.
 std::vector<LAZItemType> ItemsOfPointFormat(int pointFormat)
 {
@@ -227,8 +231,8 @@ std::string ChunkTableOffset(const std::uint8_t* data,
   }
   if (tableOffset < pointDataOffset + 8 || tableOffset > size || size - tableOffset < 8)
   {
-    return "the chunk table's offset " + Str(tableOffset) + " is outside the file's " + Str(size) +
-           " bytes of points";
+    return "truncated or damaged: the chunk table should be at byte " + Str(tableOffset) +
+           ", the file has " + Str(size) + " bytes";
   }
   return std::string();
 }
@@ -275,6 +279,11 @@ std::string ReadLAZChunkTable(const std::uint8_t* data,
     // One stream of all points, up to the end of the file (or its EVLRs: the decoder stops
     // where the points end).
     chunks.push_back({ pointDataOffset, size - pointDataOffset, pointCount, 0 });
+    if (pointCount > MostPointsPerByte * (size - pointDataOffset) + 1)
+    {
+      return "truncated: " + Str(pointCount) + " points announced, impossible in " +
+             Str(size - pointDataOffset) + " bytes of compressed points";
+    }
     return std::string();
   }
   std::uint64_t tableOffset = 0;
@@ -312,6 +321,11 @@ std::string ReadLAZChunkTable(const std::uint8_t* data,
     }
     chunk.Offset = offset;
     chunk.FirstPoint = first;
+    if (chunk.Points > MostPointsPerByte * chunk.Bytes + 1)
+    {
+      return "corrupt chunk table: chunk " + Str(&chunk - chunks.data() + 1) + " of " + Str(count) +
+             " claims " + Str(chunk.Points) + " points in " + Str(chunk.Bytes) + " bytes";
+    }
     if (chunk.Bytes > tableOffset - offset)
     {
       return "corrupt chunk table: chunk " + Str(&chunk - chunks.data() + 1) + " of " + Str(count) +

@@ -295,6 +295,10 @@ std::string DecodeLayeredChunk(const std::uint8_t* begin,
   }
   for (std::uint64_t p = 1; p < points; ++p)
   {
+    if ((p & 4095) == 0 && point.Overrun())
+    {
+      break; // damaged: reported below, without decoding the rest
+    }
     std::uint8_t* record = out + p * recordLength;
     unsigned channel = 0;
     point.Decode(record, channel);

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstring>
 #include <memory>
+#include <new>
 #include <vector>
 
 namespace pcbilateral
@@ -50,6 +51,10 @@ std::string DecodePointwiseChunk(const std::uint8_t* begin,
   laz::ArithmeticDecoder decoder(begin + recordLength, end);
   for (std::uint64_t p = 1; p < points; ++p)
   {
+    if ((p & 4095) == 0 && decoder.Overrun())
+    {
+      break; // damaged: reported below, without decoding the rest
+    }
     std::uint8_t* record = out + p * recordLength;
     for (std::size_t i = 0; i < items.size(); ++i)
     {
@@ -175,6 +180,38 @@ std::string DecompressLAZPoints(const std::uint8_t* data,
       data, chunks, firstChunk, lastChunk, parameters, h.RecordLength, first, count, records);
   }
   return problem.empty() ? problem : sourceName + ": " + problem;
+}
+
+std::string UncompressedLASRecords(const std::uint8_t* data,
+  std::size_t size,
+  const LASFileInfo& info,
+  const std::string& sourceName,
+  std::vector<std::uint8_t>& decompressed,
+  const std::uint8_t*& records)
+{
+  const LASHeader& h = info.Header;
+  if (info.LASzipRecord.empty())
+  {
+    records = data + h.OffsetToPointData;
+    return std::string();
+  }
+  decompressed.clear();
+  std::string problem;
+  try
+  {
+    decompressed.resize(h.NumberOfPoints * h.RecordLength);
+  }
+  catch (const std::bad_alloc&)
+  {
+    problem = sourceName + ": not enough memory for " + Str(h.NumberOfPoints) + " points";
+  }
+  if (problem.empty())
+  {
+    problem =
+      DecompressLAZPoints(data, size, info, sourceName, 0, h.NumberOfPoints, decompressed.data());
+  }
+  records = decompressed.data();
+  return problem;
 }
 
 } // namespace pcbilateral

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace pcbilateral
 {
@@ -32,6 +33,18 @@ std::string DecompressLAZPoints(const std::uint8_t* data,
   std::uint64_t first,
   std::uint64_t count,
   std::uint8_t* records);
+
+/**
+ * The point records of a file ParseLASHeader accepted, uncompressed: a LAS file's own bytes
+ * (`records` points into `data`), or a LAZ file's, all decompressed into `decompressed`. Returns
+ * an empty string or DecompressLAZPoints' message.
+ */
+std::string UncompressedLASRecords(const std::uint8_t* data,
+  std::size_t size,
+  const LASFileInfo& info,
+  const std::string& sourceName,
+  std::vector<std::uint8_t>& decompressed,
+  const std::uint8_t*& records);
 
 } // namespace pcbilateral
 
