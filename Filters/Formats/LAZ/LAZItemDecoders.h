@@ -26,7 +26,7 @@ public:
   virtual void Decode(ArithmeticDecoder& decoder, std::uint8_t* item) = 0;
 };
 
-/// A fresh decoder of `item` (one of the pointwise items, versions 1 and 2), or null.
+/// A fresh decoder of `item` (one of the pointwise items, version 2), or null.
 std::unique_ptr<ItemDecoder> MakeItemDecoder(const LAZItem& item);
 
 /// The byte `value` wrapped into 0..255, as the predictions of bytes do.
