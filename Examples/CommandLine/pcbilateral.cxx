@@ -4,7 +4,7 @@
 //   pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [--paper] [-R] [-t THREADS]
 //               [--remove-isolated] [--edge-aware]
 //
-// Formats by extension: .txt and .xyz (the authors' ASCII format), .las, .laz (read), .ply, .vtp.
+// Formats by extension: .txt and .xyz (the authors' ASCII format), .las, .laz, .ply, .vtp.
 // Errors print one line and exit with status 1; a damaged input file is an error, never a cloud.
 // Run with -h for the options.
 #include "AutomaticRule.h"
@@ -44,7 +44,7 @@ const char* const UsageHead =
   "\n"
   "Denoises a point cloud with the bilateral filter (Digne & de Franchis, IPOL 2017).\n"
   "INPUT and OUTPUT: .txt or .xyz (x y z [nx ny nz] [more columns]), .las (LiDAR),\n"
-  ".laz (compressed LiDAR, input only), .ply or .vtp. A text file is written as the\n"
+  ".laz (compressed LiDAR), .ply or .vtp. A text file is written as the\n"
   "text input was: the same columns in the same order, a header line only if it had\n"
   "one, spaces or tabs.\n"
   "\n"

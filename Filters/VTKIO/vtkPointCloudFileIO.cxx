@@ -226,7 +226,7 @@ std::string vtkPointCloudFileIO::EventMessage(const char* callData)
 
 const char* vtkPointCloudFileIO::GetSupportedExtensions()
 {
-  return ".txt, .xyz, .las, .laz (read), .ply or .vtp";
+  return ".txt, .xyz, .las, .laz, .ply or .vtp";
 }
 
 bool vtkPointCloudFileIO::IsSupported(const char* path)
@@ -255,15 +255,11 @@ vtkAlgorithm* vtkPointCloudFileIO::NewReader(const char* path)
 
 std::string vtkPointCloudFileIO::CheckFileName(const char* path, bool forWriting)
 {
+  (void)forWriting; // every extension read is written too (LAZ since it is compressed here)
   const FileType type = TypeOf(path);
   if (type == FileType::Unsupported)
   {
     return UnsupportedType(path);
-  }
-  if (forWriting && type == FileType::LAZ)
-  {
-    return std::string(path) + ": compressed LAS (LAZ) is not written: write .las (then "
-                               "compress it with laszip if needed)";
   }
   return std::string();
 }
@@ -280,6 +276,7 @@ vtkAlgorithm* vtkPointCloudFileIO::NewWriter(const char* path)
     case FileType::Text:
       return WithFileName(vtkPointCloudTextWriter::New(), path);
     case FileType::LAS:
+    case FileType::LAZ:
       return WithFileName(vtkLASPointCloudWriter::New(), path);
     case FileType::PLY:
     {
@@ -289,7 +286,6 @@ vtkAlgorithm* vtkPointCloudFileIO::NewWriter(const char* path)
     }
     case FileType::VTP:
       return WithFileName(vtkXMLPolyDataWriter::New(), path);
-    case FileType::LAZ:
     case FileType::Unsupported:
       break;
   }

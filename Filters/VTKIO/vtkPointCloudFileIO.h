@@ -4,7 +4,7 @@
  *
  * Used by pcbilateral, pcbilateral_picture and Python scripts. Extensions (any case):
  * .txt and .xyz (the authors' text format, vtkPointCloudTextReader/Writer), .las and .laz
- * (LASzip-compressed LAS, read only; vtkLASPointCloudReader/Writer),
+ * (LASzip-compressed LAS; vtkLASPointCloudReader/Writer),
  * .ply (vtkPLYReader/Writer, binary) and .vtp (vtkXMLPolyDataReader/Writer).
  *
  * Read() checks PLY and VTP files before VTK's readers see them, since those readers do not
@@ -49,8 +49,7 @@ public:
   vtkBooleanMacro(OrientedNormals, bool);
   ///@}
 
-  /// The extensions read and written, for messages: ".txt, .xyz, .las, .laz (read), .ply or
-  /// .vtp".
+  /// The extensions read and written, for messages: ".txt, .xyz, .las, .laz, .ply or .vtp".
   static const char* GetSupportedExtensions();
 
   /// Whether the path's extension is one of them.
@@ -59,7 +58,7 @@ public:
   /**
    * Whether a file of this name can be read (`forWriting` false) or written (true), judged by
    * its extension alone: an empty string, or one line naming the file and the problem (an
-   * unsupported extension; .laz for writing).
+   * unsupported extension).
    */
   static std::string CheckFileName(const char* path, bool forWriting);
 

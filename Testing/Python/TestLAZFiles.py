@@ -3,7 +3,8 @@
 Each LAZ file with an uncompressed twin in the LAS folder reads, with vtkLASPointCloudReader,
 to the twin's points and arrays, bit for bit; written back with vtkLASPointCloudWriter it gives
 the twin's point records byte for byte. pcbilateral filters a LAZ file (read by extension) to
-the same points as its twin. A LAZ file cut short gives one error line and no points.
+the same points as its twin, and writes .laz that reads back to the points it writes as .las.
+A LAZ file cut short gives one error line and no points.
 
     python3 TestLAZFiles.py PCBILATERAL LAS_FOLDER SCRATCH_FOLDER
 
@@ -88,6 +89,18 @@ def main():
         outputs.append(point_records(out) if run.returncode == 0 else b"")
     check(outputs[0] and outputs[0] == outputs[1],
           "pcbilateral filters autzen_trim.laz to the same point records as autzen_trim.las")
+    # Written as LAZ: it reads back to the points written as LAS.
+    out = os.path.join(scratch, "filtered.laz")
+    run = subprocess.run([pcbilateral, os.path.join(laz_folder, "autzen_trim.laz"), out, "-r",
+                          "6", "-n", "2", "-N", "1"], capture_output=True, text=True)
+    written, error = read(out)
+    las, _ = read(os.path.join(scratch, "filtered-autzen_trim.las.las"))
+    check(run.returncode == 0 and not error and open(out, "rb").read(4) == b"LASF"
+          and open(out, "rb").read()[104] == 0x83
+          and vtk_to_numpy(written.GetPoints().GetData()).tobytes()
+          == vtk_to_numpy(las.GetPoints().GetData()).tobytes(),
+          f"pcbilateral writes .laz (format 3, compressed) with the points of the .las output "
+          f"({os.path.getsize(out) if os.path.exists(out) else 0} bytes) {error}")
 
     # Damaged: cut in its last chunk, and its chunk table gone.
     data = open(os.path.join(laz_folder, "autzen_trim.laz"), "rb").read()

@@ -5,6 +5,7 @@
 #define pcbilateral_LAZPointContexts_h
 
 #include "LAZEntropyDecoder.h"
+#include "LAZEntropyEncoder.h"
 #include "LAZItemDecoders.h"
 
 #include <cstddef>
@@ -218,6 +219,56 @@ inline void DecodeRGBDifferences(ArithmeticDecoder& decoder,
   for (int c = 0; c < 3; ++c)
   {
     rgb[c] = out[c][0] | (out[c][1] << 8);
+  }
+}
+
+/// The mirror of DecodeRGBDifferences: codes the colour `rgb` after `last`.
+inline void EncodeRGBDifferences(ArithmeticEncoder& encoder,
+  RGBModels& models,
+  const std::uint32_t last[3],
+  const std::uint32_t rgb[3])
+{
+  auto byteOf = [](std::uint32_t value, int high) -> std::int32_t
+  { return static_cast<std::int32_t>(high ? (value >> 8) : (value & 0xFF)); };
+  std::uint32_t used = 0;
+  for (int c = 0; c < 3; ++c)
+  {
+    for (int high = 0; high < 2; ++high)
+    {
+      used |= byteOf(rgb[c], high) != byteOf(last[c], high) ? 1u << (2 * c + high) : 0u;
+    }
+  }
+  const bool grey = rgb[1] == rgb[0] && rgb[2] == rgb[0];
+  used |= grey ? 0u : 1u << 6;
+  encoder.EncodeSymbol(models.ByteUsed, used);
+  for (int high = 0; high < 2; ++high)
+  {
+    if (used & (1u << high))
+    {
+      encoder.EncodeSymbol(
+        models.Differences[high], FoldByte(byteOf(rgb[0], high) - byteOf(last[0], high)));
+    }
+  }
+  if (grey)
+  {
+    return;
+  }
+  for (int high = 0; high < 2; ++high)
+  {
+    const std::int32_t redStep = byteOf(rgb[0], high) - byteOf(last[0], high);
+    if (used & (1u << (2 + high)))
+    {
+      const std::int32_t predicted = ClampByte(redStep + byteOf(last[1], high));
+      encoder.EncodeSymbol(
+        models.Differences[2 + high], FoldByte(byteOf(rgb[1], high) - predicted));
+    }
+    const std::int32_t step = (redStep + (byteOf(rgb[1], high) - byteOf(last[1], high))) / 2;
+    if (used & (1u << (4 + high)))
+    {
+      const std::int32_t predicted = ClampByte(step + byteOf(last[2], high));
+      encoder.EncodeSymbol(
+        models.Differences[4 + high], FoldByte(byteOf(rgb[2], high) - predicted));
+    }
   }
 }
 
