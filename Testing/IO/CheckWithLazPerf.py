@@ -1,6 +1,6 @@
 """Every LAZ file of the sample folder decoded by laz-perf (an independent LAZ implementation,
 the npm package, run by Node.js) and by the formats library: the same point records, byte for
-byte. Then LAZ files we write (from each LAS sample of formats 0 to 3, and from each LAZ file)
+byte. Then LAZ files we write (from LAS samples of formats 0 to 3 and 6 to 8, and from each LAZ file)
 decode in laz-perf to the records they were given. Files laz-perf cannot read (the old pointwise compressor of LASzip 1.x) are said (ours
 does not read them either: IO.TestLAZFiles.compressor-1.2r0 checks its one-line error). Prints both decoders' times.
 
@@ -19,9 +19,9 @@ import sys
 
 # Files laz-perf is known not to read (LASzip 1.x's pointwise compressor, item version 1).
 NOT_FOR_LAZPERF = {"simple-laszip-compressor-version-1.2r0.laz"}
-# LAS samples written as LAZ (formats 0 to 3, with and without extra bytes).
+# LAS samples written as LAZ (formats 0 to 3 and 6 to 8, with and without extra bytes).
 WRITTEN_FROM_LAS = ["autzen_trim.las", "simple.las", "100-points.las", "extrabytes.las",
-                    "4_6_crop.las"]
+                    "4_6_crop.las", "test1_4.las", "autzen_trim_7.las"]
 
 
 def main():

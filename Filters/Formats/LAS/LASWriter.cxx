@@ -289,7 +289,12 @@ std::string WriteLAZ(const std::string& path,
   {
     problem = "a LAZ file of no points is not written: write .las";
   }
-  RecordsToWrite records = SortRecords(info);
+  // A COPC file's records (its octree) describe its chunks, which are not the ones written.
+  LASFileInfo kept = info;
+  auto isCOPC = [](const LASRecord& record) { return record.UserId == "copc"; };
+  kept.VLRs.erase(std::remove_if(kept.VLRs.begin(), kept.VLRs.end(), isCOPC), kept.VLRs.end());
+  kept.EVLRs.erase(std::remove_if(kept.EVLRs.begin(), kept.EVLRs.end(), isCOPC), kept.EVLRs.end());
+  RecordsToWrite records = SortRecords(kept);
   if (problem.empty() && !records.Extended.empty() && h.VersionMinor < 4)
   {
     problem = "a variable-length record longer than 65535 bytes needs LAS 1.4";

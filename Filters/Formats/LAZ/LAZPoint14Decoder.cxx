@@ -9,23 +9,8 @@ namespace pcbilateral
 namespace laz
 {
 
-namespace
-{
 using las::Load;
 using las::Store;
-
-enum LayerIndex
-{
-  ReturnsXYLayer,
-  ZLayer,
-  ClassificationLayer,
-  FlagsLayer,
-  IntensityLayer,
-  ScanAngleLayer,
-  UserDataLayer,
-  PointSourceLayer,
-  GPSTimeLayer
-};
 
 /**
  * The return map of formats 6 to 10 (4-bit r and n), reduced to six contexts, as in the LASzip
@@ -98,7 +83,6 @@ void StorePoint14(const Point14& p, std::uint8_t* item)
   Store<std::uint16_t>(item + 20, p.PointSource);
   Store<std::int64_t>(item + 22, p.GPSTime);
 }
-} // namespace
 
 /// What is predicted per scanner channel: the channel's last point and the models.
 struct Point14Context

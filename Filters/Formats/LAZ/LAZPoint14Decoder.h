@@ -44,6 +44,28 @@ struct Point14
   bool GPSTimeChanged = false;
 };
 
+/// The fields of a raw 30-byte record of formats 6 to 10, and back.
+Point14 ParsePoint14(const std::uint8_t* item);
+void StorePoint14(const Point14& point, std::uint8_t* item);
+/// The return map of formats 6 to 10, reduced to six contexts (the specification's table).
+unsigned ReturnMap6(unsigned n, unsigned r);
+/// The return level of formats 6 to 10: how far r is from n, at most 7.
+unsigned ReturnLevel8(unsigned n, unsigned r);
+
+/// The layers of point14, in the order of their byte counts in a chunk.
+enum Point14Layer
+{
+  ReturnsXYLayer,
+  ZLayer,
+  ClassificationLayer,
+  FlagsLayer,
+  IntensityLayer,
+  ScanAngleLayer,
+  UserDataLayer,
+  PointSourceLayer,
+  GPSTimeLayer
+};
+
 struct Point14Context;
 
 /// Decodes the point14 items of a layered chunk.

@@ -3,6 +3,7 @@
 #include "LASBinary.h"
 #include "LAZEntropyEncoder.h"
 #include "LAZItemEncoders.h"
+#include "LAZLayeredEncoder.h"
 
 #include <algorithm>
 #include <memory>
@@ -71,32 +72,51 @@ std::vector<std::uint8_t> EncodeChunkTable(const std::vector<std::vector<std::ui
 
 std::string LAZParametersFor(int pointFormat, std::size_t recordLength, LAZParameters& parameters)
 {
-  static const std::size_t standard[4] = { 20, 28, 26, 34 };
-  if (pointFormat < 0 || pointFormat > 3)
+  // The standard record of formats 0 to 3, then 6 to 8.
+  static const std::size_t standard[9] = { 20, 28, 26, 34, 0, 0, 30, 36, 38 };
+  if (pointFormat < 0 || pointFormat > 8 || standard[pointFormat] == 0)
   {
     return "LAZ files of point format " + std::to_string(pointFormat) +
-           " are not written (formats 0 to 3 are): write .las";
+           " (with waveforms) are not written (formats 0 to 3 and 6 to 8 are): write .las";
   }
+  const bool layered = pointFormat >= 6;
+  const std::uint16_t version = layered ? 3 : 2;
   parameters = LAZParameters();
-  parameters.Compressor = static_cast<std::uint16_t>(LAZCompressor::PointwiseChunked);
-  parameters.VersionMajor = 2;
-  parameters.VersionMinor = 2;
+  parameters.Compressor = static_cast<std::uint16_t>(
+    layered ? LAZCompressor::LayeredChunked : LAZCompressor::PointwiseChunked);
+  parameters.VersionMajor = layered ? 3 : 2;
+  parameters.VersionMinor = layered ? 4 : 2;
   parameters.ChunkSize = LAZWrittenChunkSize;
   auto add = [&](LAZItemType type, std::size_t size) {
-    parameters.Items.push_back({ static_cast<std::uint16_t>(type), std::uint16_t(size), 2 });
+    parameters.Items.push_back({ static_cast<std::uint16_t>(type), std::uint16_t(size), version });
   };
-  add(LAZItemType::Point10, 20);
-  if (pointFormat == 1 || pointFormat == 3)
+  if (layered)
   {
-    add(LAZItemType::GPSTime11, 8);
+    add(LAZItemType::Point14, 30);
+    if (pointFormat == 7)
+    {
+      add(LAZItemType::RGB14, 6);
+    }
+    if (pointFormat == 8)
+    {
+      add(LAZItemType::RGBNIR14, 8);
+    }
   }
-  if (pointFormat >= 2)
+  else
   {
-    add(LAZItemType::RGB12, 6);
+    add(LAZItemType::Point10, 20);
+    if (pointFormat == 1 || pointFormat == 3)
+    {
+      add(LAZItemType::GPSTime11, 8);
+    }
+    if (pointFormat >= 2)
+    {
+      add(LAZItemType::RGB12, 6);
+    }
   }
   if (recordLength > standard[pointFormat])
   {
-    add(LAZItemType::Byte, recordLength - standard[pointFormat]);
+    add(layered ? LAZItemType::Byte14 : LAZItemType::Byte, recordLength - standard[pointFormat]);
   }
   return std::string();
 }
@@ -137,8 +157,12 @@ std::vector<std::uint8_t> CompressLAZPoints(const std::uint8_t* records,
   for (std::int64_t c = 0; c < static_cast<std::int64_t>(chunkCount); ++c)
   {
     const std::size_t first = static_cast<std::size_t>(c) * chunkSize;
-    chunks[static_cast<std::size_t>(c)] = CompressChunk(
-      records + first * recordLength, std::min(chunkSize, count - first), recordLength, parameters);
+    const std::uint8_t* chunk = records + first * recordLength;
+    const std::size_t points = std::min(chunkSize, count - first);
+    chunks[static_cast<std::size_t>(c)] =
+      parameters.Compressor == static_cast<std::uint16_t>(LAZCompressor::LayeredChunked)
+        ? laz::CompressLayeredChunk(chunk, points, recordLength, parameters)
+        : CompressChunk(chunk, points, recordLength, parameters);
   }
   std::size_t total = 8;
   for (const std::vector<std::uint8_t>& chunk : chunks)

@@ -1,5 +1,6 @@
-// Compressing LAS point records into LAZ (LASzip's chunked compressor, items version 2, point
-// formats 0 to 3), for WriteLAZ (LASWriter.h). Plain C++17, no VTK types.
+// Compressing LAS point records into LAZ (LASzip's chunked compressor, items version 2, for
+// point formats 0 to 3; its layered one, items version 3, for 6 to 8), for WriteLAZ
+// (LASWriter.h). Plain C++17, no VTK types.
 #ifndef pcbilateral_LAZWriter_h
 #define pcbilateral_LAZWriter_h
 
@@ -18,8 +19,9 @@ constexpr std::uint32_t LAZWrittenChunkSize = 50000;
 
 /**
  * The LASzip record for records of `pointFormat` of `recordLength` bytes: the chunked
- * compressor, the items of the format (then the extra bytes) in version 2. Returns an empty
- * string, or why such records are not written as LAZ (formats 4 to 10).
+ * compressor and the items of the format (then the extra bytes) in version 2 for formats 0 to
+ * 3, the layered compressor and items version 3 for 6 to 8. Returns an empty string, or why
+ * such records are not written as LAZ (the waveform formats 4, 5, 9 and 10).
  */
 std::string LAZParametersFor(int pointFormat, std::size_t recordLength, LAZParameters& parameters);
 
