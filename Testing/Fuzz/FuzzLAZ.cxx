@@ -68,13 +68,16 @@ void CheckPart(const std::vector<std::uint8_t>& bytes,
 }
 
 /// Written as LAZ and read back: the same records (formats 0 to 3; others are refused).
-void CheckWrittenBack(const pcbilateral::LASFileInfo& info, const std::vector<std::uint8_t>& records)
+void CheckWrittenBack(const pcbilateral::LASFileInfo& info,
+  const std::vector<std::uint8_t>& records)
 {
   static const std::string path = FuzzScratchPath("FuzzLAZ", ".laz");
   const Columns columns(info, records.data());
   const std::vector<const void*> pointers(columns.Pointers.begin(), columns.Pointers.end());
-  const std::string error = pcbilateral::WriteLAZ(path, info,
-    static_cast<std::size_t>(info.Header.NumberOfPoints), columns.Positions.data(),
+  const std::string error = pcbilateral::WriteLAZ(path,
+    info,
+    static_cast<std::size_t>(info.Header.NumberOfPoints),
+    columns.Positions.data(),
     pointers.data());
   std::error_code ignored;
   if (!error.empty())

@@ -11,9 +11,7 @@ namespace
 using las::Load;
 using las::Str;
 
-/// More points than this per compressed byte cannot be real (even identical points take more
-/// than a 200th of a byte each): a damaged count is refused before its memory is asked for.
-constexpr std::uint64_t MostPointsPerByte = 4096;
+constexpr std::uint64_t MostPointsPerByte = LAZMostPointsPerByte;
 
 /// The items a point format is made of, in order; the extra bytes may follow as one byte item.
 std::vector<LAZItemType> ItemsOfPointFormat(int pointFormat)

@@ -59,6 +59,10 @@ struct LAZParameters
 
 constexpr std::uint32_t VariableChunkSize = 0xFFFFFFFFu;
 
+/// More points than this per compressed byte cannot be real (a million identical points take
+/// 12 KB, 84 points a byte): a damaged count is refused before its memory is asked for.
+constexpr std::uint64_t LAZMostPointsPerByte = 1024;
+
 /// One chunk: where its bytes start in the file, how many there are, how many points.
 struct LAZChunk
 {

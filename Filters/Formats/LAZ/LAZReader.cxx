@@ -197,6 +197,13 @@ std::string UncompressedLASRecords(const std::uint8_t* data,
   }
   decompressed.clear();
   std::string problem;
+  const std::uint64_t compressedBytes = size - h.OffsetToPointData;
+  if (h.NumberOfPoints > LAZMostPointsPerByte * compressedBytes + 1)
+  {
+    return sourceName + ": truncated or damaged: " + Str(h.NumberOfPoints) +
+           " points announced, impossible in " + Str(compressedBytes) +
+           " bytes of compressed points";
+  }
   try
   {
     decompressed.resize(h.NumberOfPoints * h.RecordLength);
