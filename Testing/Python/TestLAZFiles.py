@@ -24,6 +24,7 @@ TWINS = [
     ("laszip-generated.laz", "simple.las"),
     ("liblas-generated.laz", "simple.las"),
     ("laszip-generated_with2bytespadding.laz", "simple.las"),
+    ("simple-laszip-compressor-version-1.2r0.laz", "simple.las"),
 ]
 
 

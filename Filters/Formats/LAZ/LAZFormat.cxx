@@ -66,8 +66,8 @@ bool ItemVersionSupported(const LAZItem& item)
     case LAZItemType::GPSTime11:
     case LAZItemType::RGB12:
     case LAZItemType::Byte:
-      // Version 1 (LASzip 1.x, 2011 and before) is not read: a one-line error names it.
-      return item.Version == 2;
+      // Version 1 (LASzip 1.x, 2011 and before) has no extra-bytes item here.
+      return item.Version == 2 || (item.Version == 1 && item.Type != 0);
     case LAZItemType::Point14:
     case LAZItemType::RGB14:
     case LAZItemType::RGBNIR14:

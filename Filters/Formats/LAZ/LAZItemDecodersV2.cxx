@@ -207,8 +207,14 @@ private:
 };
 } // namespace
 
+std::unique_ptr<ItemDecoder> MakeItemDecoderV1(const LAZItem& item);
+
 std::unique_ptr<ItemDecoder> MakeItemDecoder(const LAZItem& item)
 {
+  if (item.Version == 1)
+  {
+    return MakeItemDecoderV1(item);
+  }
   if (item.Version != 2)
   {
     return nullptr;
