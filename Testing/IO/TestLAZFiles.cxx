@@ -381,6 +381,24 @@ int main(int argc, char* argv[])
           RoundTrip(LAZPath("1.2-with-color.copc.laz"), "copc_written.laz");
           RoundTrip(LAZPath("las_with_several_extra_byte_bloc.laz"), "format8_written.laz");
         } },
+      { "write-threads",
+        []
+        {
+          // The same file whatever the number of threads compressing its chunks.
+          const std::string path = LASFolder + "/autzen_trim_7.las";
+#ifdef _OPENMP
+          const int threads = omp_get_max_threads();
+          omp_set_num_threads(1);
+#endif
+          RoundTrip(path, "one_thread.laz");
+#ifdef _OPENMP
+          omp_set_num_threads(threads > 2 ? threads : 3);
+#endif
+          RoundTrip(path, "threads.laz");
+          PCB_CHECK(pcbilateral_testing::FileContents("one_thread.laz") ==
+                      pcbilateral_testing::FileContents("threads.laz"),
+            "one thread and several wrote different files");
+        } },
       { "write-las-formats",
         []
         {
