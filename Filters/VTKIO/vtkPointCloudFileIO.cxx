@@ -2,6 +2,8 @@
 
 #include "vtkLASPointCloudReader.h"
 #include "vtkLASPointCloudWriter.h"
+#include "vtkPCDPointCloudReader.h"
+#include "vtkPCDPointCloudWriter.h"
 #include "vtkPointCloudTextReader.h"
 #include "vtkPointCloudTextWriter.h"
 
@@ -56,6 +58,7 @@ enum class FileType
   Text,
   LAS,
   LAZ,
+  PCD,
   PLY,
   VTP
 };
@@ -66,6 +69,7 @@ FileType TypeOf(const char* path)
     { ".xyz", FileType::Text },
     { ".las", FileType::LAS },
     { ".laz", FileType::LAZ },
+    { ".pcd", FileType::PCD },
     { ".ply", FileType::PLY },
     { ".vtp", FileType::VTP } };
   const std::string extension = Extension(path);
@@ -99,21 +103,27 @@ struct MessageCatcher
 {
   std::string Error;
   std::string Path;
+  std::vector<std::string> Warnings;
   vtkNew<vtkCallbackCommand> Command;
 
   void Observe(vtkObject* object)
   {
     this->Command->SetClientData(this);
     this->Command->SetCallback(
-      [](vtkObject*, unsigned long, void* clientData, void* callData)
+      [](vtkObject*, unsigned long event, void* clientData, void* callData)
       {
         auto* self = static_cast<MessageCatcher*>(clientData);
-        if (self->Error.empty() && callData)
+        if (event == vtkCommand::WarningEvent && callData)
+        {
+          self->Warnings.push_back(self->Clean(static_cast<const char*>(callData)));
+        }
+        else if (self->Error.empty() && callData)
         {
           self->Error = self->Clean(static_cast<const char*>(callData));
         }
       });
     object->AddObserver(vtkCommand::ErrorEvent, this->Command);
+    object->AddObserver(vtkCommand::WarningEvent, this->Command);
   }
 
   /// The event's message, starting with the path (once).
@@ -226,7 +236,7 @@ std::string vtkPointCloudFileIO::EventMessage(const char* callData)
 
 const char* vtkPointCloudFileIO::GetSupportedExtensions()
 {
-  return ".txt, .xyz, .las, .laz, .ply or .vtp";
+  return ".txt, .xyz, .las, .laz, .pcd, .ply or .vtp";
 }
 
 bool vtkPointCloudFileIO::IsSupported(const char* path)
@@ -243,6 +253,8 @@ vtkAlgorithm* vtkPointCloudFileIO::NewReader(const char* path)
     case FileType::LAS:
     case FileType::LAZ:
       return WithFileName(vtkLASPointCloudReader::New(), path);
+    case FileType::PCD:
+      return WithFileName(vtkPCDPointCloudReader::New(), path);
     case FileType::PLY:
       return WithFileName(vtkPLYReader::New(), path);
     case FileType::VTP:
@@ -278,6 +290,8 @@ vtkAlgorithm* vtkPointCloudFileIO::NewWriter(const char* path)
     case FileType::LAS:
     case FileType::LAZ:
       return WithFileName(vtkLASPointCloudWriter::New(), path);
+    case FileType::PCD:
+      return WithFileName(vtkPCDPointCloudWriter::New(), path);
     case FileType::PLY:
     {
       auto* writer = WithFileName(vtkPLYWriter::New(), path);
@@ -334,6 +348,13 @@ bool vtkPointCloudFileIO::Read(const char* path, vtkPolyData* output)
   {
     text->SetHasNormals(this->OrientedNormals);
   }
+  auto* pcd = vtkPCDPointCloudReader::SafeDownCast(reader);
+  if (pcd)
+  {
+    pcd->SetKeepNaNPoints(this->KeepNaNPoints);
+  }
+  this->NumberOfDroppedPoints = 0;
+  this->Warnings.clear();
   MessageCatcher messages;
   messages.Path = path;
   messages.Observe(reader);
@@ -348,6 +369,7 @@ bool vtkPointCloudFileIO::Read(const char* path, vtkPolyData* output)
   {
     return false;
   }
+  this->NumberOfDroppedPoints = pcd ? pcd->GetNumberOfDroppedPoints() : 0;
   output->ShallowCopy(cloud);
   return true;
 }
@@ -361,6 +383,7 @@ bool vtkPointCloudFileIO::Write(vtkPolyData* data, const char* path)
     this->ErrorMessage = UnsupportedType(path);
     return false;
   }
+  this->Warnings.clear();
   MessageCatcher messages;
   messages.Path = name;
   messages.Observe(writer);
@@ -380,11 +403,12 @@ bool vtkPointCloudFileIO::Write(vtkPolyData* data, const char* path)
     this->ErrorMessage = WriteReplacing(writer, name, messages);
     return this->ErrorMessage.empty();
   }
-  // The text and LAS writers replace the file themselves (pcbilateral::ReplacingFile).
+  // The text, LAS and PCD writers replace the file themselves (pcbilateral::ReplacingFile).
   if (!RunWriter(writer) && messages.Error.empty())
   {
     messages.Error = name + ": cannot be written";
   }
+  this->Warnings = messages.Warnings;
   this->ErrorMessage = messages.Error;
   return this->ErrorMessage.empty();
 }
@@ -393,4 +417,5 @@ void vtkPointCloudFileIO::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "OrientedNormals: " << this->OrientedNormals << "\n";
+  os << indent << "KeepNaNPoints: " << this->KeepNaNPoints << "\n";
 }
