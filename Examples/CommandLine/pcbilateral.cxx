@@ -5,9 +5,9 @@
 //               [--remove-isolated] [--edge-aware] [--keep-nan]
 //               [--classes LIST [--class-array NAME]]
 //
-// Formats by extension: .txt and .xyz (the authors' ASCII format), .las, .pcd, .ply, .vtp. Errors
-// print one line and exit with status 1; a damaged input file is an error, never a cloud. Run with
-// -h for the options.
+// Formats by extension: .txt and .xyz (the authors' ASCII format), .las, .laz, .pcd, .ply,
+// .vtp. Errors print one line and exit with status 1; a damaged input file is an error, never
+// a cloud. Run with -h for the options.
 #include "AutomaticRule.h"
 #include "BilateralFilter.h"
 #include "EdgeAwareRule.h"
@@ -45,9 +45,10 @@ const char* const UsageHead =
   "                   [--classes LIST [--class-array NAME]]\n"
   "\n"
   "Denoises a point cloud with the bilateral filter (Digne & de Franchis, IPOL 2017).\n"
-  "INPUT and OUTPUT: .txt or .xyz (x y z [nx ny nz] [more columns]), .las (LiDAR,\n"
-  "uncompressed), .pcd (PCL's), .ply or .vtp. A text file is written as the text input was: the\n"
-  "same columns in the same order, a header line only if it had one, spaces or tabs.\n"
+  "INPUT and OUTPUT: .txt or .xyz (x y z [nx ny nz] [more columns]), .las (LiDAR),\n"
+  ".laz (compressed LiDAR), .pcd (PCL's), .ply or .vtp. A text file is written as the\n"
+  "text input was: the same columns in the same order, a header line only if it had\n"
+  "one, spaces or tabs.\n"
   "\n"
   "  -r R               neighbourhood radius\n"
   "  -n RN              normal radius, the tolerance to the tangent plane\n"

@@ -14,6 +14,8 @@
 #include "vtkPoints.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -246,7 +248,15 @@ void vtkLASPointCloudWriter::WriteData()
                     << ", which are not written");
   }
   const double none[3] = { 0, 0, 0 };
-  this->ErrorMessage = pcbilateral::WriteLAS(this->FileName,
+  // A name ending in .laz (any case) is written compressed.
+  const std::string name = this->FileName ? this->FileName : "";
+  const bool compressed =
+    name.size() >= 4 &&
+    std::equal(name.end() - 4,
+      name.end(),
+      ".laz",
+      [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
+  this->ErrorMessage = (compressed ? pcbilateral::WriteLAZ : pcbilateral::WriteLAS)(name,
     info,
     static_cast<std::size_t>(count),
     positions ? static_cast<const double*>(positions->GetVoidPointer(0)) : none,

@@ -264,7 +264,7 @@ std::string vtkPointCloudFileIO::EventMessage(const char* callData)
 
 const char* vtkPointCloudFileIO::GetSupportedExtensions()
 {
-  return ".txt, .xyz, .las, .pcd, .ply or .vtp";
+  return ".txt, .xyz, .las, .laz, .pcd, .ply or .vtp";
 }
 
 bool vtkPointCloudFileIO::IsSupported(const char* path)
@@ -279,7 +279,7 @@ vtkAlgorithm* vtkPointCloudFileIO::NewReader(const char* path)
     case FileType::Text:
       return WithFileName(vtkPointCloudTextReader::New(), path);
     case FileType::LAS:
-    case FileType::LAZ: // the reader explains that it must be decompressed first
+    case FileType::LAZ:
       return WithFileName(vtkLASPointCloudReader::New(), path);
     case FileType::PCD:
       return WithFileName(vtkPCDPointCloudReader::New(), path);
@@ -295,15 +295,11 @@ vtkAlgorithm* vtkPointCloudFileIO::NewReader(const char* path)
 
 std::string vtkPointCloudFileIO::CheckFileName(const char* path, bool forWriting)
 {
+  (void)forWriting; // every extension read is written too (LAZ since it is compressed here)
   const FileType type = TypeOf(path);
   if (type == FileType::Unsupported)
   {
     return UnsupportedType(path);
-  }
-  if (forWriting && type == FileType::LAZ)
-  {
-    return std::string(path) + ": compressed LAS (LAZ) is not written: write .las (then "
-                               "compress it with laszip if needed)";
   }
   return std::string();
 }
@@ -320,6 +316,7 @@ vtkAlgorithm* vtkPointCloudFileIO::NewWriter(const char* path)
     case FileType::Text:
       return WithFileName(vtkPointCloudTextWriter::New(), path);
     case FileType::LAS:
+    case FileType::LAZ:
       return WithFileName(vtkLASPointCloudWriter::New(), path);
     case FileType::PCD:
       return WithFileName(vtkPCDPointCloudWriter::New(), path);
@@ -331,7 +328,6 @@ vtkAlgorithm* vtkPointCloudFileIO::NewWriter(const char* path)
     }
     case FileType::VTP:
       return WithFileName(vtkXMLPolyDataWriter::New(), path);
-    case FileType::LAZ:
     case FileType::Unsupported:
       break;
   }

@@ -3,9 +3,9 @@
  * @brief   the one place that picks a reader or a writer by a file's extension
  *
  * Used by pcbilateral, pcbilateral_picture and Python scripts. Extensions (any case):
- * .txt and .xyz (the authors' text format, vtkPointCloudTextReader/Writer), .las (and .laz,
- * to say that compressed files must be decompressed first; vtkLASPointCloudReader/Writer),
- * .pcd (PCL's format, vtkPCDPointCloudReader/Writer), .ply (vtkPLYReader/Writer, binary) and .vtp
+ * .txt and .xyz (the authors' text format, vtkPointCloudTextReader/Writer), .las and .laz
+ * (LASzip-compressed LAS; vtkLASPointCloudReader/Writer), .pcd (PCL's format,
+ * vtkPCDPointCloudReader/Writer), .ply (vtkPLYReader/Writer, binary) and .vtp
  * (vtkXMLPolyDataReader/Writer).
  *
  * Read() checks PLY and VTP files before VTK's readers see them, since those readers do not
@@ -68,16 +68,17 @@ public:
   int GetNumberOfWarnings() const { return static_cast<int>(this->Warnings.size()); }
   const char* GetWarning(int index) const { return this->Warnings.at(index).c_str(); }
 
-  /// The extensions read and written, for messages: ".txt, .xyz, .las, .pcd, .ply or .vtp".
+  /// The extensions read and written, for messages: ".txt, .xyz, .las, .laz, .pcd, .ply or
+  /// .vtp".
   static const char* GetSupportedExtensions();
 
-  /// Whether the path's extension is one of them (.laz counts: the reader explains it).
+  /// Whether the path's extension is one of them.
   static bool IsSupported(const char* path);
 
   /**
    * Whether a file of this name can be read (`forWriting` false) or written (true), judged by
    * its extension alone: an empty string, or one line naming the file and the problem (an
-   * unsupported extension; .laz for writing).
+   * unsupported extension).
    */
   static std::string CheckFileName(const char* path, bool forWriting);
 
