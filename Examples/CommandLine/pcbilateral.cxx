@@ -4,6 +4,7 @@
 //   pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [--paper] [-R] [-t THREADS]
 //               [--remove-isolated] [--edge-aware] [--keep-nan]
 //               [--classes LIST [--class-array NAME]]
+//               [--copc-level N] [--copc-bounds xmin,xmax,ymin,ymax,zmin,zmax]
 //
 // Formats by extension: .txt and .xyz (the authors' ASCII format), .las, .laz, .pcd, .ply,
 // .vtp. Errors print one line and exit with status 1; a damaged input file is an error, never
@@ -43,6 +44,7 @@ const char* const UsageHead =
   "usage: pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [--paper] [-R] [-t THREADS]\n"
   "                   [--remove-isolated] [--edge-aware] [--keep-nan]\n"
   "                   [--classes LIST [--class-array NAME]]\n"
+  "                   [--copc-level N] [--copc-bounds xmin,xmax,ymin,ymax,zmin,zmax]\n"
   "\n"
   "Denoises a point cloud with the bilateral filter (Digne & de Franchis, IPOL 2017).\n"
   "INPUT and OUTPUT: .txt or .xyz (x y z [nx ny nz] [more columns]), .las (LiDAR),\n"
@@ -75,6 +77,10 @@ const char* const UsageTail =
   "  --keep-nan         PCD input: keep the points without coordinates (NaN) of an\n"
   "                     organised frame in place, never as neighbours, so that a .pcd\n"
   "                     output keeps the frame's WIDTH and HEIGHT (default: left out)\n"
+  "  --copc-level N     COPC input: read only the octree levels 0 to N (a level of detail;\n"
+  "                     default -1: every point)\n"
+  "  --copc-bounds B    COPC input: read only the points inside the box B =\n"
+  "                     xmin,xmax,ymin,ymax,zmin,zmax (the file's coordinates)\n"
   "  -p                 accepted for compatibility and ignored: the filter always runs in "
   "parallel\n"
   "  -h, --help         this text\n";
@@ -216,7 +222,39 @@ struct Options
   std::vector<long long> Classes;
   std::string ClassArray = "Classification";
   bool KeepNaNPoints = false;
+  int COPCLevel = -1;
+  bool COPCUseBounds = false;
+  double COPCBounds[6] = { 0, 0, 0, 0, 0, 0 };
 };
+
+/// --copc-level N (N >= -1) and --copc-bounds xmin,xmax,ymin,ymax,zmin,zmax.
+void ParseCOPCOption(const std::string& option, const char* text, Options& options)
+{
+  if (option == "--copc-level")
+  {
+    options.COPCLevel = ParseCount("--copc-level", text);
+    if (options.COPCLevel < -1)
+    {
+      Fail(std::string("--copc-level: '") + text + "' is not a level (0 or more, -1: all)");
+    }
+    return;
+  }
+  const char* at = text;
+  for (int i = 0; i < 6; ++i)
+  {
+    char* end = nullptr;
+    options.COPCBounds[i] = std::strtod(at, &end);
+    const bool last = i == 5;
+    if (end == at || *end != (last ? '\0' : ',') || !std::isfinite(options.COPCBounds[i]) ||
+        (i % 2 == 1 && options.COPCBounds[i] < options.COPCBounds[i - 1]))
+    {
+      Fail(std::string("--copc-bounds: '") + text +
+           "' is not six numbers xmin,xmax,ymin,ymax,zmin,zmax with each min <= max");
+    }
+    at = end + 1;
+  }
+  options.COPCUseBounds = true;
+}
 
 /// --classes LIST: integers separated by commas.
 std::vector<long long> ParseClasses(const char* text)
@@ -308,6 +346,10 @@ bool ParseOption(int argc, char* argv[], int& i, Options& options)
   {
     options.KeepNaNPoints = true;
   }
+  else if (argument == "--copc-level" || argument == "--copc-bounds")
+  {
+    ParseCOPCOption(argument, value(), options);
+  }
   else if (argument.size() > 1 && argument[0] == '-')
   {
     Fail("unknown option '" + argument + "' (see pcbilateral -h)");
@@ -365,6 +407,10 @@ void ReadInput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData* 
   if (!files->Read(options.Input.c_str(), input))
   {
     Fail(files->GetErrorMessage());
+  }
+  for (int w = 0; w < files->GetNumberOfWarnings(); ++w)
+  {
+    std::fprintf(stderr, "pcbilateral: warning: %s\n", files->GetWarning(w));
   }
   if (input->GetNumberOfPoints() == 0)
   {
@@ -536,6 +582,9 @@ int main(int argc, char* argv[])
   vtkNew<vtkPointCloudFileIO> files;
   files->SetOrientedNormals(options.OrientedNormals);
   files->SetKeepNaNPoints(options.KeepNaNPoints);
+  files->SetCOPCMaxLevel(options.COPCLevel);
+  files->SetCOPCUseBounds(options.COPCUseBounds);
+  files->SetCOPCBounds(options.COPCBounds);
   vtkNew<vtkPolyData> input;
   ReadInput(files, options, input);
 

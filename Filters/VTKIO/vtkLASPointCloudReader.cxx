@@ -1,5 +1,6 @@
 #include "vtkLASPointCloudReader.h"
 
+#include "COPC.h"
 #include "LASHeader.h"
 #include "LASReader.h"
 #include "LAZReader.h"
@@ -77,14 +78,12 @@ int vtkLASPointCloudReader::RequestData(vtkInformation*,
     this->ErrorMessage =
       pcbilateral::ParseLASHeader(file.Data(), file.Size(), this->FileName, info, true);
   }
-  // A LAZ file's records are decompressed first (in parallel, by chunk); a LAS file's are read
-  // where they lie.
   std::vector<std::uint8_t> decompressed;
   const std::uint8_t* records = nullptr;
+  std::uint64_t read = 0;
   if (this->ErrorMessage.empty())
   {
-    this->ErrorMessage = pcbilateral::UncompressedLASRecords(
-      file.Data(), file.Size(), info, this->FileName, decompressed, records);
+    this->ErrorMessage = this->UncompressedRecords(file, info, decompressed, records, read);
   }
   if (!this->ErrorMessage.empty())
   {
@@ -93,7 +92,7 @@ int vtkLASPointCloudReader::RequestData(vtkInformation*,
     return 1;
   }
 
-  const auto count = static_cast<vtkIdType>(info.Header.NumberOfPoints);
+  const auto count = static_cast<vtkIdType>(read);
   vtkNew<vtkDoubleArray> positions;
   positions->SetNumberOfComponents(3);
   positions->SetNumberOfTuples(count);
@@ -129,8 +128,44 @@ int vtkLASPointCloudReader::RequestData(vtkInformation*,
   return 1;
 }
 
+std::string vtkLASPointCloudReader::UncompressedRecords(const pcbilateral::LASFileBytes& file,
+  const pcbilateral::LASFileInfo& info,
+  std::vector<std::uint8_t>& decompressed,
+  const std::uint8_t*& records,
+  std::uint64_t& count)
+{
+  const bool partAsked = this->COPCMaxLevel >= 0 || this->COPCUseBounds;
+  if (partAsked && pcbilateral::IsCOPC(info))
+  {
+    pcbilateral::COPCQuery query;
+    query.MaxLevel = this->COPCMaxLevel;
+    query.UseBounds = this->COPCUseBounds;
+    std::copy(this->COPCBounds, this->COPCBounds + 6, query.Bounds);
+    const std::string problem = pcbilateral::ReadCOPCPoints(
+      file.Data(), file.Size(), info, this->FileName, query, decompressed, count);
+    records = decompressed.data();
+    return problem;
+  }
+  if (partAsked)
+  {
+    vtkWarningMacro(<< this->FileName
+                    << ": not a COPC file: the COPC level and bounds apply to COPC files only; "
+                       "every point is read");
+  }
+  // A LAZ file's records are decompressed first (in parallel, by chunk); a LAS file's are read
+  // where they lie.
+  count = info.Header.NumberOfPoints;
+  return pcbilateral::UncompressedLASRecords(
+    file.Data(), file.Size(), info, this->FileName, decompressed, records);
+}
+
 void vtkLASPointCloudReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "COPCMaxLevel: " << this->COPCMaxLevel << "\n";
+  os << indent << "COPCUseBounds: " << this->COPCUseBounds << "\n";
+  os << indent << "COPCBounds: " << this->COPCBounds[0] << " " << this->COPCBounds[1] << " "
+     << this->COPCBounds[2] << " " << this->COPCBounds[3] << " " << this->COPCBounds[4] << " "
+     << this->COPCBounds[5] << "\n";
 }

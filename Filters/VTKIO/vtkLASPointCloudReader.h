@@ -25,10 +25,20 @@
  * vtkLASPointCloudWriter writes a file like the one read.
  *
  * A damaged or unsupported file (truncated, counts or offsets beyond the file, not LAS, a
- * point format beyond 10, a LAZ variant not supported such as waveforms, a damaged chunk) gives one error naming the file and the problem
- * (also from GetErrorMessage()) and an empty output. Nothing is read outside the file.
+ * point format beyond 10, a LAZ variant not supported such as waveforms, a damaged chunk) gives one
+ * error naming the file and the problem (also from GetErrorMessage()) and an empty output. Nothing
+ * is read outside the file.
  *
  * Decoding is parallel (OpenMP) over a memory-mapped file.
+ *
+ * COPC files (LAZ whose chunks are the nodes of an octree) can be read in part: COPCMaxLevel
+ * (default -1, every level) keeps the nodes of that level and above (a level of detail), and
+ * with COPCUseBounds (default off) only the points inside COPCBounds (xmin, xmax, ymin, ymax,
+ * zmin, zmax, real coordinates, faces included) are read. Only the chosen nodes' chunks are
+ * decompressed; the points come in file order. The octree is checked first (COPC.h): a damaged
+ * hierarchy is one error and an empty output. With the defaults a COPC file is read as LAZ and
+ * its octree is not looked at. Set on a file that is not COPC, these options give one warning
+ * (they apply to COPC files only) and every point is read.
  *
  * @sa
  * vtkLASPointCloudWriter vtkPointCloudFileIO
@@ -39,7 +49,15 @@
 #include "vtkIOPointCloudBilateralModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
-#include <string> // For the error message
+#include <cstdint> // For the records
+#include <string>  // For the error message
+#include <vector>  // For the COPC records
+
+namespace pcbilateral
+{
+class LASFileBytes;
+struct LASFileInfo;
+}
 
 class VTKIOPOINTCLOUDBILATERAL_EXPORT vtkLASPointCloudReader : public vtkPolyDataAlgorithm
 {
@@ -54,6 +72,25 @@ public:
   vtkGetStringMacro(FileName);
   ///@}
 
+  ///@{
+  /// COPC files only: the deepest octree level read; -1 (the default) for every level.
+  vtkSetClampMacro(COPCMaxLevel, int, -1, VTK_INT_MAX);
+  vtkGetMacro(COPCMaxLevel, int);
+  ///@}
+
+  ///@{
+  /// COPC files only: whether only the points inside COPCBounds are read (default off).
+  vtkSetMacro(COPCUseBounds, bool);
+  vtkGetMacro(COPCUseBounds, bool);
+  vtkBooleanMacro(COPCUseBounds, bool);
+  ///@}
+
+  ///@{
+  /// COPC files only: the box read with COPCUseBounds: xmin, xmax, ymin, ymax, zmin, zmax.
+  vtkSetVector6Macro(COPCBounds, double);
+  vtkGetVector6Macro(COPCBounds, double);
+  ///@}
+
   /// Why the last read failed; empty after a successful read.
   const char* GetErrorMessage() const { return this->ErrorMessage.c_str(); }
 
@@ -63,8 +100,19 @@ protected:
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  /// The point records to decode (all, or the COPC nodes and box asked for) and their count;
+  /// returns an error message or an empty string.
+  std::string UncompressedRecords(const pcbilateral::LASFileBytes& file,
+    const pcbilateral::LASFileInfo& info,
+    std::vector<std::uint8_t>& decompressed,
+    const std::uint8_t*& records,
+    std::uint64_t& count);
+
   char* FileName = nullptr;
   std::string ErrorMessage;
+  int COPCMaxLevel = -1;
+  bool COPCUseBounds = false;
+  double COPCBounds[6] = { 0, 0, 0, 0, 0, 0 };
 
 private:
   vtkLASPointCloudReader(const vtkLASPointCloudReader&) = delete;

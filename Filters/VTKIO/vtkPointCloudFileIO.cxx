@@ -383,6 +383,19 @@ bool vtkPointCloudFileIO::Read(const char* path, vtkPolyData* output)
   }
   this->NumberOfDroppedPoints = 0;
   this->Warnings.clear();
+  if (auto* las = vtkLASPointCloudReader::SafeDownCast(reader))
+  {
+    las->SetCOPCMaxLevel(this->COPCMaxLevel);
+    las->SetCOPCUseBounds(this->COPCUseBounds);
+    las->SetCOPCBounds(this->COPCBounds);
+  }
+  else if (this->COPCMaxLevel >= 0 || this->COPCUseBounds)
+  {
+    this->Warnings.push_back(
+      std::string(path) +
+      ": not a COPC file: the COPC level and bounds apply to COPC files only; every point is "
+      "read");
+  }
   MessageCatcher messages;
   messages.Path = path;
   messages.Observe(reader);
@@ -398,6 +411,7 @@ bool vtkPointCloudFileIO::Read(const char* path, vtkPolyData* output)
     return false;
   }
   this->NumberOfDroppedPoints = pcd ? pcd->GetNumberOfDroppedPoints() : 0;
+  this->Warnings.insert(this->Warnings.end(), messages.Warnings.begin(), messages.Warnings.end());
   output->ShallowCopy(cloud);
   return true;
 }
@@ -455,4 +469,6 @@ void vtkPointCloudFileIO::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "OrientedNormals: " << this->OrientedNormals << "\n";
   os << indent << "KeepNaNPoints: " << this->KeepNaNPoints << "\n";
+  os << indent << "COPCMaxLevel: " << this->COPCMaxLevel << "\n";
+  os << indent << "COPCUseBounds: " << this->COPCUseBounds << "\n";
 }

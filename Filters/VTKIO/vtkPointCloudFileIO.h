@@ -60,11 +60,24 @@ public:
   vtkBooleanMacro(KeepNaNPoints, bool);
   ///@}
 
+  ///@{
+  /// COPC files: the deepest octree level read (-1, the default: every level), and whether
+  /// only the points inside COPCBounds (xmin, xmax, ymin, ymax, zmin, zmax) are read
+  /// (vtkLASPointCloudReader). Set for any other file: a warning, and every point is read.
+  vtkSetClampMacro(COPCMaxLevel, int, -1, VTK_INT_MAX);
+  vtkGetMacro(COPCMaxLevel, int);
+  vtkSetMacro(COPCUseBounds, bool);
+  vtkGetMacro(COPCUseBounds, bool);
+  vtkSetVector6Macro(COPCBounds, double);
+  vtkGetVector6Macro(COPCBounds, double);
+  ///@}
+
   /// The points without coordinates (NaN) the last Read() left out (PCD files).
   vtkGetMacro(NumberOfDroppedPoints, vtkIdType);
 
   /// The warnings of the last Read() or Write(), one line each: what the target file cannot
-  /// hold (a LAS file's coordinate system, scale and offset written to PCD), say.
+  /// hold (a LAS file's coordinate system, scale and offset written to PCD), COPC options
+  /// given for a file that is not COPC, say.
   int GetNumberOfWarnings() const { return static_cast<int>(this->Warnings.size()); }
   const char* GetWarning(int index) const { return this->Warnings.at(index).c_str(); }
 
@@ -128,6 +141,9 @@ protected:
 
   bool OrientedNormals = false;
   bool KeepNaNPoints = false;
+  int COPCMaxLevel = -1;
+  bool COPCUseBounds = false;
+  double COPCBounds[6] = { 0, 0, 0, 0, 0, 0 };
   vtkIdType NumberOfDroppedPoints = 0;
   std::vector<std::string> Warnings;
   std::string ErrorMessage;

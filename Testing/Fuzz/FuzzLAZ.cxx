@@ -3,13 +3,16 @@
 // bytes (AddressSanitizer watches), the same records for a part of the file as for the whole,
 // and, for point formats 0 to 3, records that the LAZ writer writes and its reader reads back
 // byte for byte. A damaged stream may decode to other records (arithmetic coding has no check
-// sums) but never crashes, hangs or reads outside its chunk.
+// sums) but never crashes, hangs or reads outside its chunk. A COPC file's octree is read too
+// (COPC.h): a one-line error, or all its levels give the whole file's records.
+#include "COPC.h"
 #include "FuzzScratchFile.h"
 #include "LASHeader.h"
 #include "LASReader.h"
 #include "LASWriter.h"
 #include "LAZReader.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -64,6 +67,43 @@ void CheckPart(const std::vector<std::uint8_t>& bytes,
   if (!error.empty() || std::memcmp(some.data(), records.data() + first * length, some.size()))
   {
     std::abort(); // a part differs from the whole
+  }
+}
+
+/// A COPC file's octree: a one-line error, or every level's points those of the whole file, a
+/// coarser level and a box fewer of them.
+void CheckCOPC(const std::vector<std::uint8_t>& bytes,
+  const pcbilateral::LASFileInfo& info,
+  const std::vector<std::uint8_t>& whole)
+{
+  std::vector<std::uint8_t> records;
+  std::uint64_t count = 0;
+  pcbilateral::COPCQuery query;
+  std::string error =
+    pcbilateral::ReadCOPCPoints(bytes.data(), bytes.size(), info, "fuzz", query, records, count);
+  if (!error.empty())
+  {
+    CheckOneLine(error, "fuzz");
+    return;
+  }
+  if (count != info.Header.NumberOfPoints || records != whole)
+  {
+    std::abort(); // every node's points are not the file's
+  }
+  query.MaxLevel = 0;
+  error =
+    pcbilateral::ReadCOPCPoints(bytes.data(), bytes.size(), info, "fuzz", query, records, count);
+  query.MaxLevel = -1;
+  query.UseBounds = true;
+  const double* b = info.Header.Bounds;
+  const double box[6] = { b[0], 0.5 * (b[0] + b[3]), b[1], b[4], b[2], b[5] };
+  std::copy(box, box + 6, query.Bounds);
+  std::uint64_t inBox = 0;
+  error +=
+    pcbilateral::ReadCOPCPoints(bytes.data(), bytes.size(), info, "fuzz", query, records, inBox);
+  if (!error.empty() || count > info.Header.NumberOfPoints || inBox > info.Header.NumberOfPoints)
+  {
+    std::abort(); // a part of a readable octree failed, or gave more than the whole
   }
 }
 
@@ -142,6 +182,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (info.Header.NumberOfPoints > 0)
   {
     CheckPart(bytes, info, records);
+  }
+  if (pcbilateral::IsCOPC(info))
+  {
+    CheckCOPC(bytes, info, records);
   }
   CheckWrittenBack(info, records);
   return 0;

@@ -182,6 +182,50 @@ std::string DecompressLAZPoints(const std::uint8_t* data,
   return problem.empty() ? problem : sourceName + ": " + problem;
 }
 
+std::string DecompressLAZChunks(const std::uint8_t* data,
+  const LASFileInfo& info,
+  const std::string& sourceName,
+  const std::vector<LAZChunk>& chunks,
+  std::uint8_t* records)
+{
+  const LASHeader& h = info.Header;
+  LAZParameters parameters;
+  const std::string problem =
+    ParseLAZParameters(info.LASzipRecord, h.PointFormat, h.RecordLength, parameters);
+  if (!problem.empty())
+  {
+    return sourceName + ": " + problem;
+  }
+  std::vector<std::uint64_t> starts(chunks.size() + 1, 0);
+  for (std::size_t k = 0; k < chunks.size(); ++k)
+  {
+    starts[k + 1] = starts[k] + chunks[k].Points;
+  }
+  std::vector<std::string> problems(chunks.size());
+  const auto total = static_cast<std::int64_t>(chunks.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t k = 0; k < total; ++k)
+  {
+    const auto index = static_cast<std::size_t>(k);
+    const LAZChunk& chunk = chunks[index];
+    problems[index] = DecodeChunk(
+      data, chunk, parameters, h.RecordLength, records + starts[index] * h.RecordLength);
+    if (!problems[index].empty())
+    {
+      problems[index] = sourceName + ": the chunk of " + Str(chunk.Points) + " points at byte " +
+                        Str(chunk.Offset) + ": " + problems[index];
+    }
+  }
+  for (const std::string& message : problems)
+  {
+    if (!message.empty())
+    {
+      return message;
+    }
+  }
+  return std::string();
+}
+
 std::string UncompressedLASRecords(const std::uint8_t* data,
   std::size_t size,
   const LASFileInfo& info,

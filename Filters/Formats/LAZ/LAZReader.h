@@ -5,6 +5,7 @@
 #define pcbilateral_LAZReader_h
 
 #include "LASHeader.h"
+#include "LAZFormat.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -32,6 +33,18 @@ std::string DecompressLAZPoints(const std::uint8_t* data,
   const std::string& sourceName,
   std::uint64_t first,
   std::uint64_t count,
+  std::uint8_t* records);
+
+/**
+ * Decompresses whole chunks of a LAZ file, `chunks` (some of those ReadLAZChunkTable gives for
+ * it, in any order), into `records`, one after the other in the order given: each chunk's
+ * Points * RecordLength bytes. In parallel (OpenMP), each chunk by one thread. Returns an empty
+ * string or a one-line message starting with `sourceName`.
+ */
+std::string DecompressLAZChunks(const std::uint8_t* data,
+  const LASFileInfo& info,
+  const std::string& sourceName,
+  const std::vector<LAZChunk>& chunks,
   std::uint8_t* records);
 
 /**
