@@ -9,6 +9,7 @@
 #include "LASReader.h"
 #include "LAZReader.h"
 
+#include <array>
 #include <cstdio>
 #include <cstring>
 #include <set>
@@ -282,6 +283,126 @@ void Put(std::vector<std::uint8_t>& bytes, std::size_t at, T value)
   std::memcpy(bytes.data() + at, &value, sizeof(T));
 }
 
+/// The sample with its hierarchy cut into pages, as large files have: the root page holds the
+/// root node and a child-page entry (count -1) for each level-1 node, whose page holds that
+/// node and its descendants. The pages replace the hierarchy EVLR's data (the file's end).
+std::vector<std::uint8_t> SplitIntoPages(const std::vector<std::uint8_t>& good)
+{
+  constexpr std::size_t rootOffsetAt = 429 + 40;
+  std::uint64_t root;
+  std::uint64_t rootBytes;
+  std::memcpy(&root, good.data() + rootOffsetAt, 8);
+  std::memcpy(&rootBytes, good.data() + rootOffsetAt + 8, 8);
+  PCB_CHECK(root + rootBytes == good.size(), "the hierarchy is not at the end of the file");
+  std::vector<std::array<std::uint8_t, 32>> entries(rootBytes / 32);
+  for (std::size_t k = 0; k < entries.size(); ++k)
+  {
+    std::memcpy(entries[k].data(), good.data() + root + 32 * k, 32);
+  }
+  auto key = [](const std::array<std::uint8_t, 32>& e, int i)
+  {
+    std::int32_t value;
+    std::memcpy(&value, e.data() + 4 * i, 4);
+    return value;
+  };
+  std::vector<std::array<std::uint8_t, 32>> rootPage;
+  std::vector<std::vector<std::array<std::uint8_t, 32>>> children;
+  for (const auto& e : entries)
+  {
+    if (key(e, 0) == 0)
+    {
+      rootPage.push_back(e);
+    }
+    if (key(e, 0) == 1)
+    {
+      rootPage.push_back(e); // its offset and counts are set below
+      children.emplace_back();
+      for (const auto& d : entries)
+      {
+        const int shift = key(d, 0) - 1;
+        if (shift >= 0 && (key(d, 1) >> shift) == key(e, 1) && (key(d, 2) >> shift) == key(e, 2) &&
+            (key(d, 3) >> shift) == key(e, 3))
+        {
+          children.back().push_back(d);
+        }
+      }
+    }
+  }
+  std::vector<std::uint8_t> bytes(good.begin(), good.begin() + static_cast<long>(root));
+  std::uint64_t at = root + 32 * rootPage.size();
+  std::size_t child = 0;
+  for (auto& e : rootPage)
+  {
+    if (key(e, 0) == 1)
+    {
+      const auto pageBytes = static_cast<std::int32_t>(32 * children[child++].size());
+      std::memcpy(e.data() + 16, &at, 8);
+      std::memcpy(e.data() + 24, &pageBytes, 4);
+      const std::int32_t minusOne = -1;
+      std::memcpy(e.data() + 28, &minusOne, 4);
+      at += static_cast<std::uint64_t>(pageBytes);
+    }
+    bytes.insert(bytes.end(), e.begin(), e.end());
+  }
+  for (const auto& page : children)
+  {
+    for (const auto& e : page)
+    {
+      bytes.insert(bytes.end(), e.begin(), e.end());
+    }
+  }
+  const std::uint64_t newRootBytes = 32 * rootPage.size();
+  const std::uint64_t evlrBytes = bytes.size() - root;
+  std::memcpy(bytes.data() + rootOffsetAt + 8, &newRootBytes, 8);
+  std::memcpy(bytes.data() + root - 60 + 20, &evlrBytes, 8); // the EVLR's length
+  return bytes;
+}
+
+/// A hierarchy in pages gives the same nodes and points as in one page; a child page pointing
+/// back to the root is a loop.
+void ChildPages()
+{
+  const std::vector<std::uint8_t> one = FileBytes(COPCPath());
+  const std::vector<std::uint8_t> paged = SplitIntoPages(one);
+  pcbilateral::LASFileInfo info;
+  const pcbilateral::COPCHierarchy hierarchy = Hierarchy(paged, info);
+  std::printf(
+    "%zu pages, %zu nodes, %d levels\n", hierarchy.Pages, hierarchy.Nodes.size(), hierarchy.Levels);
+  PCB_CHECK(hierarchy.Pages == 5 && hierarchy.Nodes.size() == 65 && hierarchy.Levels == 4,
+    "%zu pages, %zu nodes",
+    hierarchy.Pages,
+    hierarchy.Nodes.size());
+  for (int level = -1; level < 4; ++level)
+  {
+    pcbilateral::COPCQuery query;
+    query.MaxLevel = level;
+    query.UseBounds = level == 2;
+    const double box[6] = { 637000, 638200.5, 850000, 852500, 420, 560 };
+    std::copy(box, box + 6, query.Bounds);
+    const Read a = ReadCOPC(one, query);
+    const Read b = ReadCOPC(paged, query);
+    PCB_CHECK(b.Error.empty() && a.Count == b.Count && a.Records == b.Records,
+      "level %d: %llu points in pages, %llu in one page (%s)",
+      level,
+      static_cast<unsigned long long>(b.Count),
+      static_cast<unsigned long long>(a.Count),
+      b.Error.c_str());
+  }
+  std::vector<std::uint8_t> loop = paged;
+  std::uint64_t root;
+  std::uint64_t rootBytes;
+  std::memcpy(&root, paged.data() + 429 + 40, 8);
+  std::memcpy(&rootBytes, paged.data() + 429 + 48, 8);
+  const std::size_t last = paged.size() - 32; // the last child page's last entry
+  Put<std::uint64_t>(loop, last + 16, root);
+  Put<std::int32_t>(loop, last + 24, static_cast<std::int32_t>(rootBytes));
+  Put<std::int32_t>(loop, last + 28, -1);
+  ExpectError(loop, "(the pages form a loop)");
+  std::vector<std::uint8_t> lying = paged;
+  Put<std::int32_t>(lying, static_cast<std::size_t>(root) + 32 + 24, 1 << 20); // a page's size
+  ExpectError(lying, "lies beyond the end of the file");
+}
+
 void Damaged()
 {
   const std::vector<std::uint8_t> good = FileBytes(COPCPath());
@@ -341,5 +462,6 @@ int main(int argc, char* argv[])
       { "levels", Levels },
       { "bounds", Bounds },
       { "damaged-hierarchy", Damaged },
+      { "child-pages", ChildPages },
     });
 }
