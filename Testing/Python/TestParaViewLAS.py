@@ -1,6 +1,8 @@
 """The LAS reader and writer in ParaView: OpenDataFile picks the plugin's reader for .las and
 .laz (no reader choice), the points are there with one vertex each, a damaged file gives one error and
-no points, and SaveData writes .las with the plugin's writer.
+no points, and SaveData writes .las with the plugin's writer. A COPC file's level of detail
+and box (the reader's advanced properties) give the points IO.TestCOPC and CommandLine.copc
+count.
 
     pvpython TestParaViewLAS.py PLUGIN LAS_FOLDER SCRATCH_FOLDER
 
@@ -95,6 +97,36 @@ if os.path.isfile(laz):
           f"SaveData wrote LAZ ({len(d)} bytes) that reads back")
 else:
     print(f"skipped the LAZ checks: no {laz}")
+
+# COPC: the reader's advanced properties read a level of detail or a box from the octree; the
+# filter passes every point array of what was read.
+copc = os.path.join(folder, "..", "laz", "1.2-with-color.copc.laz")
+if os.path.isfile(copc):
+    octree = simple.OpenDataFile(copc)
+    octree.UpdatePipeline()
+    check(octree.GetDataInformation().GetNumberOfPoints() == 1065, "COPC: every point by default")
+    octree.COPCMaxLevel = 1
+    octree.UpdatePipeline()
+    check(octree.GetDataInformation().GetNumberOfPoints() == 90, "COPC Max Level 1: 90 points")
+    octree.COPCMaxLevel = -1
+    octree.COPCUseBounds = 1
+    octree.COPCBounds = [637000, 638200.5, 850000, 852500, 420, 560]
+    octree.UpdatePipeline()
+    check(octree.GetDataInformation().GetNumberOfPoints() == 207,
+          "COPC Bounds: the 207 points inside the box (CommandLine.copc)")
+    filtered = simple.PointCloudBilateralFilter(Input=octree)
+    filtered.UpdatePipeline()
+    names = lambda proxy: sorted(proxy.PointData.keys())
+    check(filtered.GetDataInformation().GetNumberOfPoints() == 207
+          and set(names(octree)) <= set(names(filtered)),
+          f"the filter keeps the points and arrays read: {names(filtered)}")
+    plain = simple.OpenDataFile(autzen)
+    plain.COPCMaxLevel = 0
+    plain.UpdatePipeline()
+    check(plain.GetDataInformation().GetNumberOfPoints() == 110000,
+          "COPC Max Level on a LAS file: a warning, and every point")
+else:
+    print(f"skipped the COPC checks: no {copc}")
 
 if failures:
     sys.exit(f"{len(failures)} check(s) failed")
