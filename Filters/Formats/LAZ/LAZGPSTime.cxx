@@ -17,6 +17,13 @@ std::int32_t Multiply(std::int64_t multiple, std::int32_t difference)
   // The product wraps to 32 bits, as the encoder's does.
   return static_cast<std::int32_t>(static_cast<std::uint32_t>(multiple * difference));
 }
+/// The time's bits moved by a difference, wrapping as the encoder's do: a damaged stream may
+/// give any difference, and a signed overflow would be undefined.
+void Advance(std::int64_t& time, std::int32_t difference)
+{
+  time = static_cast<std::int64_t>(
+    static_cast<std::uint64_t>(time) + static_cast<std::uint64_t>(std::int64_t(difference)));
+}
 } // namespace
 
 GPSTimeSequences::GPSTimeSequences(const GPSTimeCodes& codes)
@@ -53,7 +60,7 @@ bool GPSTimeSequences::DecodeAfterZero(ArithmeticDecoder& decoder)
   if (code == 0)
   {
     this->LastDifference[last] = this->Differences.Decode(decoder, 0, 0);
-    this->LastTime[last] += this->LastDifference[last];
+    Advance(this->LastTime[last], this->LastDifference[last]);
     this->ExtremeCounter[last] = 0;
   }
   else if (code == 1)
@@ -79,12 +86,12 @@ bool GPSTimeSequences::DecodeTime(ArithmeticDecoder& decoder)
   const std::uint32_t multi = decoder.DecodeSymbol(this->Multiple);
   if (multi == 1)
   {
-    this->LastTime[last] += this->Differences.Decode(decoder, this->LastDifference[last], 1);
+    Advance(this->LastTime[last], this->Differences.Decode(decoder, this->LastDifference[last], 1));
     this->ExtremeCounter[last] = 0;
   }
   else if (multi < GPSMultiEnd)
   {
-    this->LastTime[last] += this->DecodeMultiple(decoder, multi);
+    Advance(this->LastTime[last], this->DecodeMultiple(decoder, multi));
   }
   else if (multi == this->Codes.FullCode)
   {

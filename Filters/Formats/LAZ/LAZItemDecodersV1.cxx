@@ -114,6 +114,13 @@ class GPSTimeDecoderV1 final : public ItemDecoder
 public:
   void Start(const std::uint8_t* item) override { this->Time = Load<std::int64_t>(item); }
 
+  /// Wrapping as the encoder's do: a damaged stream may give any difference.
+  void Advance(std::int32_t difference)
+  {
+    this->Time = static_cast<std::int64_t>(static_cast<std::uint64_t>(this->Time) +
+                                           static_cast<std::uint64_t>(std::int64_t(difference)));
+  }
+
   void Decode(ArithmeticDecoder& decoder, std::uint8_t* item) override
   {
     if (this->LastDifference == 0)
@@ -122,7 +129,7 @@ public:
       if (code == 1)
       {
         this->LastDifference = this->Differences.Decode(decoder, 0, 0);
-        this->Time += this->LastDifference;
+        this->Advance(this->LastDifference);
       }
       else if (code == 2)
       {
@@ -134,7 +141,7 @@ public:
       const std::uint32_t multi = decoder.DecodeSymbol(this->Multiple);
       if (multi < MultiMax - 2)
       {
-        this->Time += this->DecodeMultiple(decoder, multi);
+        this->Advance(this->DecodeMultiple(decoder, multi));
       }
       else if (multi < MultiMax - 1)
       {

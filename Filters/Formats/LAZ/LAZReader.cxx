@@ -240,7 +240,15 @@ std::string UncompressedLASRecords(const std::uint8_t* data,
     return std::string();
   }
   decompressed.clear();
-  std::string problem;
+  // The LASzip record is checked before the memory of the points is asked for: a record length
+  // its items do not add up to must not cost gigabytes first.
+  LAZParameters parameters;
+  std::string problem =
+    ParseLAZParameters(info.LASzipRecord, h.PointFormat, h.RecordLength, parameters);
+  if (!problem.empty())
+  {
+    return sourceName + ": " + problem;
+  }
   const std::uint64_t compressedBytes = size - h.OffsetToPointData;
   if (h.NumberOfPoints > LAZMostPointsPerByte * compressedBytes + 1)
   {
