@@ -29,6 +29,21 @@ with open(os.environ["PCB_LOG"], "w") as log:
     check(not any(name.startswith("Bilateral") for name in offered),
           f"colour-by does not offer the recorded parameters ({offered})")
 
+    # A LAS file (the project's small one, written here): its point attributes are offered,
+    # the header values kept in field data ("LAS Scale"...) are not.
+    las_path = os.path.join(os.environ.get("PCB_LOG") + ".las")
+    simple.SaveData(las_path, proxy=reader)
+    las = simple.OpenDataFile(las_path)
+    las_display = simple.Show(las)
+    simple.Render()
+    las_domain = las_display.GetProperty("ColorArrayName").SMProperty.FindDomain(
+        "vtkSMArrayListDomain")
+    las_offered = [las_domain.GetString(i) for i in range(las_domain.GetNumberOfStrings())]
+    las_field = [array.GetName() for array in las.FieldData]
+    check(any(name.startswith("LAS ") for name in las_field) and "Intensity" in las_offered
+          and not any(name.startswith("LAS ") for name in las_offered),
+          f"a LAS file's colour-by offers {las_offered}, not its header ({las_field})")
+
     # ParaView's open dialog (pqLoadDataReaction) reads this setting: pattern, description,
     # reader name, three strings per entry, the last matching entry first.
     settings = servermanager.vtkSMSettings.GetInstance()
