@@ -145,7 +145,7 @@ struct SortedNeighbours
 };
 
 /// The sums of step 3 of the edge-aware mode for one point (see EdgeAwareHeightSums in
-/// BilateralKernelBody.h).
+/// EdgeAwareKernelBody.h).
 struct EdgeAwareHeights
 {
   double WeightSum = 0.0;
@@ -162,7 +162,7 @@ struct EdgeAwareHeights
  * for each instruction set: the same lanes, sum tree and exponential, so the same bits in every
  * build. Step 1 packs the neighbours' offsets q - p in arrays with room for KernelLanes values
  * more, for padding; steps 2 and 3 read them through their sorted indices. See
- * BilateralKernelBody.h.
+ * EdgeAwareKernelBody.h.
  */
 struct EdgeAwareKernel
 {

@@ -1,0 +1,294 @@
+// The edge-aware mode's per-point arithmetic (EdgeAwareNormals.h), compiled once per instruction
+// set after BilateralKernelBody.h (whose lanes, fixed sum tree and exponential it uses, so the
+// same bits in every build) by BilateralKernelGeneric.cxx, BilateralKernelAvx2.cxx and
+// BilateralKernelAvx512.cxx. Private to the core. Its arrays of packed neighbours hold whole
+// vectors: a count is padded up to a multiple of Lanes with neighbours that add exact zeros to
+// every sum (see PadNeighbours).
+#ifndef PCB_KERNEL_VARIANT
+#error "include BilateralKernelBody.h, with PCB_KERNEL_VARIANT defined, before this file"
+#endif
+
+namespace pcbilateral
+{
+namespace PCB_KERNEL_VARIANT
+{
+
+/**
+ * Pads `count` packed neighbours up to whole vectors with neighbours so far away that their
+ * squared distance overflows to infinity (weight exp(-inf) = 0, exact zeros in every sum, as in
+ * FilterPoint). Steps 2 and 3 pad the same way, with a zero normal (a finite agreement
+ * exponent). Returns the padded count.
+ */
+inline std::size_t PadNeighbours(double* dx, double* dy, double* dz, std::size_t count)
+{
+  const std::size_t padded = (count + Lanes - 1) / Lanes * Lanes;
+  for (std::size_t k = count; k < padded; ++k)
+  {
+    dx[k] = dy[k] = dz[k] = 1e300;
+  }
+  return padded;
+}
+
+/**
+ * The moments of the offsets with the weights distanceWeight x exp(-res^2 * residualScale),
+ * res = <n, d - c> the offset's height over the plane of normal n through c. Padding (distance
+ * weight 0) adds exact zeros.
+ */
+inline DistanceMoments AccumulateResidualMoments(const double* dx,
+  const double* dy,
+  const double* dz,
+  std::size_t padded,
+  const double* distanceWeight,
+  const double n[3],
+  const double c[3],
+  double residualScale)
+{
+  const DoubleLanes zero = {};
+  DistanceMoments moments = {};
+  const double offset = (n[0] * c[0] + n[1] * c[1]) + n[2] * c[2];
+  for (std::size_t k = 0; k < padded; k += Lanes)
+  {
+    const DoubleLanes ox = Load(dx + k);
+    const DoubleLanes oy = Load(dy + k);
+    const DoubleLanes oz = Load(dz + k);
+    // Padding: weight 0 already, and its huge offsets must not make inf * 0.
+    const DoubleLanes weight = Load(distanceWeight + k);
+    const IntLanes padding = LessThan(weight, 1e-300);
+    const DoubleLanes residual =
+      Select(padding, zero, ((ox * n[0] + oy * n[1]) + oz * n[2]) - offset);
+    const DoubleLanes w = weight * ExpOfNonPositive(-(residual * residual) * residualScale);
+    AddWeightedOffsets(
+      moments, w, Select(padding, zero, ox), Select(padding, zero, oy), Select(padding, zero, oz));
+  }
+  return moments;
+}
+
+/**
+ * Step 1 for a point whose `count` neighbours PackNeighbours<true> packed (room for Lanes more):
+ * the paper's regression plane normal, weighted by exp(-|q - p|^2 * distanceScale), with the
+ * kernel's own pass 1; then `rounds` refits with the weights multiplied by
+ * exp(-res^2 * residualScale), res the neighbour's height over the last plane: a plane fitted
+ * across an edge is tilted, the refit leaves out the far side's points (the most off the
+ * plane) and turns toward the point's own face. Returns false (n untouched) when the weights
+ * sum to zero.
+ */
+bool EdgeAwarePlaneNormal(double* dx,
+  double* dy,
+  double* dz,
+  std::size_t count,
+  double distanceScale,
+  double residualScale,
+  int rounds,
+  double* distanceWeight,
+  double n[3])
+{
+  const std::size_t padded = PadNeighbours(dx, dy, dz, count);
+  DistanceMoments moments =
+    AccumulateDistanceMoments(dx, dy, dz, padded, distanceScale, distanceWeight);
+  if (!RegressionNormal(moments, n))
+  {
+    return false;
+  }
+  for (int round = 0; round < rounds; ++round)
+  {
+    const double total = SumLanes(moments.WeightSum);
+    const double c[3] = { SumLanes(moments.FirstX) / total,
+      SumLanes(moments.FirstY) / total,
+      SumLanes(moments.FirstZ) / total };
+    const DistanceMoments robust =
+      AccumulateResidualMoments(dx, dy, dz, padded, distanceWeight, n, c, residualScale);
+    double refit[3];
+    if (!RegressionNormal(robust, refit))
+    {
+      break;
+    }
+    moments = robust;
+    n[0] = refit[0];
+    n[1] = refit[1];
+    n[2] = refit[2];
+  }
+  return true;
+}
+
+/// The exponent of the agreement weight of two unit normals of cosine c: -((1 - |c|) s)^2, with
+/// s = 1 / (1 - cos theta).
+inline DoubleLanes AgreementExponent(DoubleLanes cosine, double agreementScale)
+{
+  const DoubleLanes gap = (1.0 - Abs(cosine)) * agreementScale;
+  return -(gap * gap);
+}
+
+/// Neighbours k to k + Lanes - 1 of a list of sorted indices, for steps 2 and 3.
+struct NeighbourLanes
+{
+  DoubleLanes Dx, Dy, Dz, Nx, Ny, Nz;
+};
+
+/**
+ * Loads neighbours k to k + Lanes - 1 of `neighbours`: their offsets q - p
+ * from the sorted coordinates x, y, z (computed as PackNeighbours does: the same bits) and their
+ * normals. The lanes past the last neighbour are padding, as in PadNeighbours.
+ */
+inline NeighbourLanes LoadNeighbours(const double p[3],
+  const SortedNeighbours& neighbours,
+  std::size_t k)
+{
+  NeighbourLanes lanes;
+  const std::uint32_t* index = neighbours.Index;
+  const std::size_t count = neighbours.Count;
+  const double *x = neighbours.X, *y = neighbours.Y, *z = neighbours.Z;
+  const double* normals = neighbours.Normals;
+#if defined(__AVX512F__)
+  // Hardware gathers, no packed copy in memory.
+  const std::size_t left = count - k;
+  const __mmask8 valid = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
+  const __m256i j = _mm256_maskz_loadu_epi32(valid, index + k);
+  const __m256i j3 = _mm256_add_epi32(_mm256_add_epi32(j, j), j);
+  const __m512d far = _mm512_set1_pd(1e300);
+  const __m512d none = _mm512_setzero_pd();
+  const __m512d ox =
+    _mm512_sub_pd(_mm512_mask_i32gather_pd(none, valid, j, x, 8), _mm512_set1_pd(p[0]));
+  const __m512d oy =
+    _mm512_sub_pd(_mm512_mask_i32gather_pd(none, valid, j, y, 8), _mm512_set1_pd(p[1]));
+  const __m512d oz =
+    _mm512_sub_pd(_mm512_mask_i32gather_pd(none, valid, j, z, 8), _mm512_set1_pd(p[2]));
+  lanes.Dx = (DoubleLanes)_mm512_mask_blend_pd(valid, far, ox);
+  lanes.Dy = (DoubleLanes)_mm512_mask_blend_pd(valid, far, oy);
+  lanes.Dz = (DoubleLanes)_mm512_mask_blend_pd(valid, far, oz);
+  lanes.Nx = (DoubleLanes)_mm512_mask_i32gather_pd(none, valid, j3, normals, 8);
+  lanes.Ny = (DoubleLanes)_mm512_mask_i32gather_pd(none, valid, j3, normals + 1, 8);
+  lanes.Nz = (DoubleLanes)_mm512_mask_i32gather_pd(none, valid, j3, normals + 2, 8);
+#else
+  double values[6][Lanes];
+  const double px = p[0], py = p[1], pz = p[2];
+  for (std::size_t lane = 0; lane < Lanes; ++lane)
+  {
+    if (k + lane < count)
+    {
+      const std::size_t j = index[k + lane];
+      values[0][lane] = x[j] - px;
+      values[1][lane] = y[j] - py;
+      values[2][lane] = z[j] - pz;
+      values[3][lane] = normals[3 * j];
+      values[4][lane] = normals[3 * j + 1];
+      values[5][lane] = normals[3 * j + 2];
+    }
+    else
+    {
+      values[0][lane] = values[1][lane] = values[2][lane] = 1e300;
+      values[3][lane] = values[4][lane] = values[5][lane] = 0.0;
+    }
+  }
+  lanes.Dx = Load(values[0]);
+  lanes.Dy = Load(values[1]);
+  lanes.Dz = Load(values[2]);
+  lanes.Nx = Load(values[3]);
+  lanes.Ny = Load(values[4]);
+  lanes.Nz = Load(values[5]);
+#endif
+  return lanes;
+}
+
+/**
+ * Step 2 for sorted point p of normal `own` over its neighbours: the sum of exp(-|q - p|^2 *
+ * distanceScale) psi(own, n_j) sign(own . n_j) n_j.
+ */
+void EdgeAwareNormalSum(const double p[3],
+  const SortedNeighbours& neighbours,
+  const double own[3],
+  double distanceScale,
+  double agreementScale,
+  double sum[3])
+{
+  const DoubleLanes zero = {};
+  DoubleLanes sumX = zero, sumY = zero, sumZ = zero;
+  for (std::size_t k = 0; k < neighbours.Count; k += Lanes)
+  {
+    const NeighbourLanes q = LoadNeighbours(p, neighbours, k);
+    const DoubleLanes distanceSquared = (q.Dx * q.Dx + q.Dy * q.Dy) + q.Dz * q.Dz;
+    const DoubleLanes cosine = (q.Nx * own[0] + q.Ny * own[1]) + q.Nz * own[2];
+    const DoubleLanes w = ExpOfNonPositive(
+      -distanceSquared * distanceScale + AgreementExponent(cosine, agreementScale));
+    // The fitted normals are not oriented: a neighbour's counts with the sign of the cosine.
+    const DoubleLanes signedWeight = Select(LessThan(cosine, 0.0), -w, w);
+    sumX += signedWeight * q.Nx;
+    sumY += signedWeight * q.Ny;
+    sumZ += signedWeight * q.Nz;
+  }
+  sum[0] = SumLanes(sumX);
+  sum[1] = SumLanes(sumY);
+  sum[2] = SumLanes(sumZ);
+}
+
+/**
+ * Step 3 for sorted point p of filtered normal m over its neighbours (with their filtered
+ * normals m_j, turned to agree with m), with the weights
+ * w = exp(-|q - p|^2 * distanceScale - h^2 * normalScale) psi(m, m_j):
+ *  - the sums of w and of w h, h = <(m + m_j) / 2, q - p> the height along the mean of the two
+ *    normals: the chord q - p between two points of a sphere is orthogonal to the sum of their
+ *    normals, and on any smooth surface the error is of third order in |q - p| (second order
+ *    along m alone), so a curved surface is not shrunk; on a plane h is the paper's;
+ *  - the sum of w <m_j, q - p> m_j: p projected on each neighbour's own tangent plane (Huang et
+ *    al. 2013), which keeps a point on its own face up to an edge;
+ *  - the sums of exp(-|q - p|^2 * distanceScale) and of the same times psi(m, m_j) at the
+ *    wider angle of smoothAgreementScale: how much of the neighbourhood agrees with m.
+ */
+void EdgeAwareHeightSums(const double p[3],
+  const SortedNeighbours& neighbours,
+  const double m[3],
+  double distanceScale,
+  double normalScale,
+  double agreementScale,
+  double smoothAgreementScale,
+  EdgeAwareHeights& sums)
+{
+  const DoubleLanes zero = {};
+  DoubleLanes weights = zero, heights = zero, planeX = zero, planeY = zero, planeZ = zero;
+  DoubleLanes near = zero, agreeing = zero;
+  for (std::size_t k = 0; k < neighbours.Count; k += Lanes)
+  {
+    const NeighbourLanes q = LoadNeighbours(p, neighbours, k);
+    const DoubleLanes distanceSquared = (q.Dx * q.Dx + q.Dy * q.Dy) + q.Dz * q.Dz;
+    const DoubleLanes cosine = (q.Nx * m[0] + q.Ny * m[1]) + q.Nz * m[2];
+    // The neighbour's normal turned to agree with m (the normals are not oriented).
+    const IntLanes opposite = LessThan(cosine, 0.0);
+    const DoubleLanes nx = Select(opposite, -q.Nx, q.Nx);
+    const DoubleLanes ny = Select(opposite, -q.Ny, q.Ny);
+    const DoubleLanes nz = Select(opposite, -q.Nz, q.Nz);
+    const DoubleLanes own = (q.Dx * nx + q.Dy * ny) + q.Dz * nz;
+    const DoubleLanes h = ((q.Dx * (nx + m[0]) + q.Dy * (ny + m[1])) + q.Dz * (nz + m[2])) * 0.5;
+    const DoubleLanes distanceExponent = -distanceSquared * distanceScale;
+    const DoubleLanes w = ExpOfNonPositive(
+      (distanceExponent - (h * h) * normalScale) + AgreementExponent(cosine, agreementScale));
+    weights += w;
+    heights += w * h;
+    const DoubleLanes projection = w * own;
+    planeX += projection * nx;
+    planeY += projection * ny;
+    planeZ += projection * nz;
+    near += ExpOfNonPositive(distanceExponent);
+    agreeing +=
+      ExpOfNonPositive(distanceExponent + AgreementExponent(cosine, smoothAgreementScale));
+  }
+  sums.WeightSum = SumLanes(weights);
+  sums.WeightedHeightSum = SumLanes(heights);
+  sums.Projection[0] = SumLanes(planeX);
+  sums.Projection[1] = SumLanes(planeY);
+  sums.Projection[2] = SumLanes(planeZ);
+  sums.DistanceWeightSum = SumLanes(near);
+  sums.AgreeingWeightSum = SumLanes(agreeing);
+}
+
+/// This build's edge-aware functions (declared in BilateralKernel.cxx).
+EdgeAwareKernel MakeEdgeAwareKernel()
+{
+  EdgeAwareKernel kernel;
+  kernel.Select = &PackNeighbours<true>;
+  kernel.PlaneNormal = &EdgeAwarePlaneNormal;
+  kernel.NormalSum = &EdgeAwareNormalSum;
+  kernel.HeightSums = &EdgeAwareHeightSums;
+  return kernel;
+}
+
+} // namespace PCB_KERNEL_VARIANT
+} // namespace pcbilateral
