@@ -256,8 +256,10 @@ public:
     this->EstimateNormals();
     for (int pass = 0; pass < EdgeAwareNormalPasses; ++pass)
     {
+      this->WriteRecords();
       this->FilterNormals(EdgeAwareNormalPasses - pass);
     }
+    this->WriteRecords();
     this->Displace();
     if (this->Aborted)
     {
@@ -300,6 +302,34 @@ private:
       }
     }
     ++this->Step;
+  }
+
+  /// Sorted point i's neighbours with the current normals (NeighbourCache::Fetch).
+  SortedNeighbours Fetch(std::size_t i, Neighbourhood& hood) const
+  {
+    SortedNeighbours neighbours = this->Cache->Fetch(
+      this->Kernel, this->Grid, this->RadiusSquared, i, hood, this->Normals.data());
+    neighbours.Records = this->Records;
+    neighbours.PaddingRow = this->Grid.Size();
+    return neighbours;
+  }
+
+  /// Each sorted point's coordinates and current normal in one record of 8 values, 64-byte
+  /// aligned, and a padding row after the last (see SortedNeighbours).
+  void WriteRecords()
+  {
+    const std::size_t n = this->Grid.Size();
+    constexpr std::size_t Row = 8;
+    this->RecordStorage.assign(Row * (n + 1) + Row, 0.0);
+    const auto address = reinterpret_cast<std::uintptr_t>(this->RecordStorage.data());
+    this->Records = this->RecordStorage.data() + (64 - address % 64) % 64 / sizeof(double);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      double* record = this->Records + Row * i;
+      this->Position(i, record);
+      std::copy_n(&this->Normals[3 * i], 3, record + 3);
+    }
+    std::fill_n(this->Records + Row * n, 3, 1e300);
   }
 
   const double* Position(std::size_t i, double p[3]) const
@@ -418,8 +448,7 @@ private:
         {
           return;
         }
-        const SortedNeighbours neighbours = this->Cache->Fetch(
-          this->Kernel, this->Grid, this->RadiusSquared, i, hood, this->Normals.data());
+        const SortedNeighbours neighbours = this->Fetch(i, hood);
         visited += neighbours.Count;
         double p[3], sum[3];
         this->Kernel.NormalSum(this->Position(i, p),
@@ -486,8 +515,7 @@ private:
           this->Isolated[i] = 1; // fewer than MinimumNeighbourCount neighbours
           return;
         }
-        const SortedNeighbours neighbours = this->Cache->Fetch(
-          this->Kernel, this->Grid, this->RadiusSquared, i, hood, this->Normals.data());
+        const SortedNeighbours neighbours = this->Fetch(i, hood);
         visited += neighbours.Count;
         EdgeAwareHeights sums;
         this->Kernel.HeightSums(p,
@@ -548,6 +576,9 @@ private:
   /// where they are for want of neighbours.
   std::vector<double> Normals;
   std::vector<double> Moved;
+  /// WriteRecords.
+  std::vector<double> RecordStorage;
+  double* Records = nullptr;
   std::vector<std::uint8_t> Isolated;
   /// By sorted index: MeasureDistanceToOwnPoints.
   std::vector<std::uint8_t> CellsFromOwn;

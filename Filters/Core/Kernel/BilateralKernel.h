@@ -133,7 +133,9 @@ bool SetKernelInstructionSet(KernelInstructionSet instructionSet);
 void KernelExp(const double* x, double* result, std::size_t count);
 
 /// A point's neighbours for steps 2 and 3 of the edge-aware mode: Count indices into the
-/// sorted coordinates X, Y, Z and the normals (3 per index).
+/// sorted coordinates X, Y, Z and the normals (3 per index), and the same in Records, 8 values
+/// per sorted point (x, y, z, the normal, 2 unused; the AVX-512 build reads these) with a
+/// padding row at PaddingRow (1e300 three times, then zeros).
 struct SortedNeighbours
 {
   const std::uint32_t* Index = nullptr;
@@ -142,6 +144,8 @@ struct SortedNeighbours
   const double* Y = nullptr;
   const double* Z = nullptr;
   const double* Normals = nullptr;
+  const double* Records = nullptr;
+  std::size_t PaddingRow = 0;
 };
 
 /// The sums of step 3 of the edge-aware mode for one point (see EdgeAwareHeightSums in

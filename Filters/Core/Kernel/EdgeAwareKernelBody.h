@@ -124,9 +124,37 @@ struct NeighbourLanes
   DoubleLanes Dx, Dy, Dz, Nx, Ny, Nz;
 };
 
+#if defined(__AVX512F__)
+/// Columns 0 to 5 of the 8 x 8 matrix of `rows` (a transpose, columns 6 and 7 left out).
+inline void TransposeRows(const __m512d rows[8], __m512d columns[6])
+{
+  const __m512d t0 = _mm512_unpacklo_pd(rows[0], rows[1]);
+  const __m512d t1 = _mm512_unpackhi_pd(rows[0], rows[1]);
+  const __m512d t2 = _mm512_unpacklo_pd(rows[2], rows[3]);
+  const __m512d t3 = _mm512_unpackhi_pd(rows[2], rows[3]);
+  const __m512d t4 = _mm512_unpacklo_pd(rows[4], rows[5]);
+  const __m512d t5 = _mm512_unpackhi_pd(rows[4], rows[5]);
+  const __m512d t6 = _mm512_unpacklo_pd(rows[6], rows[7]);
+  const __m512d t7 = _mm512_unpackhi_pd(rows[6], rows[7]);
+  // The even (0, 2) or odd (1, 3) 128-bit blocks of the first source, then of the second.
+  constexpr int Even = 0 | (2 << 2) | (0 << 4) | (2 << 6);
+  constexpr int Odd = 1 | (3 << 2) | (1 << 4) | (3 << 6);
+  const __m512d a = _mm512_shuffle_f64x2(t0, t2, Even), b = _mm512_shuffle_f64x2(t4, t6, Even);
+  const __m512d a2 = _mm512_shuffle_f64x2(t0, t2, Odd), b2 = _mm512_shuffle_f64x2(t4, t6, Odd);
+  const __m512d c = _mm512_shuffle_f64x2(t1, t3, Even), d = _mm512_shuffle_f64x2(t5, t7, Even);
+  const __m512d c2 = _mm512_shuffle_f64x2(t1, t3, Odd), d2 = _mm512_shuffle_f64x2(t5, t7, Odd);
+  columns[0] = _mm512_shuffle_f64x2(a, b, Even);
+  columns[1] = _mm512_shuffle_f64x2(c, d, Even);
+  columns[2] = _mm512_shuffle_f64x2(a2, b2, Even);
+  columns[3] = _mm512_shuffle_f64x2(c2, d2, Even);
+  columns[4] = _mm512_shuffle_f64x2(a, b, Odd);
+  columns[5] = _mm512_shuffle_f64x2(c, d, Odd);
+}
+#endif
+
 /**
  * Loads neighbours k to k + Lanes - 1 of `neighbours`: their offsets q - p
- * from the sorted coordinates x, y, z (computed as PackNeighbours does: the same bits) and their
+ * from the sorted coordinates (computed as PackNeighbours does: the same bits) and their
  * normals. The lanes past the last neighbour are padding, as in PadNeighbours.
  */
 inline NeighbourLanes LoadNeighbours(const double p[3],
@@ -136,29 +164,43 @@ inline NeighbourLanes LoadNeighbours(const double p[3],
   NeighbourLanes lanes;
   const std::uint32_t* index = neighbours.Index;
   const std::size_t count = neighbours.Count;
-  const double *x = neighbours.X, *y = neighbours.Y, *z = neighbours.Z;
-  const double* normals = neighbours.Normals;
 #if defined(__AVX512F__)
-  // Hardware gathers, no packed copy in memory.
+  // Each neighbour's record (coordinates and normal) in one 64-byte load, the eight records
+  // turned into lanes by a transpose: cheaper than six gathers.
   const std::size_t left = count - k;
   const __mmask8 valid = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
-  const __m256i j = _mm256_maskz_loadu_epi32(valid, index + k);
-  const __m256i j3 = _mm256_add_epi32(_mm256_add_epi32(j, j), j);
+  const double* records = neighbours.Records;
+  __m512d rows[8];
+  if (left >= 8)
+  {
+    for (std::size_t lane = 0; lane < 8; ++lane)
+    {
+      rows[lane] = _mm512_loadu_pd(records + 8 * static_cast<std::size_t>(index[k + lane]));
+    }
+  }
+  else
+  {
+    for (std::size_t lane = 0; lane < 8; ++lane)
+    {
+      const std::size_t row = lane < left ? index[k + lane] : neighbours.PaddingRow;
+      rows[lane] = _mm512_loadu_pd(records + 8 * row);
+    }
+  }
+  __m512d columns[6];
+  TransposeRows(rows, columns);
   const __m512d far = _mm512_set1_pd(1e300);
-  const __m512d none = _mm512_setzero_pd();
-  const __m512d ox =
-    _mm512_sub_pd(_mm512_mask_i32gather_pd(none, valid, j, x, 8), _mm512_set1_pd(p[0]));
-  const __m512d oy =
-    _mm512_sub_pd(_mm512_mask_i32gather_pd(none, valid, j, y, 8), _mm512_set1_pd(p[1]));
-  const __m512d oz =
-    _mm512_sub_pd(_mm512_mask_i32gather_pd(none, valid, j, z, 8), _mm512_set1_pd(p[2]));
-  lanes.Dx = (DoubleLanes)_mm512_mask_blend_pd(valid, far, ox);
-  lanes.Dy = (DoubleLanes)_mm512_mask_blend_pd(valid, far, oy);
-  lanes.Dz = (DoubleLanes)_mm512_mask_blend_pd(valid, far, oz);
-  lanes.Nx = (DoubleLanes)_mm512_mask_i32gather_pd(none, valid, j3, normals, 8);
-  lanes.Ny = (DoubleLanes)_mm512_mask_i32gather_pd(none, valid, j3, normals + 1, 8);
-  lanes.Nz = (DoubleLanes)_mm512_mask_i32gather_pd(none, valid, j3, normals + 2, 8);
+  lanes.Dx =
+    (DoubleLanes)_mm512_mask_blend_pd(valid, far, _mm512_sub_pd(columns[0], _mm512_set1_pd(p[0])));
+  lanes.Dy =
+    (DoubleLanes)_mm512_mask_blend_pd(valid, far, _mm512_sub_pd(columns[1], _mm512_set1_pd(p[1])));
+  lanes.Dz =
+    (DoubleLanes)_mm512_mask_blend_pd(valid, far, _mm512_sub_pd(columns[2], _mm512_set1_pd(p[2])));
+  lanes.Nx = (DoubleLanes)columns[3];
+  lanes.Ny = (DoubleLanes)columns[4];
+  lanes.Nz = (DoubleLanes)columns[5];
 #else
+  const double *x = neighbours.X, *y = neighbours.Y, *z = neighbours.Z;
+  const double* normals = neighbours.Normals;
   double values[6][Lanes];
   const double px = p[0], py = p[1], pz = p[2];
   for (std::size_t lane = 0; lane < Lanes; ++lane)
