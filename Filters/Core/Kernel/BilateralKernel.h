@@ -156,7 +156,8 @@ struct EdgeAwareHeights
   double WeightedHeightSum = 0.0;
   /// The weighted sum of the moves onto the neighbours' own tangent planes.
   double Projection[3] = { 0.0, 0.0, 0.0 };
-  /// The sums of the distance weights, and of the same times the wide agreement weight.
+  /// The sums of the distance bumps, and of the same times the wide agreement bump (see
+  /// EdgeAwareHeightSums).
   double DistanceWeightSum = 0.0;
   double AgreeingWeightSum = 0.0;
 };
@@ -185,7 +186,7 @@ struct EdgeAwareKernel
     std::uint32_t* index,
     std::size_t count);
   /// The paper's regression plane normal of `count` selected neighbours, then `rounds` refits
-  /// with the weights multiplied by exp(-res^2 * residualScale), res the height over the last
+  /// with the weights multiplied by Bump(-res^2 * residualScale), res the height over the last
   /// plane (through the weighted mean); false if none.
   bool (*PlaneNormal)(double* dx,
     double* dy,

@@ -30,7 +30,25 @@ inline std::size_t PadNeighbours(double* dx, double* dy, double* dz, std::size_t
 }
 
 /**
- * The moments of the offsets with the weights distanceWeight x exp(-res^2 * residualScale),
+ * (1 + x / width)^4 for x > -width, 0 below: a smooth bump, 1 at x = 0, like exp(x) near 0 but
+ * without an exponential's cost, for weights whose exact profile matters little (the refit's
+ * residual weight, the agreement share of step 3).
+ */
+inline DoubleLanes Bump(DoubleLanes x, double width)
+{
+  const DoubleLanes zero = {};
+  const DoubleLanes t = x * (1.0 / width) + 1.0;
+  const DoubleLanes positive = Select(LessThan(t, 0.0), zero, t);
+  const DoubleLanes square = positive * positive;
+  return square * square;
+}
+
+/// The width of Bump for the distance exponent -|q - p|^2 * distanceScale = -4.5 |q - p|^2 / r^2:
+/// the bump vanishes at |q - p| = r.
+constexpr double DistanceBumpWidth = 4.5;
+
+/**
+ * The moments of the offsets with the weights distanceWeight x Bump(-res^2 * residualScale),
  * res = <n, d - c> the offset's height over the plane of normal n through c. Padding (distance
  * weight 0) adds exact zeros.
  */
@@ -56,7 +74,7 @@ inline DistanceMoments AccumulateResidualMoments(const double* dx,
     const IntLanes padding = LessThan(weight, 1e-300);
     const DoubleLanes residual =
       Select(padding, zero, ((ox * n[0] + oy * n[1]) + oz * n[2]) - offset);
-    const DoubleLanes w = weight * ExpOfNonPositive(-(residual * residual) * residualScale);
+    const DoubleLanes w = weight * Bump(-(residual * residual) * residualScale, 4.0);
     AddWeightedOffsets(
       moments, w, Select(padding, zero, ox), Select(padding, zero, oy), Select(padding, zero, oz));
   }
@@ -67,7 +85,7 @@ inline DistanceMoments AccumulateResidualMoments(const double* dx,
  * Step 1 for a point whose `count` neighbours PackNeighbours<true> packed (room for Lanes more):
  * the paper's regression plane normal, weighted by exp(-|q - p|^2 * distanceScale), with the
  * kernel's own pass 1; then `rounds` refits with the weights multiplied by
- * exp(-res^2 * residualScale), res the neighbour's height over the last plane: a plane fitted
+ * Bump(-res^2 * residualScale), res the neighbour's height over the last plane: a plane fitted
  * across an edge is tilted, the refit leaves out the far side's points (the most off the
  * plane) and turns toward the point's own face. Returns false (n untouched) when the weights
  * sum to zero.
@@ -272,8 +290,10 @@ void EdgeAwareNormalSum(const double p[3],
  *    along m alone), so a curved surface is not shrunk; on a plane h is the paper's;
  *  - the sum of w <m_j, q - p> m_j: p projected on each neighbour's own tangent plane (Huang et
  *    al. 2013), which keeps a point on its own face up to an edge;
- *  - the sums of exp(-|q - p|^2 * distanceScale) and of the same times psi(m, m_j) at the
- *    wider angle of smoothAgreementScale: how much of the neighbourhood agrees with m.
+ *  - the sums of Bump(-|q - p|^2 * distanceScale, DistanceBumpWidth) and of the same times
+ *    Bump of psi(m, m_j)'s exponent at the wider angle of smoothAgreementScale: how much of the
+ *    neighbourhood agrees with m (a share, whose exact weights matter little: bumps cost two
+ *    exponentials less per neighbour).
  */
 void EdgeAwareHeightSums(const double p[3],
   const SortedNeighbours& neighbours,
@@ -308,9 +328,9 @@ void EdgeAwareHeightSums(const double p[3],
     planeX += projection * nx;
     planeY += projection * ny;
     planeZ += projection * nz;
-    near += ExpOfNonPositive(distanceExponent);
-    agreeing +=
-      ExpOfNonPositive(distanceExponent + AgreementExponent(cosine, smoothAgreementScale));
+    const DoubleLanes nearWeight = Bump(distanceExponent, DistanceBumpWidth);
+    near += nearWeight;
+    agreeing += nearWeight * Bump(AgreementExponent(cosine, smoothAgreementScale), 4.0);
   }
   sums.WeightSum = SumLanes(weights);
   sums.WeightedHeightSum = SumLanes(heights);
