@@ -1,6 +1,7 @@
 #include "PointCloudView.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace pcbilateral
 {
@@ -29,6 +30,9 @@ bool CloudExtent::IsFinite() const
 CloudExtent MeasureCloud(const PointCloudView& cloud)
 {
   CloudExtent extent;
+  const double infinity = std::numeric_limits<double>::infinity();
+  double low[3] = { infinity, infinity, infinity }, high[3] = { -infinity, -infinity, -infinity };
+  std::size_t finite = 0;
   for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
   {
     const double* p = cloud.Positions + 3 * i;
@@ -36,13 +40,18 @@ CloudExtent MeasureCloud(const PointCloudView& cloud)
     {
       continue;
     }
-    const bool first = extent.NumberOfFinitePoints == 0;
     for (int axis = 0; axis < 3; ++axis)
     {
-      extent.Min[axis] = first ? p[axis] : std::min(extent.Min[axis], p[axis]);
-      extent.Max[axis] = first ? p[axis] : std::max(extent.Max[axis], p[axis]);
+      low[axis] = std::min(low[axis], p[axis]);
+      high[axis] = std::max(high[axis], p[axis]);
     }
-    ++extent.NumberOfFinitePoints;
+    ++finite;
+  }
+  if (finite > 0)
+  {
+    extent.NumberOfFinitePoints = finite;
+    std::copy_n(low, 3, extent.Min);
+    std::copy_n(high, 3, extent.Max);
   }
   return extent;
 }

@@ -59,12 +59,12 @@ std::uint64_t MeasurementKey(const double* p)
   return MixBits(MixBits(MixBits(Bits(p[0])) ^ Bits(p[1])) ^ Bits(p[2]));
 }
 
-/// The key that decides whether a point is in the measured selection (SelectMeasurementPoints):
-/// another hash than MeasurementKey, so that the selection and the levels inside it are
+/// The key that decides whether a point is in the measured selection (SelectMeasurementPoints),
+/// from its MeasurementKey: another hash, so that the selection and the levels inside it are
 /// independent.
-std::uint64_t SelectionKey(const double* p)
+std::uint64_t SelectionKey(std::uint64_t measurementKey)
 {
-  return MixBits(MeasurementKey(p) ^ 0x5bd1e995ull);
+  return MixBits(measurementKey ^ 0x5bd1e995ull);
 }
 
 /// A finite point's MeasurementKey and index.
@@ -118,6 +118,10 @@ constexpr double FlatnessRadiusInSpacings = 7.5;
 constexpr double FlatnessRadiusInSigmas = 6.0;
 constexpr double FlatnessPointsPerBall = 96.0;
 constexpr double FeatureExcess = 0.5;
+/// The measurement grids' cells, in point spacings of their level: wide enough that a ball of
+/// about PointsPerBall points spans a few cells along each axis, so that a search makes few
+/// hash probes. (Any width gives the same results: the searches return every point in the ball.)
+constexpr double GridCellSpacings = 4.0;
 /// A sample whose quadric fit at the flatness radius leaves more than CreaseVariance sigma^2
 /// of residual variance sees a crease: no smooth surface fits there. On the smooth shapes of
 /// pcb_quality (spheres, terrains) no sample exceeds 2; on the shapes with edges at 0.1% noise,
@@ -175,9 +179,14 @@ double Median(std::vector<double> values)
 class ScaleMeasurement
 {
 public:
-  ScaleMeasurement(const PointCloudView& cloud, const ScaleMeasurementOptions& options)
+  /// pointKeys: the MeasurementKey of each point of the cloud, when the caller has them, or
+  /// null.
+  ScaleMeasurement(const PointCloudView& cloud,
+    const ScaleMeasurementOptions& options,
+    const std::uint64_t* pointKeys = nullptr)
     : Cloud(cloud)
     , Options(options)
+    , PointKeys(pointKeys)
     , Extent(MeasureCloud(cloud))
     , N(Extent.NumberOfFinitePoints)
     , Threads(ResolveThreadCount(options.NumberOfThreads))
@@ -236,13 +245,16 @@ private:
   {
     this->Keyed.reserve(this->N);
     this->Levels.assign(1, {});
+    this->Levels[0].reserve(this->N);
     for (std::size_t i = 0; i < this->Cloud.NumberOfPoints; ++i)
     {
       if (!IsFinitePoint(this->Cloud.Positions + 3 * i))
       {
         continue;
       }
-      const std::uint64_t key = MeasurementKey(this->Cloud.Positions + 3 * i);
+      const std::uint64_t key = this->PointKeys != nullptr
+                                  ? this->PointKeys[i]
+                                  : MeasurementKey(this->Cloud.Positions + 3 * i);
       this->Keyed.push_back({ key, i });
       // Each level keeps the keys whose top 2l bits are zero.
       std::size_t level = 0;
@@ -283,6 +295,7 @@ private:
     // (A flat box, e.g. points on a line, would give cells of no size.)
     const double largest = extent.LargestExtent();
     this->Density = static_cast<double>(this->N) / std::max(boxArea, 1e-4 * largest * largest);
+    this->FirstDensity = this->Density;
     // (Above 1e300 points per unit area, the balls' expected counts, density x pi rho^2,
     // would overflow: LevelFor compares them.)
     if (!(std::isfinite(this->Density) && this->Density > 0.0 && this->Density < 1e300))
@@ -293,26 +306,49 @@ private:
     return true;
   }
 
-  /// Grids: level l's cells are about two of its point spacings wide.
+  /// Grids: level l's cells are about GridCellSpacings of its point spacings wide. Level 0 (the
+  /// nearest-neighbour distances' grid) now; the others when a step first needs them (GridAt):
+  /// most clouds use two or three of them.
   bool BuildGrids()
   {
     this->Grids.resize(this->Levels.size());
-    for (std::size_t l = 0; l < this->Levels.size(); ++l)
+    this->GridBuilt.assign(this->Levels.size(), false);
+    if (!this->BuildGrid(0))
     {
-      const double levelDensity = this->Density * this->Fractions[l];
-      // (Any order: GatherBall sorts what it gathers, and the disc only counts.)
-      if (!this->Grids[l].Build(this->Cloud.Positions,
-            this->Levels[l],
-            this->Extent.Min,
-            2.0 / std::sqrt(levelDensity),
-            PointGrid::PointOrder::Any))
-      {
-        // (A cloud so spread out that its cells cannot be numbered, e.g. a few points far
-        // from a dense part: the filter refuses such clouds too.)
-        return this->Fail("the cloud's extent is beyond what can be measured");
-      }
+      // (A cloud so spread out that its cells cannot be numbered, e.g. a few points far
+      // from a dense part: the filter refuses such clouds too. Coarser levels have wider
+      // cells, so they can be numbered when level 0 can.)
+      return this->Fail("the cloud's extent is beyond what can be measured");
     }
     return true;
+  }
+
+  bool BuildGrid(std::size_t level)
+  {
+    this->GridBuilt[level] = true;
+    // (Any order: GatherBall sorts what it gathers, and the disc only counts.)
+    return this->Grids[level].Build(this->Cloud.Positions,
+      this->Levels[level],
+      this->Extent.Min,
+      0.5 * GridCellSpacings * this->TwoSpacings(level),
+      PointGrid::PointOrder::Any);
+  }
+
+  /// Level `level`'s grid, built on first use (outside the parallel loops that read it).
+  const PointGrid& GridAt(std::size_t level)
+  {
+    if (!this->GridBuilt[level])
+    {
+      this->BuildGrid(level);
+    }
+    return this->Grids[level];
+  }
+
+  /// Two point spacings of level l at the first guess of the density (the width of the grids'
+  /// cells when the choice of levels below was tuned).
+  double TwoSpacings(std::size_t l) const
+  {
+    return 2.0 / std::sqrt(this->FirstDensity * this->Fractions[l]);
   }
 
   /// The samples: the finite points with the smallest keys (a uniform pseudo-random choice that
@@ -322,9 +358,24 @@ private:
     const PointCloudView& cloud = this->Cloud;
     // The fits' samples are the first of the nearest-neighbour distances' samples (the keys in
     // order), so that measuring the distances leaves the fits as they were.
-    this->DistanceSamples = SmallestKeys(cloud,
-      std::move(this->Keyed),
-      std::min(std::max(this->Options.NumberOfSamples, NearestNeighbourSamples), this->N));
+    const std::size_t count =
+      std::min(std::max(this->Options.NumberOfSamples, NearestNeighbourSamples), this->N);
+    // The smallest keys are those of the deepest level that holds enough of them (level l:
+    // keys below 2^(64 - 2l)): only its points need to be ordered.
+    std::size_t level = 0;
+    while (level + 1 < this->Levels.size() && this->Levels[level + 1].size() >= count)
+    {
+      ++level;
+    }
+    if (level > 0)
+    {
+      const std::uint64_t bound = std::uint64_t(1) << (64 - 2 * level);
+      this->Keyed.erase(std::remove_if(this->Keyed.begin(),
+                          this->Keyed.end(),
+                          [&](const KeyedPoint& point) { return point.Key >= bound; }),
+        this->Keyed.end());
+    }
+    this->DistanceSamples = SmallestKeys(cloud, std::move(this->Keyed), count);
     this->Samples = this->Options.SampleIndices;
     if (this->Samples.empty())
     {
@@ -347,7 +398,7 @@ private:
   }
 
   /// The distance from sample point `index` to its nearest other point of the finest grid (the
-  /// whole selection): balls of growing radius, from one cell, until one holds another point;
+  /// whole selection): balls of growing radius, from one spacing, until one holds another point;
   /// the nearest in that ball is the nearest of all. 0 for a point that has a duplicate.
   double NearestNeighbourDistance(std::size_t index) const
   {
@@ -359,7 +410,9 @@ private:
     const std::uint32_t* ids = grid.GetIds();
     // (A ball twice the cloud's extent holds every point.)
     const double wholeCloud = 2.0 * this->Extent.LargestExtent();
-    for (double radius = grid.GetCellSize(); radius <= 2.0 * wholeCloud; radius *= 2.0)
+    // (From one point spacing, within which 96% of the points of an even surface have a
+    // neighbour: a ball that spans a few cells.)
+    for (double radius = 0.5 * this->TwoSpacings(0); radius <= 2.0 * wholeCloud; radius *= 2.0)
     {
       double nearest = std::numeric_limits<double>::infinity();
       grid.ForEachInBall(p,
@@ -440,7 +493,7 @@ private:
   void FitAll(double rho)
   {
     const std::size_t level = this->LevelFor(rho, PointsPerBall);
-    const PointGrid& grid = this->Grids[level];
+    const PointGrid& grid = this->GridAt(level);
     this->LevelUsed.assign(this->Samples.size(), level);
 #pragma omp parallel num_threads(this->Threads)
     {
@@ -582,17 +635,18 @@ private:
   /// The spacing: the points counted over a small disc of each fitted surface (within 3 sigma
   /// of it, in the slab), holding about DiscPoints points of the level it is counted on. Small,
   /// so that borders and density changes blur little; counted in the slab, so that the noise
-  /// does not matter. The level is the finest whose cells are at least sigma wide, so that the
-  /// ball around the disc and slab spans a few cells only.
+  /// does not matter. The level is the finest whose two point spacings are at least sigma, so
+  /// that the ball around the disc and slab spans a few cells only.
   bool MeasureSpacing()
   {
     const double sigma = this->Scales.NoiseSigma;
     std::size_t level = 0;
-    while (level + 1 < this->Levels.size() && this->Grids[level].GetCellSize() < sigma)
+    while (level + 1 < this->Levels.size() && this->TwoSpacings(level) < sigma)
     {
       ++level;
     }
     const double disc = std::sqrt(DiscPoints / (M_PI * this->Density * this->Fractions[level]));
+    this->GridAt(level);
     std::vector<double> discDensities(this->Samples.size(), 0.0);
 #pragma omp parallel for num_threads(this->Threads) schedule(dynamic, 16)
     for (std::ptrdiff_t s = 0; s < static_cast<std::ptrdiff_t>(this->Samples.size()); ++s)
@@ -672,7 +726,7 @@ private:
     const double rho =
       FlatnessRadiusInSpacings * this->Scales.PointSpacing + FlatnessRadiusInSigmas * sigma;
     this->Scales.FlatnessRadius = rho;
-    const PointGrid& grid = this->Grids[this->LevelFor(rho, FlatnessPointsPerBall)];
+    const PointGrid& grid = this->GridAt(this->LevelFor(rho, FlatnessPointsPerBall));
     std::vector<double> excess(this->Samples.size(), -1.0);
     std::vector<double> quadricVariance(this->Samples.size(), -1.0);
 #pragma omp parallel num_threads(this->Threads)
@@ -760,6 +814,7 @@ private:
 
   const PointCloudView& Cloud;
   const ScaleMeasurementOptions& Options;
+  const std::uint64_t* PointKeys;
   const CloudExtent Extent;
   const std::size_t N;
   const int Threads;
@@ -769,8 +824,10 @@ private:
   /// The fraction of the finite points each level holds.
   std::vector<double> Fractions;
   std::vector<PointGrid> Grids;
+  std::vector<bool> GridBuilt;
   /// The current estimate of the number of points per unit area of surface.
   double Density = 0.0;
+  double FirstDensity = 0.0;
   std::vector<std::size_t> Samples;
   /// The points whose nearest-neighbour distance is measured; the first of them are Samples
   /// unless the options name these.
@@ -794,23 +851,50 @@ double MeasuredFraction(std::size_t numberOfFinitePoints)
            : static_cast<double>(MaximumMeasuredPoints) / static_cast<double>(numberOfFinitePoints);
 }
 
-std::vector<double> SelectMeasurementPoints(const PointCloudView& cloud, double fraction)
+namespace
+{
+/// SelectMeasurementPoints, and the selected points' MeasurementKey when keys is not null.
+std::vector<double> Select(const PointCloudView& cloud,
+  double fraction,
+  std::vector<std::uint64_t>* keys)
 {
   // Selected: SelectionKey / 2^64 < fraction.
   const double threshold = std::ldexp(fraction, 64);
   std::vector<double> selection;
+  // (About fraction of the points, and a margin, without growing the arrays on the way.)
+  const double expected = fraction * static_cast<double>(cloud.NumberOfPoints);
+  const auto reserved = static_cast<std::size_t>(std::min(
+    expected + 6.0 * std::sqrt(expected) + 16.0, static_cast<double>(cloud.NumberOfPoints)));
+  selection.reserve(3 * reserved);
+  if (keys != nullptr)
+  {
+    keys->reserve(reserved);
+  }
   for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
   {
     const double* p = cloud.Positions + 3 * i;
-    if (IsFinitePoint(p) && (fraction >= 1.0 || static_cast<double>(SelectionKey(p)) < threshold))
+    if (!IsFinitePoint(p))
+    {
+      continue;
+    }
+    const std::uint64_t key = MeasurementKey(p);
+    if (fraction >= 1.0 || static_cast<double>(SelectionKey(key)) < threshold)
     {
       selection.insert(selection.end(), p, p + 3);
+      if (keys != nullptr)
+      {
+        keys->push_back(key);
+      }
     }
   }
   return selection;
 }
 
-CloudScales MeasureSelection(const std::vector<double>& selection, double fraction, int threads)
+/// MeasureSelection, with the selected points' MeasurementKey at hand (null: computed).
+CloudScales MeasureSelected(const std::vector<double>& selection,
+  double fraction,
+  int threads,
+  const std::uint64_t* keys)
 {
   PointCloudView view;
   view.NumberOfPoints = selection.size() / 3;
@@ -818,7 +902,18 @@ CloudScales MeasureSelection(const std::vector<double>& selection, double fracti
   ScaleMeasurementOptions options;
   options.PointFraction = fraction;
   options.NumberOfThreads = threads;
-  return MeasureScales(view, options);
+  return ScaleMeasurement(view, options, keys).Measure();
+}
+} // namespace
+
+std::vector<double> SelectMeasurementPoints(const PointCloudView& cloud, double fraction)
+{
+  return Select(cloud, fraction, nullptr);
+}
+
+CloudScales MeasureSelection(const std::vector<double>& selection, double fraction, int threads)
+{
+  return MeasureSelected(selection, fraction, threads, nullptr);
 }
 
 CloudScales MeasureWholeCloud(const PointCloudView& cloud, int threads)
@@ -832,7 +927,10 @@ CloudScales MeasureWholeCloud(const PointCloudView& cloud, int threads)
     options.NumberOfThreads = threads;
     return MeasureScales(cloud, options);
   }
-  return MeasureSelection(SelectMeasurementPoints(cloud, fraction), fraction, threads);
+  // (The selection's keys are computed on the way: the levels need them again.)
+  std::vector<std::uint64_t> keys;
+  const std::vector<double> selection = Select(cloud, fraction, &keys);
+  return MeasureSelected(selection, fraction, threads, keys.data());
 }
 
 } // namespace pcbilateral

@@ -12,14 +12,6 @@ namespace pcbilateral
 {
 namespace
 {
-/// The lower median (an element, not an average): exact, whatever the order of the values.
-double LowerMedian(std::vector<double>& values)
-{
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>((values.size() - 1) / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
 /// The element of sorted spacings below which lies `fraction` of their total area (each covers
 /// its square).
 double PercentileByArea(const std::vector<double>& sorted, double fraction)
@@ -42,18 +34,19 @@ double PercentileByArea(const std::vector<double>& sorted, double fraction)
 }
 
 /// The median of spacings weighted by the area each covers (its square), each first clipped at
-/// twice their plain median: an element (or that bound), not an average, exact whatever the
+/// twice their plain (lower) median: an element (or that bound), not an average, exact whatever the
 /// order. Within a block of cells across which the density changes, the points of the dense
 /// side outnumber the others, which the weights correct; the clipping keeps an outlier, far
 /// from every other point, from counting for the area of a hundred.
 double ClippedMedianByArea(std::vector<double>& values)
 {
-  const double bound = 2.0 * LowerMedian(values);
+  std::sort(values.begin(), values.end());
+  const double bound = 2.0 * values[(values.size() - 1) / 2];
+  // (Clipping keeps them sorted.)
   for (double& value : values)
   {
     value = std::min(value, bound);
   }
-  std::sort(values.begin(), values.end());
   return PercentileByArea(values, 0.5);
 }
 
@@ -174,13 +167,10 @@ double SpacingField::MedianAround(std::size_t cell) const
   const std::int64_t centre[3] = { static_cast<std::int64_t>(cell) % nx,
     (static_cast<std::int64_t>(cell) / nx) % ny,
     static_cast<std::int64_t>(cell) / (nx * ny) };
-  std::vector<double> values;
-  const std::int64_t largestRing = std::max({ nx, ny, nz });
-  for (std::int64_t ring = 0; ring <= largestRing; ++ring)
+  // The block of cells within `ring` of the centre, row by row: its samples' range in each row
+  // (cells of a row are consecutive).
+  auto forEachRow = [&](std::int64_t ring, auto&& row)
   {
-    values.clear();
-    // The whole block of the ring: blocks are small where samples are dense, and the ring
-    // rarely grows beyond 2.
     for (std::int64_t z = std::max<std::int64_t>(0, centre[2] - ring);
          z <= std::min(nz - 1, centre[2] + ring);
          ++z)
@@ -189,19 +179,33 @@ double SpacingField::MedianAround(std::size_t cell) const
            y <= std::min(ny - 1, centre[1] + ring);
            ++y)
       {
-        const std::int64_t row = (z * ny + y) * nx;
-        const std::int64_t first = row + std::max<std::int64_t>(0, centre[0] - ring);
-        const std::int64_t last = row + std::min(nx - 1, centre[0] + ring);
-        values.insert(values.end(),
-          this->SortedDistances.begin() + this->CellStart[static_cast<std::size_t>(first)],
-          this->SortedDistances.begin() + this->CellStart[static_cast<std::size_t>(last) + 1]);
+        const std::int64_t first = (z * ny + y) * nx + std::max<std::int64_t>(0, centre[0] - ring);
+        const std::int64_t last = (z * ny + y) * nx + std::min(nx - 1, centre[0] + ring);
+        row(this->CellStart[static_cast<std::size_t>(first)],
+          this->CellStart[static_cast<std::size_t>(last) + 1]);
       }
     }
-    if (values.size() >= FewestSamples)
+  };
+  // The smallest block holding FewestSamples samples (counted first, gathered once): blocks are
+  // small where samples are dense, and the ring rarely grows beyond 4.
+  const std::int64_t largestRing = std::max({ nx, ny, nz });
+  std::int64_t ring = 0;
+  for (; ring < largestRing; ++ring)
+  {
+    std::size_t count = 0;
+    forEachRow(ring, [&](std::uint32_t begin, std::uint32_t end) { count += end - begin; });
+    if (count >= FewestSamples)
     {
       break;
     }
   }
+  std::vector<double> values;
+  forEachRow(ring,
+    [&](std::uint32_t begin, std::uint32_t end)
+    {
+      values.insert(
+        values.end(), this->SortedDistances.begin() + begin, this->SortedDistances.begin() + end);
+    });
   return ClippedMedianByArea(values);
 }
 

@@ -46,6 +46,56 @@ bool KeyLess(const std::int64_t* a, const std::int64_t* b)
   return a[0] != b[0] ? a[0] < b[0] : (a[1] != b[1] ? a[1] < b[1] : a[2] < b[2]);
 }
 
+/// A point's packed cell coordinates (PointGrid::Pack) and its id.
+struct PackedPoint
+{
+  std::uint64_t Key;
+  std::uint32_t Id;
+};
+
+/// The number of bits value needs (0 for 0).
+int BitWidth(std::uint64_t value)
+{
+  int bits = 0;
+  for (; value != 0; value >>= 1)
+  {
+    ++bits;
+  }
+  return bits;
+}
+
+/// Sorts points by the low `bits` bits of their keys, stably (equal keys keep their order), 11
+/// bits a pass.
+void RadixSort(PointArray<PackedPoint>& points, int bits)
+{
+  constexpr int DigitBits = 11;
+  constexpr std::size_t Digits = std::size_t(1) << DigitBits;
+  const int passes = (bits + DigitBits - 1) / DigitBits;
+  // Every pass's digit counts in one reading of the keys.
+  std::vector<std::uint32_t> start(passes * (Digits + 1), 0);
+  for (const PackedPoint& point : points)
+  {
+    for (int pass = 0; pass < passes; ++pass)
+    {
+      ++start[pass * (Digits + 1) + ((point.Key >> (pass * DigitBits)) & (Digits - 1)) + 1];
+    }
+  }
+  PointArray<PackedPoint> sorted(points.size());
+  for (int pass = 0; pass < passes; ++pass)
+  {
+    std::uint32_t* next = &start[pass * (Digits + 1)];
+    for (std::size_t digit = 0; digit < Digits; ++digit)
+    {
+      next[digit + 1] += next[digit];
+    }
+    for (const PackedPoint& point : points)
+    {
+      sorted[next[(point.Key >> (pass * DigitBits)) & (Digits - 1)]++] = point;
+    }
+    std::swap(points, sorted);
+  }
+}
+
 /// floor((value - origin) / cellSize) when it is exact, else false.
 bool CellCoordinate(double value, double origin, double cellSize, std::int64_t& key)
 {
@@ -87,17 +137,13 @@ bool PointGrid::Build(const double* positions,
   this->X.resize(n);
   this->Y.resize(n);
   this->Z.resize(n);
-  this->CellOfPoint.resize(n);
   // (At most a cell per point; the first layout of a sparse cloud has nearly that many.)
   this->CellKey.reserve(3 * n);
   this->CellBegin.reserve(n + 1);
-  if (order == PointOrder::ByCoordinates)
+  if (order == PointOrder::ByCoordinates || !this->LayOutInColumns(positions, ids, keys))
   {
+    this->Order = PointOrder::ByCoordinates;
     this->LayOutByCoordinates(positions, ids, keys);
-  }
-  else
-  {
-    this->LayOutInBuckets(positions, ids, keys);
   }
   this->CellBegin.push_back(static_cast<std::uint32_t>(n));
   return true;
@@ -107,6 +153,7 @@ void PointGrid::LayOutByCoordinates(const double* positions,
   const std::vector<std::uint32_t>& ids,
   const PointArray<std::int64_t>& keys)
 {
+  this->CellOfPoint.resize(ids.size());
   PointArray<GridEntry> entries(ids.size());
   for (std::size_t k = 0; k < ids.size(); ++k)
   {
@@ -122,53 +169,132 @@ void PointGrid::LayOutByCoordinates(const double* positions,
   }
 }
 
-void PointGrid::LayOutInBuckets(const double* positions,
+bool PointGrid::LayOutInColumns(const double* positions,
   const std::vector<std::uint32_t>& ids,
   const PointArray<std::int64_t>& keys)
 {
   const std::size_t n = ids.size();
-  std::size_t buckets = 1;
-  while (buckets < n)
+  if (n == 0)
   {
-    buckets *= 2;
+    this->HashColumns();
+    return true;
   }
-  this->BucketFirstCell.assign(buckets + 1, 0);
-  PointArray<std::uint32_t> bucketOf(n);
-  std::vector<std::uint32_t> starts(buckets + 1, 0);
-  for (std::size_t k = 0; k < n; ++k)
+  std::copy_n(&keys[0], 3, this->KeyMin);
+  std::copy_n(&keys[0], 3, this->KeyMax);
+  for (std::size_t k = 1; k < n; ++k)
   {
-    bucketOf[k] = static_cast<std::uint32_t>(this->BucketOf(&keys[3 * k]));
-    ++starts[bucketOf[k] + 1];
-  }
-  for (std::size_t b = 0; b < buckets; ++b)
-  {
-    starts[b + 1] += starts[b];
-  }
-  PointArray<std::uint32_t> grouped(n);
-  std::vector<std::uint32_t> next(starts.begin(), starts.end() - 1);
-  for (std::size_t k = 0; k < n; ++k)
-  {
-    grouped[next[bucketOf[k]]++] = static_cast<std::uint32_t>(k);
-  }
-  for (std::size_t b = 0; b < buckets; ++b)
-  {
-    // The cells that share a bucket: its points grouped by cell.
-    const auto first = grouped.begin() + starts[b], last = grouped.begin() + starts[b + 1];
-    if (last - first > 1)
+    for (int axis = 0; axis < 3; ++axis)
     {
-      std::sort(first,
-        last,
-        [&](std::uint32_t a, std::uint32_t c) { return KeyLess(&keys[3 * a], &keys[3 * c]); });
-    }
-    this->BucketFirstCell[b] = static_cast<std::uint32_t>(this->CellBegin.size());
-    for (std::uint32_t at = starts[b]; at < starts[b + 1]; ++at)
-    {
-      // (Equal keys share a bucket, so a bucket never continues the previous one's last cell.)
-      const std::uint32_t k = grouped[at];
-      this->Place(at, ids[k], positions + 3 * static_cast<std::size_t>(ids[k]), &keys[3 * k]);
+      this->KeyMin[axis] = std::min(this->KeyMin[axis], keys[3 * k + axis]);
+      this->KeyMax[axis] = std::max(this->KeyMax[axis], keys[3 * k + axis]);
     }
   }
-  this->BucketFirstCell[buckets] = static_cast<std::uint32_t>(this->CellBegin.size());
+  int bits[3];
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    bits[axis] = BitWidth(static_cast<std::uint64_t>(this->KeyMax[axis] - this->KeyMin[axis]));
+  }
+  // (Below 64 bits, no column's packed key is EmptyColumn.)
+  if (bits[0] + bits[1] + bits[2] > 63)
+  {
+    return false;
+  }
+  this->YBits = bits[1];
+  this->ZBits = bits[2];
+  PointArray<PackedPoint> packed(n);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    packed[k] = { this->Pack(&keys[3 * k]), ids[k] };
+  }
+  RadixSort(packed, bits[0] + bits[1] + bits[2]);
+  const std::uint64_t zMask = (std::uint64_t(1) << this->ZBits) - 1;
+  const std::uint64_t yMask = (std::uint64_t(1) << this->YBits) - 1;
+  for (std::size_t at = 0; at < n; ++at)
+  {
+    // (The points are read in the cells' order, at random in memory: asking for them ahead
+    // keeps several reads in flight.)
+    constexpr std::size_t Ahead = 16;
+    if (at + Ahead < n)
+    {
+      __builtin_prefetch(positions + 3 * static_cast<std::size_t>(packed[at + Ahead].Id));
+    }
+    const std::uint64_t cell = packed[at].Key;
+    const std::int64_t key[3] = { this->KeyMin[0] +
+                                    static_cast<std::int64_t>(cell >> (this->YBits + this->ZBits)),
+      this->KeyMin[1] + static_cast<std::int64_t>((cell >> this->ZBits) & yMask),
+      this->KeyMin[2] + static_cast<std::int64_t>(cell & zMask) };
+    const std::uint32_t id = packed[at].Id;
+    this->Place(at, id, positions + 3 * static_cast<std::size_t>(id), key);
+  }
+  this->HashColumns();
+  return true;
+}
+
+std::uint64_t PointGrid::Pack(const std::int64_t key[3]) const
+{
+  return static_cast<std::uint64_t>(key[0] - this->KeyMin[0]) << (this->YBits + this->ZBits) |
+         static_cast<std::uint64_t>(key[1] - this->KeyMin[1]) << this->ZBits |
+         static_cast<std::uint64_t>(key[2] - this->KeyMin[2]);
+}
+
+void PointGrid::HashColumns()
+{
+  const std::size_t cells = this->CellBegin.size();
+  std::size_t slots = 2;
+  while (slots < 2 * cells)
+  {
+    slots *= 2;
+  }
+  this->ColumnKey.assign(slots, EmptyColumn);
+  this->ColumnFirstCell.assign(slots, 0);
+  std::uint64_t previous = EmptyColumn;
+  for (std::size_t cell = 0; cell < cells; ++cell)
+  {
+    std::uint64_t column;
+    this->PackColumn(this->CellKey[3 * cell], this->CellKey[3 * cell + 1], column);
+    if (column == previous)
+    {
+      continue;
+    }
+    previous = column;
+    std::size_t slot = MixBits(column) & (slots - 1);
+    while (this->ColumnKey[slot] != EmptyColumn)
+    {
+      slot = (slot + 1) & (slots - 1);
+    }
+    this->ColumnKey[slot] = column;
+    this->ColumnFirstCell[slot] = static_cast<std::uint32_t>(cell);
+  }
+}
+
+bool PointGrid::PackColumn(std::int64_t x, std::int64_t y, std::uint64_t& packed) const
+{
+  if (x < this->KeyMin[0] || x > this->KeyMax[0] || y < this->KeyMin[1] || y > this->KeyMax[1])
+  {
+    return false;
+  }
+  packed = static_cast<std::uint64_t>(x - this->KeyMin[0]) << this->YBits |
+           static_cast<std::uint64_t>(y - this->KeyMin[1]);
+  return true;
+}
+
+std::int64_t PointGrid::FindColumn(std::int64_t x, std::int64_t y) const
+{
+  std::uint64_t column;
+  if (!this->PackColumn(x, y, column))
+  {
+    return -1;
+  }
+  const std::size_t mask = this->ColumnKey.size() - 1;
+  for (std::size_t slot = MixBits(column) & mask; this->ColumnKey[slot] != EmptyColumn;
+       slot = (slot + 1) & mask)
+  {
+    if (this->ColumnKey[slot] == column)
+    {
+      return this->ColumnFirstCell[slot];
+    }
+  }
+  return -1;
 }
 
 void PointGrid::Place(std::size_t at,
@@ -188,15 +314,10 @@ void PointGrid::Place(std::size_t at,
   this->X[at] = p[0];
   this->Y[at] = p[1];
   this->Z[at] = p[2];
-  this->CellOfPoint[at] = static_cast<std::uint32_t>(this->CellBegin.size() - 1);
-}
-
-std::size_t PointGrid::BucketOf(const std::int64_t key[3]) const
-{
-  const std::uint64_t hash = static_cast<std::uint64_t>(key[0]) * 73856093ull ^
-                             static_cast<std::uint64_t>(key[1]) * 19349663ull ^
-                             static_cast<std::uint64_t>(key[2]) * 83492791ull;
-  return static_cast<std::size_t>(MixBits(hash) & (this->BucketFirstCell.size() - 2));
+  if (this->Order == PointOrder::ByCoordinates)
+  {
+    this->CellOfPoint[at] = static_cast<std::uint32_t>(this->CellBegin.size() - 1);
+  }
 }
 
 void PointGrid::ComputeNeighbourRuns(int threads)
@@ -254,21 +375,25 @@ std::size_t PointGrid::LowerBound(const std::int64_t key[3]) const
 
 std::int64_t PointGrid::FindCell(const std::int64_t key[3]) const
 {
+  std::size_t cell;
   if (this->Order == PointOrder::Any)
   {
-    const std::size_t bucket = this->BucketOf(key);
-    for (std::uint32_t cell = this->BucketFirstCell[bucket];
-         cell < this->BucketFirstCell[bucket + 1];
-         ++cell)
+    const std::int64_t column = this->FindColumn(key[0], key[1]);
+    if (column < 0)
     {
-      if (std::equal(key, key + 3, &this->CellKey[3 * static_cast<std::size_t>(cell)]))
-      {
-        return cell;
-      }
+      return -1;
     }
-    return -1;
+    cell = static_cast<std::size_t>(column);
+    while (cell < this->CellBegin.size() - 1 && this->CellKey[3 * cell] == key[0] &&
+           this->CellKey[3 * cell + 1] == key[1] && this->CellKey[3 * cell + 2] < key[2])
+    {
+      ++cell;
+    }
   }
-  const std::size_t cell = this->LowerBound(key);
+  else
+  {
+    cell = this->LowerBound(key);
+  }
   if (cell < this->CellBegin.size() - 1 && std::equal(key, key + 3, &this->CellKey[3 * cell]))
   {
     return static_cast<std::int64_t>(cell);

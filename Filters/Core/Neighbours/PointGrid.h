@@ -32,9 +32,13 @@ namespace pcbilateral
  *   never on their ids or on the number of threads (the edge-aware mode's sums need this).
  *   Points with equal coordinates are interchangeable (every result computed from them is
  *   equal too).
- * - PointOrder::Any: cells in hashed buckets, in no meaningful order, found by hashing; about
- *   ten times cheaper to build when cells hold a few points (the measurement, which sorts what
- *   it gathers itself).
+ * - PointOrder::Any: cells sorted as above, each cell's points in no particular order, and the
+ *   (x, y) columns of cells found by hashing. The cells are sorted by a radix sort of their
+ *   coordinates packed into one integer, so the layout costs a few passes over the points
+ *   instead of a comparison sort; a search makes one hash probe per column instead of a binary
+ *   search (the measurement, which sorts what it gathers itself, or only counts). When the
+ *   packed coordinates would not fit 64 bits, the points are laid out ByCoordinates instead
+ *   (still a valid Any layout).
  */
 class PointGrid
 {
@@ -62,7 +66,8 @@ public:
   const double* GetY() const { return this->Y.data(); }
   const double* GetZ() const { return this->Z.data(); }
   double GetCellSize() const { return this->CellSize; }
-  /// The cell of point i of the layout, an index into the cells (0 to the number of cells - 1).
+  /// The cell of point i of the layout, an index into the cells (0 to the number of cells - 1);
+  /// ByCoordinates layout only.
   std::uint32_t GetCellOfPoint(std::size_t i) const { return this->CellOfPoint[i]; }
   /// The number of cells holding points, and the integer coordinates (3) of one of them.
   std::size_t GetNumberOfCells() const { return this->CellKey.size() / 3; }
@@ -95,15 +100,24 @@ private:
   void LayOutByCoordinates(const double* positions,
     const std::vector<std::uint32_t>& ids,
     const PointArray<std::int64_t>& keys);
-  /// The Any layout: the points counted into hashed buckets, each bucket's few points grouped
-  /// by cell (BucketFirstCell says where each bucket's cells begin).
-  void LayOutInBuckets(const double* positions,
+  /// The Any layout: the points radix-sorted by their packed cell coordinates, then the
+  /// columns' hash table. False when the packed coordinates would not fit 64 bits.
+  bool LayOutInColumns(const double* positions,
     const std::vector<std::uint32_t>& ids,
     const PointArray<std::int64_t>& keys);
+  /// The column (x, y) packed into one integer (PackedColumn), or false when no cell has
+  /// these coordinates' range.
+  bool PackColumn(std::int64_t x, std::int64_t y, std::uint64_t& packed) const;
+  /// The first cell of column (x, y) in the Any layout, or -1.
+  std::int64_t FindColumn(std::int64_t x, std::int64_t y) const;
+  /// Cell coordinates packed into one integer, in the order of the coordinates (Any layout).
+  std::uint64_t Pack(const std::int64_t key[3]) const;
+  /// Fills the columns' hash table from the sorted cells.
+  void HashColumns();
+  static constexpr std::uint64_t EmptyColumn = ~std::uint64_t(0);
   /// Puts point `id` (at p, in cell `key`) at index `at` of the layout, the next one, starting
   /// a new cell when the key differs from the last cell's.
   void Place(std::size_t at, std::uint32_t id, const double p[3], const std::int64_t key[3]);
-  std::size_t BucketOf(const std::int64_t key[3]) const;
   /// The first cell whose coordinates are at least `key`, or the number of cells (ByCoordinates).
   std::size_t LowerBound(const std::int64_t key[3]) const;
   /// The cell with these coordinates, or -1 (either layout).
@@ -122,9 +136,14 @@ private:
   std::vector<std::int64_t> CellKey;
   std::vector<std::uint32_t> CellBegin;
   std::vector<std::uint32_t> NeighbourRuns;
-  /// The Any layout's buckets (a power of two of them): bucket b holds cells BucketFirstCell[b]
-  /// to BucketFirstCell[b + 1] - 1.
-  std::vector<std::uint32_t> BucketFirstCell;
+  /// The Any layout's columns: cell coordinates less KeyMin, packed as x << (YBits + ZBits) |
+  /// y << ZBits | z; an open-addressing hash table (a power of two of slots, an empty slot's
+  /// key is EmptyColumn) from a column's packed (x, y) to its first cell.
+  std::int64_t KeyMin[3] = { 0, 0, 0 };
+  std::int64_t KeyMax[3] = { -1, -1, -1 };
+  int YBits = 0, ZBits = 0;
+  std::vector<std::uint64_t> ColumnKey;
+  std::vector<std::uint32_t> ColumnFirstCell;
   PointOrder Order = PointOrder::ByCoordinates;
   double Origin[3] = { 0.0, 0.0, 0.0 };
   double CellSize = 1.0;
@@ -167,22 +186,27 @@ void PointGrid::ForEachInBall(const double centre[3], double radius, Visit&& vis
   {
     for (std::int64_t y = low[1]; y <= high[1]; ++y)
     {
+      // The cells (x, y, low z) to (x, y, high z) that exist are consecutive.
+      std::size_t cell;
       if (this->Order == PointOrder::Any)
       {
-        for (std::int64_t z = low[2]; z <= high[2]; ++z)
+        const std::int64_t column = this->FindColumn(x, y);
+        if (column < 0)
         {
-          const std::int64_t key[3] = { x, y, z };
-          const std::int64_t cell = this->FindCell(key);
-          if (cell >= 0)
-          {
-            visitRun(this->CellBegin[cell], this->CellBegin[cell + 1]);
-          }
+          continue;
         }
-        continue;
+        cell = static_cast<std::size_t>(column);
+        while (cell < cells && this->CellKey[3 * cell] == x && this->CellKey[3 * cell + 1] == y &&
+               this->CellKey[3 * cell + 2] < low[2])
+        {
+          ++cell;
+        }
       }
-      // The cells (x, y, low z) to (x, y, high z) that exist are consecutive.
-      const std::int64_t first[3] = { x, y, low[2] };
-      const std::size_t cell = this->LowerBound(first);
+      else
+      {
+        const std::int64_t first[3] = { x, y, low[2] };
+        cell = this->LowerBound(first);
+      }
       std::size_t last = cell;
       while (last < cells && this->CellKey[3 * last] == x && this->CellKey[3 * last + 1] == y &&
              this->CellKey[3 * last + 2] <= high[2])
