@@ -148,6 +148,17 @@ struct SortedNeighbours
   std::size_t PaddingRow = 0;
 };
 
+/// One point's neighbours as step 1 of the edge-aware mode selected them: Count packed offsets
+/// q - p, with room for KernelLanes more (padding), and room for their distance weights.
+struct PackedNeighbours
+{
+  double* Dx = nullptr;
+  double* Dy = nullptr;
+  double* Dz = nullptr;
+  double* Weight = nullptr;
+  std::size_t Count = 0;
+};
+
 /// The sums of step 3 of the edge-aware mode for one point (see EdgeAwareHeightSums in
 /// EdgeAwareKernelBody.h).
 struct EdgeAwareHeights
@@ -185,18 +196,17 @@ struct EdgeAwareKernel
     double* dz,
     std::uint32_t* index,
     std::size_t count);
-  /// The paper's regression plane normal of `count` selected neighbours, then `rounds` refits
-  /// with the weights multiplied by Bump(-res^2 * residualScale), res the height over the last
-  /// plane (through the weighted mean); false if none.
-  bool (*PlaneNormal)(double* dx,
-    double* dy,
-    double* dz,
+  /// For each of `count` points (at most KernelLanes), the paper's regression plane normal of
+  /// its selected neighbours, then `rounds` refits with the weights multiplied by
+  /// Bump(-res^2 * residualScale), res the height over the last plane (through the weighted
+  /// mean); found[point] false (normal untouched) if none.
+  void (*PlaneNormals)(const PackedNeighbours* points,
     std::size_t count,
     double distanceScale,
     double residualScale,
     int rounds,
-    double* distanceWeight,
-    double n[3]);
+    double (*normals)[3],
+    bool* found);
   /// The bilateral sum of the neighbours' normals (step 2).
   void (*NormalSum)(const double p[3],
     const SortedNeighbours& neighbours,

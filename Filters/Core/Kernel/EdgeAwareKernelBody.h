@@ -81,51 +81,84 @@ inline DistanceMoments AccumulateResidualMoments(const double* dx,
   return moments;
 }
 
+/// The weighted covariance of `moments` in lane `lane` of `covariance`; false (lane untouched)
+/// when the weights sum to zero.
+inline bool CovarianceInLane(const DistanceMoments& moments,
+  double (*covariance)[Lanes],
+  std::size_t lane)
+{
+  double entries[6];
+  if (!RegressionCovariance(moments, entries))
+  {
+    return false;
+  }
+  for (int entry = 0; entry < 6; ++entry)
+  {
+    covariance[entry][lane] = entries[entry];
+  }
+  return true;
+}
+
 /**
- * Step 1 for a point whose `count` neighbours PackNeighbours<true> packed (room for Lanes more):
- * the paper's regression plane normal, weighted by exp(-|q - p|^2 * distanceScale), with the
- * kernel's own pass 1; then `rounds` refits with the weights multiplied by
- * Bump(-res^2 * residualScale), res the neighbour's height over the last plane: a plane fitted
- * across an edge is tilted, the refit leaves out the far side's points (the most off the
- * plane) and turns toward the point's own face. Returns false (n untouched) when the weights
- * sum to zero.
+ * Step 1 for `count` points (at most Lanes) whose neighbours PackNeighbours<true> packed (room
+ * for Lanes more in every array): the paper's regression plane normal, weighted by
+ * exp(-|q - p|^2 * distanceScale), with the kernel's own pass 1; then `rounds` refits with the
+ * weights multiplied by Bump(-res^2 * residualScale), res the neighbour's height over the last
+ * plane: a plane fitted across an edge is tilted, the refit leaves out the far side's points
+ * (the most off the plane) and turns toward the point's own face. The points' 3 x 3 solves run
+ * side by side, one per lane (SolveNormals: the bits of one solve alone). found[point] is false
+ * (its normal untouched) when its weights sum to zero.
  */
-bool EdgeAwarePlaneNormal(double* dx,
-  double* dy,
-  double* dz,
+void EdgeAwarePlaneNormals(const PackedNeighbours* points,
   std::size_t count,
   double distanceScale,
   double residualScale,
   int rounds,
-  double* distanceWeight,
-  double n[3])
+  double (*normals)[3],
+  bool* found)
 {
-  const std::size_t padded = PadNeighbours(dx, dy, dz, count);
-  DistanceMoments moments =
-    AccumulateDistanceMoments(dx, dy, dz, padded, distanceScale, distanceWeight);
-  if (!RegressionNormal(moments, n))
+  DistanceMoments moments[Lanes];
+  double covariance[6][Lanes] = {};
+  bool solve[Lanes] = {};
+  for (std::size_t point = 0; point < count; ++point)
   {
-    return false;
+    const PackedNeighbours& own = points[point];
+    const std::size_t padded = PadNeighbours(own.Dx, own.Dy, own.Dz, own.Count);
+    moments[point] =
+      AccumulateDistanceMoments(own.Dx, own.Dy, own.Dz, padded, distanceScale, own.Weight);
+    solve[point] = CovarianceInLane(moments[point], covariance, point);
+    found[point] = solve[point];
   }
-  for (int round = 0; round < rounds; ++round)
+  double solved[3][Lanes];
+  for (int round = 0; round <= rounds; ++round)
   {
-    const double total = SumLanes(moments.WeightSum);
-    const double c[3] = { SumLanes(moments.FirstX) / total,
-      SumLanes(moments.FirstY) / total,
-      SumLanes(moments.FirstZ) / total };
-    const DistanceMoments robust =
-      AccumulateResidualMoments(dx, dy, dz, padded, distanceWeight, n, c, residualScale);
-    double refit[3];
-    if (!RegressionNormal(robust, refit))
+    SolveNormals(covariance, solve, solved);
+    for (std::size_t point = 0; point < count; ++point)
     {
-      break;
+      if (!solve[point])
+      {
+        continue;
+      }
+      double* n = normals[point];
+      n[0] = solved[0][point];
+      n[1] = solved[1][point];
+      n[2] = solved[2][point];
+      if (round == rounds)
+      {
+        continue;
+      }
+      // The refit: a point whose reweighted moments sum to zero keeps its last plane.
+      const PackedNeighbours& own = points[point];
+      const double total = SumLanes(moments[point].WeightSum);
+      const double c[3] = { SumLanes(moments[point].FirstX) / total,
+        SumLanes(moments[point].FirstY) / total,
+        SumLanes(moments[point].FirstZ) / total };
+      const std::size_t padded = (own.Count + Lanes - 1) / Lanes * Lanes;
+      moments[point] =
+        AccumulateResidualMoments(own.Dx, own.Dy, own.Dz, padded, own.Weight, n, c, residualScale);
+      solve[point] = CovarianceInLane(moments[point], covariance, point);
     }
-    moments = robust;
-    n[0] = refit[0];
-    n[1] = refit[1];
-    n[2] = refit[2];
   }
-  return true;
 }
 
 /// The exponent of the agreement weight of two unit normals of cosine c: -((1 - |c|) s)^2, with
@@ -346,7 +379,7 @@ EdgeAwareKernel MakeEdgeAwareKernel()
 {
   EdgeAwareKernel kernel;
   kernel.Select = &PackNeighbours<true>;
-  kernel.PlaneNormal = &EdgeAwarePlaneNormal;
+  kernel.PlaneNormals = &EdgeAwarePlaneNormals;
   kernel.NormalSum = &EdgeAwareNormalSum;
   kernel.HeightSums = &EdgeAwareHeightSums;
   return kernel;
