@@ -8,6 +8,7 @@
 //                the paper's mode is untouched (TestOutputBits pins it);
 //   ThinNoise    the automatic rule's thin-noise branch: chosen for a sharp edge at 0.1% noise
 //                (one iteration, wider radii), not for noise of a spacing; it keeps the edge;
+//   ThickNoise   the rule's largest radius with creases, 24 spacings;
 //   Inputs       NaN points pass through and are never neighbours, isolated points stay or are
 //                removed, normals are returned (unit, oriented when asked), abort stops the run.
 // The partitioned run (ghosts) is checked by TestPartitionedRun.
@@ -181,6 +182,30 @@ void ThinNoise()
     ThinRms);
 }
 
+/// The rule's largest radius with creases (EdgeAwareRule.h): noise of 4 spacings would ask for
+/// 28 spacings, the rule takes 24; noise of 2 spacings keeps 8 spacings + 5 sigma.
+void ThickNoise()
+{
+  const EdgeAwareRule rule;
+  CloudScales scales;
+  scales.Valid = true;
+  scales.PointSpacing = 0.01;
+  scales.FeatureFraction = 0.2;
+  scales.CreaseFraction = 0.2;
+  BilateralParameters automatic;
+  automatic.EdgeAware = true;
+  scales.NoiseSigma = 0.04;
+  const BilateralParameters thick = ChooseParameters(scales, automatic);
+  scales.NoiseSigma = 0.02;
+  const BilateralParameters moderate = ChooseParameters(scales, automatic);
+  PCB_CHECK(thick.Radius == rule.MaximumRadiusInSpacings * 0.01 &&
+              thick.NumberOfIterations == rule.NumberOfIterations &&
+              moderate.Radius == rule.RadiusInSpacings * 0.01 + rule.RadiusInSigmas * 0.02,
+    "noise of 4 spacings: r %g, of 2: r %g",
+    thick.Radius,
+    moderate.Radius);
+}
+
 void Quality()
 {
   const std::unique_ptr<Shape> edge = SharpEdge();
@@ -350,5 +375,6 @@ int main(int argc, char* argv[])
     { { "Quality", Quality },
       { "Determinism", Determinism },
       { "Inputs", Inputs },
-      { "ThinNoise", ThinNoise } });
+      { "ThinNoise", ThinNoise },
+      { "ThickNoise", ThickNoise } });
 }

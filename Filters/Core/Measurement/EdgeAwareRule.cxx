@@ -52,8 +52,9 @@ BilateralParameters ChooseEdgeAwareParameters(const CloudScales& scales,
     parameters.Radius =
       smooth ? std::min(rule.SmoothRadiusInSpacings * s + rule.SmoothRadiusInSigmas * sigma,
                  rule.SmoothRadiusInCurvatureRadii * SurfaceRadius(scales))
-             : (thin ? rule.ThinRadiusInSpacings : rule.RadiusInSpacings) * s +
-                 rule.RadiusInSigmas * sigma;
+             : std::min((thin ? rule.ThinRadiusInSpacings : rule.RadiusInSpacings) * s +
+                          rule.RadiusInSigmas * sigma,
+                 rule.MaximumRadiusInSpacings * s);
   }
   if (!(parameters.NormalRadius > 0.0))
   {
@@ -75,7 +76,8 @@ std::string DescribeEdgeAwareRule(const EdgeAwareRule& rule)
        << "; with noise thinner than " << rule.ThinNoiseInSpacings
        << " spacings r = " << rule.ThinRadiusInSpacings << " spacings + " << rule.RadiusInSigmas
        << " sigma, rn = " << rule.ThinNormalRadiusInSigmas << " sigma, N = " << rule.ThinIterations
-       << "; on a smooth cloud (crease fraction at most " << rule.SmoothCreaseFraction
+       << "; r at most " << rule.MaximumRadiusInSpacings
+       << " spacings; on a smooth cloud (crease fraction at most " << rule.SmoothCreaseFraction
        << ", feature fraction at most " << rule.SmoothFeatureFraction
        << ") r = " << rule.SmoothRadiusInSpacings << " spacings + " << rule.SmoothRadiusInSigmas
        << " sigma, rn = " << rule.SmoothNormalRadiusInSigmas
