@@ -1,5 +1,5 @@
 """Configured without the shared data, every test that reads it is reported skipped, with its
-reason, and none fails: once with PCB_REFERENCE_DIR, PCB_LAS_DATA_DIR and PCB_REAL_DATA_DIR
+reason, and none fails: once with PCB_REFERENCE_DIR, PCB_LAS_DATA_DIR, PCB_REAL_DATA_DIR and PCB_PCD_DATA_DIR
 naming folders that do not exist, once with them not set (and never in the environment).
 
     CheckSkipWithoutSharedData.py SOURCE_DIR BUILD_DIR
@@ -18,7 +18,7 @@ import sys
 import tempfile
 import xml.etree.ElementTree as ElementTree
 
-VARIABLES = ("PCB_REFERENCE_DIR", "PCB_LAS_DATA_DIR", "PCB_REAL_DATA_DIR")
+VARIABLES = ("PCB_REFERENCE_DIR", "PCB_LAS_DATA_DIR", "PCB_REAL_DATA_DIR", "PCB_PCD_DATA_DIR")
 # The build's options that decide which tests there are, given to the scratch configuration too.
 MIRRORED = ("CMAKE_BUILD_TYPE", "CMAKE_CXX_COMPILER", "CMAKE_C_COMPILER", "PCB_WITH_VTK",
             "PCB_WITH_PARAVIEW", "PCB_SANITIZE", "PCB_BUILD_FUZZERS", "VTK_DIR", "ParaView_DIR")

@@ -2,11 +2,12 @@
 // (IPOL 2017), with the option letters of the authors' program.
 //
 //   pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [--paper] [-R] [-t THREADS]
-//               [--remove-isolated] [--edge-aware]
+//               [--remove-isolated] [--edge-aware] [--keep-nan]
+//               [--classes LIST [--class-array NAME]]
 //
-// Formats by extension: .txt and .xyz (the authors' ASCII format), .las, .ply, .vtp. Errors
-// print one line and exit with status 1; a damaged input file is an error, never a cloud. Run with
-// -h for the options.
+// Formats by extension: .txt and .xyz (the authors' ASCII format), .las, .laz, .pcd, .ply,
+// .vtp. Errors print one line and exit with status 1; a damaged input file is an error, never
+// a cloud. Run with -h for the options.
 #include "AutomaticRule.h"
 #include "BilateralFilter.h"
 #include "EdgeAwareRule.h"
@@ -40,12 +41,14 @@ namespace
 // (AutomaticRule.h), inserted by HelpText.
 const char* const UsageHead =
   "usage: pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [--paper] [-R] [-t THREADS]\n"
-  "                   [--remove-isolated] [--edge-aware]\n"
+  "                   [--remove-isolated] [--edge-aware] [--keep-nan]\n"
+  "                   [--classes LIST [--class-array NAME]]\n"
   "\n"
   "Denoises a point cloud with the bilateral filter (Digne & de Franchis, IPOL 2017).\n"
-  "INPUT and OUTPUT: .txt or .xyz (x y z [nx ny nz] [more columns]), .las (LiDAR,\n"
-  "uncompressed), .ply or .vtp. A text file is written as the text input was: the\n"
-  "same columns in the same order, a header line only if it had one, spaces or tabs.\n"
+  "INPUT and OUTPUT: .txt or .xyz (x y z [nx ny nz] [more columns]), .las (LiDAR),\n"
+  ".laz (compressed LiDAR), .pcd (PCL's), .ply or .vtp. A text file is written as the\n"
+  "text input was: the same columns in the same order, a header line only if it had\n"
+  "one, spaces or tabs.\n"
   "\n"
   "  -r R               neighbourhood radius\n"
   "  -n RN              normal radius, the tolerance to the tangent plane\n"
@@ -64,6 +67,14 @@ const char* const UsageTail =
   "  --edge-aware       edge-aware mode, beyond the paper: normals filtered bilaterally\n"
   "                     before the displacement, for sharp edges under strong noise\n"
   "                     (default: the paper's filter)\n"
+  "  --classes LIST     filter only the points of these classes (integers, comma-separated,\n"
+  "                     e.g. 2,6 for LAS ground and buildings); the others keep their exact\n"
+  "                     coordinates and are no one's neighbours (default: every point)\n"
+  "  --class-array NAME the integer point array that holds the class (default\n"
+  "                     Classification, as LAS files name it)\n"
+  "  --keep-nan         PCD input: keep the points without coordinates (NaN) of an\n"
+  "                     organised frame in place, never as neighbours, so that a .pcd\n"
+  "                     output keeps the frame's WIDTH and HEIGHT (default: left out)\n"
   "  -p                 accepted for compatibility and ignored: the filter always runs in "
   "parallel\n"
   "  -h, --help         this text\n";
@@ -202,7 +213,34 @@ struct Options
   int Threads = pcbilateral::BilateralParameters().NumberOfThreads;
   bool RemoveIsolated = pcbilateral::BilateralParameters().RemoveIsolatedPoints;
   bool EdgeAware = pcbilateral::BilateralParameters().EdgeAware;
+  std::vector<long long> Classes;
+  std::string ClassArray = "Classification";
+  bool KeepNaNPoints = false;
 };
+
+/// --classes LIST: integers separated by commas.
+std::vector<long long> ParseClasses(const char* text)
+{
+  std::vector<long long> classes;
+  const char* at = text;
+  while (true)
+  {
+    char* end = nullptr;
+    errno = 0;
+    const long long value = std::strtoll(at, &end, 10);
+    if (end == at || errno == ERANGE || (*end != ',' && *end != '\0'))
+    {
+      Fail(std::string("--classes: '") + text +
+           "' is not a list of whole numbers separated by commas (e.g. 2,6)");
+    }
+    classes.push_back(value);
+    if (*end == '\0')
+    {
+      return classes;
+    }
+    at = end + 1;
+  }
+}
 
 /// Reads the option at argv[i] (and its value, advancing i) into options; false when argv[i] is
 /// not an option.
@@ -257,6 +295,18 @@ bool ParseOption(int argc, char* argv[], int& i, Options& options)
   else if (argument == "--edge-aware")
   {
     options.EdgeAware = true;
+  }
+  else if (argument == "--classes")
+  {
+    options.Classes = ParseClasses(value());
+  }
+  else if (argument == "--class-array")
+  {
+    options.ClassArray = value();
+  }
+  else if (argument == "--keep-nan")
+  {
+    options.KeepNaNPoints = true;
   }
   else if (argument.size() > 1 && argument[0] == '-')
   {
@@ -320,6 +370,11 @@ void ReadInput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData* 
   {
     Fail(options.Input + ": contains no points");
   }
+  if (files->GetNumberOfDroppedPoints() > 0)
+  {
+    std::printf("input:         dropped %lld points without coordinates (NaN)\n",
+      static_cast<long long>(files->GetNumberOfDroppedPoints()));
+  }
 }
 
 void ConfigureFilter(vtkPointCloudBilateralFilter* filter, const Options& options)
@@ -331,6 +386,11 @@ void ConfigureFilter(vtkPointCloudBilateralFilter* filter, const Options& option
   filter->SetNumberOfThreads(options.Threads);
   filter->SetRemoveIsolatedPoints(options.RemoveIsolated);
   filter->SetEdgeAware(options.EdgeAware);
+  filter->SetClassArrayName(options.ClassArray.c_str());
+  for (long long value : options.Classes)
+  {
+    filter->AddClass(value);
+  }
 }
 
 /// "low to high", or one value when they are equal.
@@ -348,9 +408,32 @@ std::string Range(double low, double high)
   return text;
 }
 
+/// With --classes: which points were filtered.
+void PrintClasses(vtkPointCloudBilateralFilter* filter, const Options& options)
+{
+  if (options.Classes.empty())
+  {
+    return;
+  }
+  std::string list;
+  for (long long value : options.Classes)
+  {
+    list += (list.empty() ? "" : ", ") + std::to_string(value);
+  }
+  std::printf("classes:       %s in '%s': %lld points filtered, the others unchanged\n",
+    list.c_str(),
+    options.ClassArray.c_str(),
+    static_cast<long long>(filter->GetNumberOfFilteredPoints()));
+}
+
 /// The parameters the filter used, and for those the user left automatic, from what.
 void PrintParametersUsed(vtkPointCloudBilateralFilter* filter, const Options& options)
 {
+  PrintClasses(filter, options);
+  if (filter->GetNumberOfFilteredPoints() == 0)
+  {
+    return; // (no parameter was used)
+  }
   const bool measured = filter->GetPointSpacing() > 0.0;
   if (measured)
   {
@@ -410,6 +493,10 @@ void WriteOutput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData
   {
     Fail(files->GetErrorMessage());
   }
+  for (int w = 0; w < files->GetNumberOfWarnings(); ++w)
+  {
+    std::fprintf(stderr, "pcbilateral: warning: %s\n", files->GetWarning(w));
+  }
   std::printf("output:        %s, %lld points\n",
     options.Output.c_str(),
     static_cast<long long>(output->GetNumberOfPoints()));
@@ -448,6 +535,7 @@ int main(int argc, char* argv[])
   // One place picks the reader and writer by extension and checks the file first.
   vtkNew<vtkPointCloudFileIO> files;
   files->SetOrientedNormals(options.OrientedNormals);
+  files->SetKeepNaNPoints(options.KeepNaNPoints);
   vtkNew<vtkPolyData> input;
   ReadInput(files, options, input);
 

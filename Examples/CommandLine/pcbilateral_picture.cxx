@@ -3,8 +3,8 @@
 //
 //   pcbilateral_picture BEFORE AFTER OUTPUT.png [--caption-after TEXT] [--view X Y Z] [--zoom Z]
 //
-// BEFORE and AFTER: .txt, .xyz, .las, .ply or .vtp. Both are drawn the same way (points as lit
-// spheres, same camera), so differences are the filter's. --view sets the direction the camera
+// BEFORE and AFTER: .txt, .xyz, .las, .pcd, .ply or .vtp. Both are drawn the same way (points as
+// lit spheres, same camera), so differences are the filter's. --view sets the direction the camera
 // looks from (default 1 0.7 0.45), --zoom magnifies (default 1). Needs an X display (xvfb-run on a
 // headless machine).
 #include "vtkPointCloudFileIO.h"

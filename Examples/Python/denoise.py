@@ -5,7 +5,7 @@
     pvbatch  Examples/Python/denoise.py IN OUT ...
     mpirun -np 2 pvbatch Examples/Python/denoise.py IN OUT ...
 
-IN and OUT: .ply, .vtp, .las, or the authors' text format (.xyz, .txt). The parameters not given
+IN and OUT: .ply, .vtp, .las, .pcd, or the authors' text format (.xyz, .txt). The parameters not given
 are automatic: chosen from the cloud's measured point spacing and noise, or with --paper by the
 paper's heuristic (r = sqrt(20 / points) x largest extent, rn = r, N = 1). The script loads the
 PointCloudBilateral plugin itself: from --plugin, from PV_PLUGIN_PATH (auto-loaded), or from the
@@ -85,6 +85,12 @@ def add_filter_arguments(parser, threads_help="0 (default): all cores"):
     parser.add_argument("--remove-isolated", action="store_true")
     parser.add_argument("--edge-aware", action="store_true",
                         help="edge-aware mode (beyond the paper): sharper edges under strong noise")
+    parser.add_argument("--classes", type=lambda text: [int(c) for c in text.split(",")],
+                        default=[], help="filter only the points of these classes, e.g. 2,6 "
+                        "(comma-separated); the others keep their exact coordinates")
+    parser.add_argument("--class-array", default="Classification",
+                        help="the integer point array holding the class (default: "
+                        "Classification)")
     parser.add_argument("--threads", type=int, default=0, help=threads_help)
     parser.add_argument("--plugin", help="path of PointCloudBilateral.so")
 
@@ -99,6 +105,8 @@ def make_filter(source, args):
         AutomaticParameters="Paper" if args.paper else "Measured",
         RemoveIsolatedPoints=int(args.remove_isolated),
         EdgeAware=int(args.edge_aware),
+        Classes=args.classes,
+        ClassArray=args.class_array,
         NumberOfThreads=args.threads,
     )
 
@@ -121,8 +129,12 @@ def describe_run(bilateral):
     if bilateral.PointSpacing > 0:
         measured = (f"measured point spacing {bilateral.PointSpacing:.6g}, noise sigma "
                     f"{bilateral.NoiseSigma:.6g}; ")
+    chosen = ""
+    if len(bilateral.Classes) > 0:  # the last run's summary ends with the points filtered
+        chosen = "; " + str(bilateral.LastRun).split("; ")[-1]
     return (f"{measured}radius {bilateral.RadiusUsed:.6g}, normal radius "
-            f"{bilateral.NormalRadiusUsed:.6g}, {bilateral.NumberOfIterationsUsed} iteration(s)")
+            f"{bilateral.NormalRadiusUsed:.6g}, {bilateral.NumberOfIterationsUsed} "
+            f"iteration(s){chosen}")
 
 
 def main():

@@ -3,7 +3,8 @@
     from pointcloudbilateral import vtkPointCloudBilateralFilter
 
 Classes: vtkPointCloudBilateralFilter, vtkPointCloudTextReader, vtkPointCloudTextWriter,
-vtkLASPointCloudReader, vtkLASPointCloudWriter (LAS files), vtkPointCloudFileIO, which picks a
+vtkLASPointCloudReader, vtkLASPointCloudWriter (LAS files), vtkPCDPointCloudReader,
+vtkPCDPointCloudWriter (PCL's PCD files), vtkPointCloudFileIO, which picks a
 reader or writer by extension and checks files before reading them, and
 vtkPPointCloudBilateralFilter (distributed runs under MPI) when the package was built with MPI::
 
@@ -25,6 +26,8 @@ from .vtkFiltersPointCloudBilateral import vtkPointCloudBilateralFilter  # noqa:
 from .vtkIOPointCloudBilateral import (  # noqa: F401
     vtkLASPointCloudReader,
     vtkLASPointCloudWriter,
+    vtkPCDPointCloudReader,
+    vtkPCDPointCloudWriter,
     vtkPointCloudFileIO,
     vtkPointCloudTextReader,
     vtkPointCloudTextWriter,
@@ -40,6 +43,8 @@ except ImportError:
 __all__ = [
     "vtkLASPointCloudReader",
     "vtkLASPointCloudWriter",
+    "vtkPCDPointCloudReader",
+    "vtkPCDPointCloudWriter",
     "vtkPointCloudBilateralFilter",
     "vtkPointCloudFileIO",
     "vtkPointCloudTextReader",

@@ -2,6 +2,7 @@
 #include "vtkPointCloudVertices.h"
 
 #include "BilateralFilter.h"
+#include "ChosenPoints.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
@@ -289,11 +290,42 @@ vtkPointCloudBilateralFilter::vtkPointCloudBilateralFilter()
   this->RemoveIsolatedPoints = defaults.RemoveIsolatedPoints;
   this->NumberOfThreads = defaults.NumberOfThreads;
   this->EdgeAware = defaults.EdgeAware;
+  this->SetClassArrayName("Classification");
+  // What ParaView's progress bar shows (the class name otherwise).
+  this->SetProgressText("Point Cloud Bilateral Filter");
 }
 
 vtkPointCloudBilateralFilter::~vtkPointCloudBilateralFilter()
 {
   this->SetOrientationArrayName(nullptr);
+  this->SetClassArrayName(nullptr);
+}
+
+void vtkPointCloudBilateralFilter::AddClass(long long value)
+{
+  this->Classes.push_back(value);
+  this->Modified();
+}
+
+void vtkPointCloudBilateralFilter::RemoveAllClasses()
+{
+  if (!this->Classes.empty())
+  {
+    this->Classes.clear();
+    this->Modified();
+  }
+}
+
+int vtkPointCloudBilateralFilter::GetNumberOfClasses() const
+{
+  return static_cast<int>(this->Classes.size());
+}
+
+long long vtkPointCloudBilateralFilter::GetClass(int index) const
+{
+  return index >= 0 && index < this->GetNumberOfClasses()
+           ? this->Classes[static_cast<std::size_t>(index)]
+           : 0;
 }
 
 int vtkPointCloudBilateralFilter::FillInputPortInformation(int, vtkInformation* info)
@@ -322,13 +354,21 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  // An abort asked of an earlier run ends there: VTK 9.2 never clears the flag, and every later
+  // update would stop at once. (Set directly: SetAbortExecute would mark the filter modified.)
+  this->AbortExecute = 0;
   vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   output->Initialize();
   this->RecordRunInformation(pcbilateral::BilateralResult());
 
   InputCloud cloud;
-  const std::string problem = this->PrepareInput(input, cloud);
+  std::vector<std::uint8_t> chosen;
+  std::string problem = this->PrepareInput(input, cloud);
+  if (problem.empty())
+  {
+    problem = this->ChooseClasses(input, chosen);
+  }
   if (!problem.empty())
   {
     vtkErrorMacro(<< problem);
@@ -340,7 +380,7 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   observer.Warning = [this](const std::string& warning) { vtkWarningMacro(<< warning); };
   this->UpdateProgress(0.0);
   const pcbilateral::BilateralResult result =
-    this->RunCore(cloud.View(), this->MakeParameters(), observer, problem.empty());
+    this->RunOnChosen(cloud, chosen, observer, problem.empty());
   if (result.Status == pcbilateral::BilateralStatus::Failed)
   {
     if (problem.empty())
@@ -407,6 +447,93 @@ std::string vtkPointCloudBilateralFilter::PrepareInput(vtkPointSet* input, Input
   return std::string();
 }
 
+namespace
+{
+bool IsIntegerType(int type)
+{
+  switch (type)
+  {
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR:
+    case VTK_UNSIGNED_CHAR:
+    case VTK_SHORT:
+    case VTK_UNSIGNED_SHORT:
+    case VTK_INT:
+    case VTK_UNSIGNED_INT:
+    case VTK_LONG:
+    case VTK_UNSIGNED_LONG:
+    case VTK_LONG_LONG:
+    case VTK_UNSIGNED_LONG_LONG:
+    case VTK_ID_TYPE:
+      return true;
+    default:
+      return false;
+  }
+}
+} // namespace
+
+std::string vtkPointCloudBilateralFilter::ChooseClasses(vtkPointSet* input,
+  std::vector<std::uint8_t>& chosen) const
+{
+  chosen.clear();
+  if (this->Classes.empty() || input == nullptr || input->GetNumberOfPoints() == 0)
+  {
+    return std::string();
+  }
+  const std::string name = this->ClassArrayName ? this->ClassArrayName : "";
+  vtkDataArray* array = input->GetPointData()->GetArray(name.c_str());
+  if (array == nullptr)
+  {
+    return "classes were chosen, but the input has no point array '" + name + "'";
+  }
+  if (array->GetNumberOfComponents() != 1 || !IsIntegerType(array->GetDataType()))
+  {
+    return "the class array '" + name + "' must hold one integer per point (it has " +
+           std::to_string(array->GetNumberOfComponents()) + " component(s) of type " +
+           array->GetDataTypeAsString() + ")";
+  }
+  const vtkIdType n = input->GetNumberOfPoints();
+  chosen.assign(static_cast<std::size_t>(n), 0);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    // (Exact: integers read as doubles, below 2^53.)
+    const double value = array->GetTuple1(i);
+    chosen[static_cast<std::size_t>(i)] =
+      std::find_if(this->Classes.begin(),
+        this->Classes.end(),
+        [&](long long c) { return static_cast<double>(c) == value; }) != this->Classes.end();
+  }
+  return std::string();
+}
+
+pcbilateral::BilateralResult vtkPointCloudBilateralFilter::RunOnChosen(const InputCloud& cloud,
+  const std::vector<std::uint8_t>& chosen,
+  const pcbilateral::BilateralObserver& observer,
+  bool preparedHere)
+{
+  if (chosen.empty())
+  {
+    this->NumberOfFilteredPoints = static_cast<vtkIdType>(cloud.Positions.size() / 3);
+    return this->RunCore(cloud.View(), this->MakeParameters(), observer, preparedHere);
+  }
+  const pcbilateral::ChosenPoints subset(cloud.View(), chosen);
+  this->NumberOfFilteredPoints = static_cast<vtkIdType>(subset.GetNumberOfChosenPoints());
+  if (subset.GetNumberOfChosenPoints() == 0)
+  {
+    vtkWarningMacro(<< "no point has one of the chosen classes in '" << this->ClassArrayName
+                    << "': every point is passed through unchanged");
+  }
+  const pcbilateral::BilateralParameters parameters = this->MakeParameters();
+  pcbilateral::BilateralResult result = subset.SpreadResult(
+    this->RunCore(subset.View(), parameters, observer, preparedHere), parameters.ComputeNormals);
+  if (result.Status == pcbilateral::BilateralStatus::Failed && preparedHere)
+  {
+    result.Error += " (on the " + std::to_string(subset.GetNumberOfChosenPoints()) +
+                    " points of the chosen classes)";
+  }
+  return result;
+}
+
 pcbilateral::BilateralResult vtkPointCloudBilateralFilter::RunCore(
   const pcbilateral::PointCloudView& cloud,
   const pcbilateral::BilateralParameters& parameters,
@@ -441,12 +568,19 @@ std::string vtkPointCloudBilateralFilter::DescribeRun(
   const pcbilateral::BilateralResult& result) const
 {
   // Short enough for the Properties panel's field; the measured scales have their own getters.
+  // Where some parameters were given and others automatic, each says which it was.
+  const char* automatic = result.Measured ? " (measured)" : " (paper's rule)";
+  const bool given[3] = {
+    this->Radius > 0.0, this->NormalRadius > 0.0, this->NumberOfIterations > 0
+  };
+  const bool mixed = !(given[0] == given[1] && given[1] == given[2]);
+  auto source = [&](int k) { return mixed ? (given[k] ? " (given)" : automatic) : ""; };
   std::ostringstream summary;
   summary.precision(3);
   if (result.RadiusFollowsDensity)
   {
-    summary << "r " << result.RadiusRange[0] << "-" << result.RadiusRange[1]
-            << " (follows density), rn " << result.NormalRadiusRange[0];
+    summary << "r " << result.RadiusRange[0] << "-" << result.RadiusRange[1] << " (follows density)"
+            << (mixed ? automatic : "") << ", rn " << result.NormalRadiusRange[0];
     if (result.NormalRadiusRange[1] != result.NormalRadiusRange[0])
     {
       summary << "-" << result.NormalRadiusRange[1];
@@ -454,12 +588,17 @@ std::string vtkPointCloudBilateralFilter::DescribeRun(
   }
   else
   {
-    summary << "r " << result.RadiusUsed << ", rn " << result.NormalRadiusUsed;
+    summary << "r " << result.RadiusUsed << source(0) << ", rn " << result.NormalRadiusUsed;
   }
-  summary << ", N " << result.NumberOfIterationsUsed;
-  const bool allGiven =
-    this->Radius > 0.0 && this->NormalRadius > 0.0 && this->NumberOfIterations > 0;
-  summary << (allGiven ? " (given)" : (result.Measured ? " (measured)" : " (paper's rule)"));
+  summary << source(1) << ", N " << result.NumberOfIterationsUsed << source(2);
+  if (!mixed)
+  {
+    summary << (given[0] ? " (given)" : automatic);
+  }
+  if (!this->Classes.empty())
+  {
+    summary << "; " << this->NumberOfFilteredPoints << " points of the chosen classes";
+  }
   return summary.str();
 }
 
@@ -536,6 +675,14 @@ void vtkPointCloudBilateralFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "GenerateDisplacementLength: " << this->GenerateDisplacementLength << "\n";
   os << indent << "GeneratePointRadius: " << this->GeneratePointRadius << "\n";
   os << indent << "EdgeAware: " << this->EdgeAware << "\n";
+  os << indent << "ClassArrayName: " << (this->ClassArrayName ? this->ClassArrayName : "(none)")
+     << "\n";
+  os << indent << "Classes:";
+  for (long long value : this->Classes)
+  {
+    os << " " << value;
+  }
+  os << (this->Classes.empty() ? " (none: every point is filtered)\n" : "\n");
   os << indent << "RadiusUsed: " << this->RadiusUsed << "\n";
   os << indent << "NormalRadiusUsed: " << this->NormalRadiusUsed << "\n";
   os << indent << "NumberOfIterationsUsed: " << this->NumberOfIterationsUsed << "\n";

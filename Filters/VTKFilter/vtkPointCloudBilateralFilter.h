@@ -92,7 +92,9 @@
 #include "vtkFiltersPointCloudBilateralModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
-#include <string> // For PrepareInput
+#include <cstdint> // For ChooseClasses
+#include <string>  // For PrepareInput
+#include <vector>  // For Classes
 
 class vtkPointSet;
 namespace pcbilateral
@@ -190,6 +192,30 @@ public:
   vtkGetMacro(EdgeAware, bool);
   vtkBooleanMacro(EdgeAware, bool);
   ///@}
+
+  ///@{
+  /**
+   * Filter only the points whose value in the one-component integer point array
+   * ClassArrayName (default "Classification": the LAS readers' class, without its flag bits) is
+   * one of the Classes, as PDAL users limit a filter with `where` (smoothing trees into walls
+   * helps no one). The other points keep their exact coordinates and are never neighbours, so no
+   * class pulls another; the automatic parameters are measured on the chosen points, which get
+   * exactly the bits a cloud of them alone would. No class (the default): every point is
+   * filtered. With classes, a missing, multi-component or non-integer array is an error.
+   */
+  vtkSetStringMacro(ClassArrayName);
+  vtkGetStringMacro(ClassArrayName);
+  void AddClass(long long value);
+  void RemoveAllClasses();
+  int GetNumberOfClasses() const;
+  long long GetClass(int index) const;
+  ///@}
+
+  /**
+   * The number of points the last update filtered: the chosen classes' points, or every point
+   * when no class was given.
+   */
+  vtkGetMacro(NumberOfFilteredPoints, vtkIdType);
 
   ///@{
   /**
@@ -310,6 +336,8 @@ protected:
   bool GenerateDisplacementLength = false;
   bool GeneratePointRadius = false;
   bool EdgeAware;
+  char* ClassArrayName = nullptr;
+  std::vector<long long> Classes;
 
   double RadiusUsed = 0.0;
   double NormalRadiusUsed = 0.0;
@@ -324,6 +352,7 @@ protected:
   int ProcessingDepth = 0;
   vtkIdType NumberOfRemovedPoints = 0;
   vtkIdType NumberOfNonFinitePoints = 0;
+  vtkIdType NumberOfFilteredPoints = 0;
   std::string LastRunSummary = "not run yet";
 
 private:
@@ -331,6 +360,15 @@ private:
   pcbilateral::BilateralParameters MakeParameters() const;
   /// The input's positions and orientation normals as doubles; why they cannot be had, or empty.
   std::string PrepareInput(vtkPointSet* input, InputCloud& cloud);
+  /// With Classes: one flag per input point, set for the chosen ones; why they cannot be told,
+  /// or empty. Without: no flags (every point is filtered).
+  std::string ChooseClasses(vtkPointSet* input, std::vector<std::uint8_t>& chosen) const;
+  /// RunCore on the chosen points only (all of them when chosen is empty), the result spread
+  /// back over the whole cloud.
+  pcbilateral::BilateralResult RunOnChosen(const InputCloud& cloud,
+    const std::vector<std::uint8_t>& chosen,
+    const pcbilateral::BilateralObserver& observer,
+    bool preparedHere);
   void RecordRunInformation(const pcbilateral::BilateralResult& result);
   std::string DescribeRun(const pcbilateral::BilateralResult& result) const;
   /// The output point cloud: the kept points, their arrays, the arrays the filter adds.

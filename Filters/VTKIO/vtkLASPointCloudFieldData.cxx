@@ -239,3 +239,26 @@ bool vtkLASLoadFileInfo(vtkFieldData* fieldData,
   }
   return true;
 }
+
+std::string vtkLASInformationNotHeld(vtkFieldData* fieldData)
+{
+  if (!fieldData || !fieldData->GetAbstractArray("LAS Scale"))
+  {
+    return std::string();
+  }
+  bool coordinateSystem = fieldData->GetAbstractArray("LAS CRS WKT") != nullptr;
+  pcbilateral::LASFileInfo info;
+  std::string problem;
+  if (vtkLASLoadFileInfo(fieldData, info, problem))
+  {
+    for (const auto* records : { &info.VLRs, &info.EVLRs })
+    {
+      for (const pcbilateral::LASRecord& record : *records)
+      {
+        coordinateSystem = coordinateSystem || record.UserId == "LASF_Projection";
+      }
+    }
+  }
+  return coordinateSystem ? "the LAS file's coordinate system (CRS), scale and offset"
+                          : "the LAS file's scale and offset";
+}

@@ -25,4 +25,9 @@ bool vtkLASLoadFileInfo(vtkFieldData* fieldData,
   pcbilateral::LASFileInfo& info,
   std::string& problem);
 
+/// What a cloud's field data holds that only a LAS (or VTP) file keeps: a LAS file's scale and
+/// offset and its coordinate system, in words; empty when nothing. The writers of other formats
+/// warn with it.
+std::string vtkLASInformationNotHeld(vtkFieldData* fieldData);
+
 #endif

@@ -2,6 +2,7 @@
 
 #include "LASHeader.h"
 #include "LASReader.h"
+#include "LAZReader.h"
 #include "vtkLASPointCloudFieldData.h"
 #include "vtkPointCloudVertices.h"
 
@@ -74,7 +75,16 @@ int vtkLASPointCloudReader::RequestData(vtkInformation*,
   if (this->ErrorMessage.empty())
   {
     this->ErrorMessage =
-      pcbilateral::ParseLASHeader(file.Data(), file.Size(), this->FileName, info);
+      pcbilateral::ParseLASHeader(file.Data(), file.Size(), this->FileName, info, true);
+  }
+  // A LAZ file's records are decompressed first (in parallel, by chunk); a LAS file's are read
+  // where they lie.
+  std::vector<std::uint8_t> decompressed;
+  const std::uint8_t* records = nullptr;
+  if (this->ErrorMessage.empty())
+  {
+    this->ErrorMessage = pcbilateral::UncompressedLASRecords(
+      file.Data(), file.Size(), info, this->FileName, decompressed, records);
   }
   if (!this->ErrorMessage.empty())
   {
@@ -99,11 +109,8 @@ int vtkLASPointCloudReader::RequestData(vtkInformation*,
     arrays.push_back(array);
     columns.push_back(array->GetVoidPointer(0));
   }
-  pcbilateral::DecodeLASPoints(info,
-    file.Data() + info.Header.OffsetToPointData,
-    static_cast<std::size_t>(count),
-    positions->GetPointer(0),
-    columns.data());
+  pcbilateral::DecodeLASPoints(
+    info, records, static_cast<std::size_t>(count), positions->GetPointer(0), columns.data());
 
   vtkNew<vtkPoints> points;
   points->SetData(positions);

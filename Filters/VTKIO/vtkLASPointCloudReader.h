@@ -1,7 +1,9 @@
 /**
  * @class   vtkLASPointCloudReader
- * @brief   read uncompressed LAS files (LiDAR point clouds, LAS 1.0 to 1.4, point formats 0-10)
+ * @brief   read LAS and LAZ files (LiDAR point clouds, LAS 1.0 to 1.4, point formats 0-10)
  *
+ * LAZ files (LASzip-compressed LAS: point formats 0-3 and 6-8, including COPC files read as
+ * LAZ, in file order) are decompressed to the same point records first, chunks in parallel.
  * The output has the points in double precision (the file's integer coordinates times its
  * scale plus its offset), one vertex cell per point, and every field of the point records as
  * a point array of the record's own type: Intensity, ReturnNumber, NumberOfReturns,
@@ -22,8 +24,8 @@
  * "LAS EVLRs", ...; "LAS CRS WKT" when the file has a WKT coordinate system) so that
  * vtkLASPointCloudWriter writes a file like the one read.
  *
- * A damaged or unsupported file (truncated, counts or offsets beyond the file, not LAS,
- * compressed LAZ, a point format beyond 10) gives one error naming the file and the problem
+ * A damaged or unsupported file (truncated, counts or offsets beyond the file, not LAS, a
+ * point format beyond 10, a LAZ variant not supported such as waveforms, a damaged chunk) gives one error naming the file and the problem
  * (also from GetErrorMessage()) and an empty output. Nothing is read outside the file.
  *
  * Decoding is parallel (OpenMP) over a memory-mapped file.

@@ -14,8 +14,11 @@
 #include "vtkPoints.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <string>
@@ -184,6 +187,29 @@ std::vector<const void*> Columns(const pcbilateral::LASFileInfo& info,
   }
   return columns;
 }
+/// The point arrays no record field takes (a PLY file's curvature, a filter's outputs...),
+/// comma-separated; empty when every array is written. "Colors" is the 8-bit view the LAS
+/// reader adds beside a file's 16-bit RGB, written as RGB.
+std::string UnwrittenArrays(const pcbilateral::LASFileInfo& info,
+  vtkPointData* pointData,
+  const std::vector<const void*>& columns)
+{
+  std::string unwritten;
+  for (int a = 0; a < pointData->GetNumberOfArrays(); ++a)
+  {
+    const char* name = pointData->GetArrayName(a) ? pointData->GetArrayName(a) : "";
+    bool written = std::strcmp(name, "Colors") == 0 && pointData->GetArray("RGB") != nullptr;
+    for (std::size_t d = 0; d < info.Dimensions.size() && !written; ++d)
+    {
+      written = columns[d] != nullptr && info.Dimensions[d].Name == name;
+    }
+    if (!written)
+    {
+      unwritten += (unwritten.empty() ? "" : ", ") + std::string(*name ? name : "(unnamed)");
+    }
+  }
+  return unwritten;
+}
 } // namespace
 
 vtkLASPointCloudWriter::vtkLASPointCloudWriter() = default;
@@ -214,8 +240,23 @@ void vtkLASPointCloudWriter::WriteData()
   const vtkSmartPointer<vtkDataArray> positions = DoublePositions(input);
   std::vector<std::vector<std::uint8_t>> buffers(info.Dimensions.size());
   const std::vector<const void*> columns = Columns(info, input->GetPointData(), count, buffers);
+  const std::string unwritten = UnwrittenArrays(info, input->GetPointData(), columns);
+  if (!unwritten.empty())
+  {
+    vtkWarningMacro(<< this->FileName << ": point format " << int(info.Header.PointFormat)
+                    << " has no field for the point arrays " << unwritten
+                    << ", which are not written");
+  }
   const double none[3] = { 0, 0, 0 };
-  this->ErrorMessage = pcbilateral::WriteLAS(this->FileName,
+  // A name ending in .laz (any case) is written compressed.
+  const std::string name = this->FileName ? this->FileName : "";
+  const bool compressed =
+    name.size() >= 4 &&
+    std::equal(name.end() - 4,
+      name.end(),
+      ".laz",
+      [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
+  this->ErrorMessage = (compressed ? pcbilateral::WriteLAZ : pcbilateral::WriteLAS)(name,
     info,
     static_cast<std::size_t>(count),
     positions ? static_cast<const double*>(positions->GetVoidPointer(0)) : none,

@@ -1,6 +1,10 @@
 /**
  * @class   vtkLASPointCloudWriter
- * @brief   write a point cloud as an uncompressed LAS file
+ * @brief   write a point cloud as a LAS file, or a LAZ file when its name ends in .laz
+ *
+ * LAZ (LASzip-compressed LAS, chunks of 50,000 points compressed in parallel) is written for
+ * point formats 0 to 3 and 6 to 8; a waveform format asked for as .laz is a one-line error
+ * (write .las). The LASzip record is added to the VLRs.
  *
  * When the input carries the field data of vtkLASPointCloudReader (a LAS file read, then
  * filtered), the file gets the version, point format, record length, scales, offsets, header

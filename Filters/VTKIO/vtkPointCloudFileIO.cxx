@@ -1,7 +1,10 @@
 #include "vtkPointCloudFileIO.h"
+#include "vtkLASPointCloudFieldData.h"
 
 #include "vtkLASPointCloudReader.h"
 #include "vtkLASPointCloudWriter.h"
+#include "vtkPCDPointCloudReader.h"
+#include "vtkPCDPointCloudWriter.h"
 #include "vtkPointCloudTextReader.h"
 #include "vtkPointCloudTextWriter.h"
 
@@ -56,6 +59,7 @@ enum class FileType
   Text,
   LAS,
   LAZ,
+  PCD,
   PLY,
   VTP
 };
@@ -66,6 +70,7 @@ FileType TypeOf(const char* path)
     { ".xyz", FileType::Text },
     { ".las", FileType::LAS },
     { ".laz", FileType::LAZ },
+    { ".pcd", FileType::PCD },
     { ".ply", FileType::PLY },
     { ".vtp", FileType::VTP } };
   const std::string extension = Extension(path);
@@ -99,21 +104,27 @@ struct MessageCatcher
 {
   std::string Error;
   std::string Path;
+  std::vector<std::string> Warnings;
   vtkNew<vtkCallbackCommand> Command;
 
   void Observe(vtkObject* object)
   {
     this->Command->SetClientData(this);
     this->Command->SetCallback(
-      [](vtkObject*, unsigned long, void* clientData, void* callData)
+      [](vtkObject*, unsigned long event, void* clientData, void* callData)
       {
         auto* self = static_cast<MessageCatcher*>(clientData);
-        if (self->Error.empty() && callData)
+        if (event == vtkCommand::WarningEvent && callData)
+        {
+          self->Warnings.push_back(self->Clean(static_cast<const char*>(callData)));
+        }
+        else if (self->Error.empty() && callData)
         {
           self->Error = self->Clean(static_cast<const char*>(callData));
         }
       });
     object->AddObserver(vtkCommand::ErrorEvent, this->Command);
+    object->AddObserver(vtkCommand::WarningEvent, this->Command);
   }
 
   /// The event's message, starting with the path (once).
@@ -152,6 +163,33 @@ vtkSmartPointer<vtkPolyData> InputForPLY(vtkPolyData* data, vtkPLYWriter* ply)
     }
   }
   return input;
+}
+
+/// What a PLY file written by vtkPLYWriter loses of `data` (its point arrays but the normals and
+/// the colours named to the writer, a LAS file's scale, offset and coordinate system), in
+/// words; empty when nothing.
+std::string NotHeldByPLY(vtkPolyData* data, vtkPLYWriter* ply)
+{
+  std::string arrays;
+  vtkPointData* pointData = data->GetPointData();
+  for (int a = 0; a < pointData->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* array = pointData->GetAbstractArray(a);
+    const char* name = array->GetName() ? array->GetName() : "";
+    if (array == pointData->GetNormals() ||
+        (ply->GetArrayName() && std::strcmp(name, ply->GetArrayName()) == 0))
+    {
+      continue;
+    }
+    arrays += (arrays.empty() ? "" : ", ") + std::string(*name ? name : "(unnamed)");
+  }
+  std::string notHeld = arrays.empty() ? "" : "the point arrays " + arrays;
+  const std::string las = vtkLASInformationNotHeld(data->GetFieldData());
+  if (!las.empty())
+  {
+    notHeld += (notHeld.empty() ? "" : "; ") + las;
+  }
+  return notHeld;
 }
 
 /// Runs a writer of NewWriter(): whether it reported success.
@@ -226,7 +264,7 @@ std::string vtkPointCloudFileIO::EventMessage(const char* callData)
 
 const char* vtkPointCloudFileIO::GetSupportedExtensions()
 {
-  return ".txt, .xyz, .las, .ply or .vtp";
+  return ".txt, .xyz, .las, .laz, .pcd, .ply or .vtp";
 }
 
 bool vtkPointCloudFileIO::IsSupported(const char* path)
@@ -241,8 +279,10 @@ vtkAlgorithm* vtkPointCloudFileIO::NewReader(const char* path)
     case FileType::Text:
       return WithFileName(vtkPointCloudTextReader::New(), path);
     case FileType::LAS:
-    case FileType::LAZ: // the reader explains that it must be decompressed first
+    case FileType::LAZ:
       return WithFileName(vtkLASPointCloudReader::New(), path);
+    case FileType::PCD:
+      return WithFileName(vtkPCDPointCloudReader::New(), path);
     case FileType::PLY:
       return WithFileName(vtkPLYReader::New(), path);
     case FileType::VTP:
@@ -255,15 +295,11 @@ vtkAlgorithm* vtkPointCloudFileIO::NewReader(const char* path)
 
 std::string vtkPointCloudFileIO::CheckFileName(const char* path, bool forWriting)
 {
+  (void)forWriting; // every extension read is written too (LAZ since it is compressed here)
   const FileType type = TypeOf(path);
   if (type == FileType::Unsupported)
   {
     return UnsupportedType(path);
-  }
-  if (forWriting && type == FileType::LAZ)
-  {
-    return std::string(path) + ": compressed LAS (LAZ) is not written: write .las (then "
-                               "compress it with laszip if needed)";
   }
   return std::string();
 }
@@ -280,7 +316,10 @@ vtkAlgorithm* vtkPointCloudFileIO::NewWriter(const char* path)
     case FileType::Text:
       return WithFileName(vtkPointCloudTextWriter::New(), path);
     case FileType::LAS:
+    case FileType::LAZ:
       return WithFileName(vtkLASPointCloudWriter::New(), path);
+    case FileType::PCD:
+      return WithFileName(vtkPCDPointCloudWriter::New(), path);
     case FileType::PLY:
     {
       auto* writer = WithFileName(vtkPLYWriter::New(), path);
@@ -289,7 +328,6 @@ vtkAlgorithm* vtkPointCloudFileIO::NewWriter(const char* path)
     }
     case FileType::VTP:
       return WithFileName(vtkXMLPolyDataWriter::New(), path);
-    case FileType::LAZ:
     case FileType::Unsupported:
       break;
   }
@@ -338,6 +376,13 @@ bool vtkPointCloudFileIO::Read(const char* path, vtkPolyData* output)
   {
     text->SetHasNormals(this->OrientedNormals);
   }
+  auto* pcd = vtkPCDPointCloudReader::SafeDownCast(reader);
+  if (pcd)
+  {
+    pcd->SetKeepNaNPoints(this->KeepNaNPoints);
+  }
+  this->NumberOfDroppedPoints = 0;
+  this->Warnings.clear();
   MessageCatcher messages;
   messages.Path = path;
   messages.Observe(reader);
@@ -352,6 +397,7 @@ bool vtkPointCloudFileIO::Read(const char* path, vtkPolyData* output)
   {
     return false;
   }
+  this->NumberOfDroppedPoints = pcd ? pcd->GetNumberOfDroppedPoints() : 0;
   output->ShallowCopy(cloud);
   return true;
 }
@@ -365,6 +411,7 @@ bool vtkPointCloudFileIO::Write(vtkPolyData* data, const char* path)
     this->ErrorMessage = UnsupportedType(path);
     return false;
   }
+  this->Warnings.clear();
   MessageCatcher messages;
   messages.Path = name;
   messages.Observe(writer);
@@ -382,13 +429,23 @@ bool vtkPointCloudFileIO::Write(vtkPolyData* data, const char* path)
   if (type == FileType::PLY || type == FileType::VTP)
   {
     this->ErrorMessage = WriteReplacing(writer, name, messages);
+    this->Warnings = messages.Warnings;
+    const std::string notHeld =
+      type == FileType::PLY ? NotHeldByPLY(input, vtkPLYWriter::SafeDownCast(writer)) : "";
+    if (this->ErrorMessage.empty() && !notHeld.empty())
+    {
+      // (Only points, normals and 8-bit colours are PLY properties here.)
+      this->Warnings.push_back(name + ": a PLY file written here holds points, normals and " +
+                               "8-bit colours only: " + notHeld + " are not written");
+    }
     return this->ErrorMessage.empty();
   }
-  // The text and LAS writers replace the file themselves (pcbilateral::ReplacingFile).
+  // The text, LAS and PCD writers replace the file themselves (pcbilateral::ReplacingFile).
   if (!RunWriter(writer) && messages.Error.empty())
   {
     messages.Error = name + ": cannot be written";
   }
+  this->Warnings = messages.Warnings;
   this->ErrorMessage = messages.Error;
   return this->ErrorMessage.empty();
 }
@@ -397,4 +454,5 @@ void vtkPointCloudFileIO::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "OrientedNormals: " << this->OrientedNormals << "\n";
+  os << indent << "KeepNaNPoints: " << this->KeepNaNPoints << "\n";
 }

@@ -3,9 +3,10 @@
  * @brief   the one place that picks a reader or a writer by a file's extension
  *
  * Used by pcbilateral, pcbilateral_picture and Python scripts. Extensions (any case):
- * .txt and .xyz (the authors' text format, vtkPointCloudTextReader/Writer), .las (and .laz,
- * to say that compressed files must be decompressed first; vtkLASPointCloudReader/Writer),
- * .ply (vtkPLYReader/Writer, binary) and .vtp (vtkXMLPolyDataReader/Writer).
+ * .txt and .xyz (the authors' text format, vtkPointCloudTextReader/Writer), .las and .laz
+ * (LASzip-compressed LAS; vtkLASPointCloudReader/Writer), .pcd (PCL's format,
+ * vtkPCDPointCloudReader/Writer), .ply (vtkPLYReader/Writer, binary) and .vtp
+ * (vtkXMLPolyDataReader/Writer).
  *
  * Read() checks PLY and VTP files before VTK's readers see them, since those readers do not
  * stop at damaged files (a PLY file cut short reads as made-up points with thousands of
@@ -30,6 +31,7 @@
 #include "vtkWrappingHints.h" // For VTK_NEWINSTANCE
 
 #include <string> // For the messages
+#include <vector> // For the warnings
 
 class vtkAlgorithm;
 class vtkPolyData;
@@ -49,16 +51,34 @@ public:
   vtkBooleanMacro(OrientedNormals, bool);
   ///@}
 
-  /// The extensions read and written, for messages: ".txt, .xyz, .las, .ply or .vtp".
+  ///@{
+  /// PCD files: keep the points without coordinates (NaN) of an organised frame in place,
+  /// so that it is written back with its WIDTH and HEIGHT (vtkPCDPointCloudReader). Default
+  /// off: they are left out, and GetNumberOfDroppedPoints() says how many.
+  vtkSetMacro(KeepNaNPoints, bool);
+  vtkGetMacro(KeepNaNPoints, bool);
+  vtkBooleanMacro(KeepNaNPoints, bool);
+  ///@}
+
+  /// The points without coordinates (NaN) the last Read() left out (PCD files).
+  vtkGetMacro(NumberOfDroppedPoints, vtkIdType);
+
+  /// The warnings of the last Read() or Write(), one line each: what the target file cannot
+  /// hold (a LAS file's coordinate system, scale and offset written to PCD), say.
+  int GetNumberOfWarnings() const { return static_cast<int>(this->Warnings.size()); }
+  const char* GetWarning(int index) const { return this->Warnings.at(index).c_str(); }
+
+  /// The extensions read and written, for messages: ".txt, .xyz, .las, .laz, .pcd, .ply or
+  /// .vtp".
   static const char* GetSupportedExtensions();
 
-  /// Whether the path's extension is one of them (.laz counts: the reader explains it).
+  /// Whether the path's extension is one of them.
   static bool IsSupported(const char* path);
 
   /**
    * Whether a file of this name can be read (`forWriting` false) or written (true), judged by
    * its extension alone: an empty string, or one line naming the file and the problem (an
-   * unsupported extension; .laz for writing).
+   * unsupported extension).
    */
   static std::string CheckFileName(const char* path, bool forWriting);
 
@@ -107,6 +127,9 @@ protected:
   ~vtkPointCloudFileIO() override;
 
   bool OrientedNormals = false;
+  bool KeepNaNPoints = false;
+  vtkIdType NumberOfDroppedPoints = 0;
+  std::vector<std::string> Warnings;
   std::string ErrorMessage;
 
 private:

@@ -1,4 +1,5 @@
 #include "vtkPointCloudTextWriter.h"
+#include "vtkLASPointCloudFieldData.h"
 #include "vtkPointCloudTextReader.h"
 
 #include "PointCloudText.h"
@@ -128,6 +129,12 @@ void vtkPointCloudTextWriter::WriteData()
     }
   }
   table.Layout = LoadLayout(input->GetFieldData());
+  const std::string notHeld = vtkLASInformationNotHeld(input->GetFieldData());
+  if (!notHeld.empty())
+  {
+    vtkWarningMacro(<< this->FileName << ": a text file cannot hold " << notHeld
+                    << ", which are not written (the coordinates are)");
+  }
   this->ErrorMessage = pcbilateral::WritePointCloudText(this->FileName, table);
   if (!this->ErrorMessage.empty())
   {

@@ -650,6 +650,16 @@ void TestProgressAndAbort()
     (long long)aborted->GetOutput()->GetNumberOfPoints());
   PCB_CHECK(
     reportsAfterAbort <= 2, "the run went on for %zu reports after the abort", reportsAfterAbort);
+
+  // The abort does not stick: the next run, with no one aborting it, runs to the end (the flag
+  // once stayed set, and every later update aborted at once).
+  aborted->RemoveObserver(stopper);
+  aborted->SetRadius(0.031);
+  aborted->Update();
+  PCB_CHECK(aborted->GetOutput()->GetNumberOfPoints() == cloud->GetNumberOfPoints(),
+    "the run after an aborted one output %lld of %lld points",
+    (long long)aborted->GetOutput()->GetNumberOfPoints(),
+    (long long)cloud->GetNumberOfPoints());
 }
 
 void TestDegenerateNeighbourhoods()

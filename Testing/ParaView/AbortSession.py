@@ -2,11 +2,13 @@
 (radius 1.5 on the 40,000-point cube: every point is a neighbour of every other), logged as the
 GUI sees it. Each line of PCB_LOG is "<absolute time> <what> [value]", flushed at once so that
 the driving script can follow the run and click Abort:
-  progress P   the session's progress handler (what the progress bar shows) reported P percent
+  progress P T the session's progress handler (what the progress bar shows) reported P percent
+               and the text T
   warning      a warning reached the output window (the Output Messages window)
   returned     the filter returned (aborted or not)
   aborted-message   the plugin's message after an aborted run reached the output window
-  end N        the run ended with N output points (0 after an abort)"""
+  end N        the run ended with N output points (0 after an abort)
+  again N      a later Apply, with radius 0.06 then 0.07, ended with N output points"""
 import os
 import time
 
@@ -24,7 +26,8 @@ def note(what):
 
 
 handler = servermanager.ActiveConnection.Session.GetProgressHandler()
-handler.AddObserver("ProgressEvent", lambda caller, event: note(f"progress {caller.GetLastProgress()}"))
+handler.AddObserver("ProgressEvent", lambda caller, event: note(
+    f"progress {caller.GetLastProgress()} {caller.GetLastProgressText()}"))
 
 
 @calldata_type(VTK_STRING)
@@ -44,4 +47,10 @@ note("start")
 simple.Show(bilateral)
 simple.Render()
 note(f"end {bilateral.GetDataInformation().GetNumberOfPoints()}")
+# Two Applies after the abort, with an ordinary radius: each must run to the end (the abort once
+# stuck, and every later Apply of the filter aborted within a second).
+for radius in (0.06, 0.07):
+    bilateral.Radius = radius
+    simple.Render()
+    note(f"again {bilateral.GetDataInformation().GetNumberOfPoints()}")
 log.close()

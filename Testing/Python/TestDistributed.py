@@ -45,12 +45,15 @@ parser.add_argument("--edge-aware", action="store_true")
 # A density that falls this many times along u (as a scan's falls with the distance from the
 # scanner): the automatic radius then follows the density.
 parser.add_argument("--density-ratio", type=float, default=1.0)
+# Filter only class 2 of a "Classification" array that gives 30% of the points class 5.
+parser.add_argument("--classes", action="store_true")
 args = parser.parse_args()
 
 ranks = vtkMultiProcessController.GetGlobalController().GetNumberOfProcesses()
 check(ranks >= 2, f"{ranks} MPI processes")
 os.makedirs(args.scratch, exist_ok=True)
-path = os.path.join(args.scratch, f"cloud-{args.split}-{ranks}-{args.density_ratio:g}.vtp")
+path = os.path.join(args.scratch, f"cloud-{args.split}-{ranks}-{args.density_ratio:g}"
+                    f"{'-classes' if args.classes else ''}.vtp")
 
 
 def make_cloud():
@@ -77,6 +80,10 @@ def make_cloud():
     cloud.PointData.append(rng.integers(0, 256, (n, 3), dtype=np.uint8), "RGB")
     cloud.PointData.append(rng.random(n).astype(np.float32), "Intensity")
     cloud.PointData.append(normals, "Normals")
+    if args.classes:
+        classes = np.where(rng.random(n) < 0.3, 5, 2).astype(np.uint8)
+        classes[-1] = 2  # the NaN point, if any: filtered, and warned about
+        cloud.PointData.append(classes, "Classification")
     writer = vtkXMLPolyDataWriter()
     writer.SetInputData(cloud.VTKObject)
     writer.SetFileName(path)
@@ -143,7 +150,8 @@ properties = dict(Radius=args.radius, NormalRadius=args.normal_radius,
                   NumberOfIterations=args.iterations, RemoveIsolatedPoints=args.remove_isolated,
                   EdgeAware=int(args.edge_aware),
                   OrientNormalsBy="Normals", OutputEstimatedNormals=1,
-                  OutputDisplacementLength=1, NumberOfThreads=1)
+                  OutputDisplacementLength=1, NumberOfThreads=1,
+                  Classes=[2] if args.classes else [])
 bilateral = simple.PointCloudBilateralFilter(Input=tagged, **properties)
 # Warnings reach the user during a distributed run too, once: rank 0's filter is this process's.
 warnings = []
@@ -185,6 +193,8 @@ serial.SetEdgeAware(args.edge_aware)
 serial.SetOrientationArrayName("Normals")
 serial.GenerateEstimatedNormalsOn()
 serial.GenerateDisplacementLengthOn()
+if args.classes:
+    serial.AddClass(2)
 serial.Update()
 reference = dsa.WrapDataObject(serial.GetOutput())
 
@@ -245,8 +255,14 @@ if len(ids_out) == len(ids_ref) and set(ids_out) == set(ids_ref):
                     ref_xyz.view(np.uint8).reshape(len(ref_xyz), -1), axis=1)
     check(not differ.any(), f"positions: {np.count_nonzero(differ)} of {len(differ)} points "
           "differ from the serial run in some bit")
-    moved = np.count_nonzero(np.any(np.asarray(cloud_in.Points)[kept] != out_xyz, axis=1))
-    check(moved > len(out_xyz) // 2, f"{moved} of {len(out_xyz)} points moved")
+    moved = np.any(np.asarray(cloud_in.Points)[kept] != out_xyz, axis=1)
+    if args.classes:  # the class-5 points kept their exact coordinates
+        other = np.asarray(cloud_in.PointData["Classification"])[kept] != 2
+        check(not np.any(moved & other) and np.count_nonzero(moved) > np.count_nonzero(~other) // 2,
+              f"{np.count_nonzero(moved & other)} points of class 5 moved, "
+              f"{np.count_nonzero(moved & ~other)} of class 2")
+    check(np.count_nonzero(moved) > len(out_xyz) // 2,
+          f"{np.count_nonzero(moved)} of {len(out_xyz)} points moved")
     names = set(reference.PointData.keys()) - {"vtkOriginalPointIds"}
     check(names == set(cloud_out.PointData.keys()) - {"vtkOriginalPointIds"},
           f"the same point arrays as serially: {sorted(names)}")

@@ -24,6 +24,7 @@ def check(condition, message):
 expected = {".txt": ("vtkPointCloudTextReader", "vtkPointCloudTextWriter"),
             ".XYZ": ("vtkPointCloudTextReader", "vtkPointCloudTextWriter"),
             ".las": ("vtkLASPointCloudReader", "vtkLASPointCloudWriter"),
+            ".pcd": ("vtkPCDPointCloudReader", "vtkPCDPointCloudWriter"),
             ".ply": ("vtkPLYReader", "vtkPLYWriter"),
             ".vtp": ("vtkXMLPolyDataReader", "vtkXMLPolyDataWriter")}
 for extension, (reader, writer) in expected.items():
@@ -33,9 +34,10 @@ for extension, (reader, writer) in expected.items():
           f"{extension}: {r.GetClassName() if r else None}")
     check(w is not None and w.GetClassName() == writer, f"{extension}: {w.GetClassName() if w else None}")
 check(vtkPointCloudFileIO.NewReader("cloud.obj") is None, "no reader for .obj")
-check(vtkPointCloudFileIO.NewWriter("cloud.laz") is None, "no writer for .laz")
+check(vtkPointCloudFileIO.NewWriter("cloud.laz").GetClassName() == "vtkLASPointCloudWriter",
+      ".laz is written by the LAS writer (compressed)")
 check(vtkPointCloudFileIO.NewReader("cloud.laz").GetClassName() == "vtkLASPointCloudReader",
-      ".laz is read by the LAS reader (which explains compressed files)")
+      ".laz is read by the LAS reader (decompressed)")
 
 cloud = vtkPolyData()
 points = vtkPoints()
@@ -48,7 +50,7 @@ for i in range(100):
 cloud.SetPoints(points)
 cloud.GetPointData().AddArray(intensity)
 io = vtkPointCloudFileIO()
-for extension in (".xyz", ".las", ".ply", ".vtp"):
+for extension in (".xyz", ".las", ".pcd", ".ply", ".vtp"):
     path = os.path.join(scratch, "cloud" + extension)
     check(io.Write(cloud, path), f"write {extension}: {io.GetErrorMessage()}")
     back = vtkPolyData()
@@ -68,6 +70,34 @@ back = vtkPolyData()
 check(not io.Read(damaged, back) and back.GetNumberOfPoints() == 0, "a cut PLY file is not read")
 message = io.GetErrorMessage()
 check(message.startswith(damaged + ": truncated") and "\n" not in message, message)
+# PCL's PCD from Python: the package's classes, a cut binary block refused in one line, and an
+# organised frame's NaN points dropped and counted, or kept.
+from pointcloudbilateral import vtkPCDPointCloudReader, vtkPCDPointCloudWriter  # noqa: E402
+with open(os.path.join(scratch, "cloud.pcd"), "rb") as whole:
+    data = whole.read()
+damaged = os.path.join(scratch, "cut.pcd")
+with open(damaged, "wb") as cut:
+    cut.write(data[: len(data) - 7])
+check(not io.Read(damaged, back) and back.GetNumberOfPoints() == 0 and
+      io.GetErrorMessage() == damaged + ": the binary data holds 99 points, the header announces 100",
+      io.GetErrorMessage())
+frame = os.path.join(scratch, "frame.pcd")
+with open(frame, "w") as text:
+    text.write("VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\n"
+               "HEIGHT 2\nPOINTS 4\nDATA ascii\n0 0 1\nnan nan nan\n0 1 1\n1 1 1\n")
+reader = vtkPCDPointCloudReader()
+reader.SetFileName(frame)
+reader.Update()
+check(reader.GetOutput().GetNumberOfPoints() == 3 and reader.GetNumberOfDroppedPoints() == 1,
+      "the NaN point dropped and counted")
+reader.KeepNaNPointsOn()
+reader.Update()
+writer = vtkPCDPointCloudWriter()
+writer.SetInputConnection(reader.GetOutputPort())
+writer.SetFileName(os.path.join(scratch, "frame-back.pcd"))
+check(reader.GetOutput().GetNumberOfPoints() == 4 and writer.Write() == 1, "the NaN point kept")
+with open(os.path.join(scratch, "frame-back.pcd")) as text:
+    check("WIDTH 2\nHEIGHT 2\n" in text.read(), "the frame written back as a frame")
 problem = vtkPointCloudFileIO.CheckInputFile(os.path.join(scratch, "missing.vtp"))
 check(problem.endswith("missing.vtp: No such file or directory"), problem)
 check(not io.Write(cloud, os.path.join(scratch, "cloud.obj")) and

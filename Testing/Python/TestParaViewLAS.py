@@ -1,5 +1,5 @@
-"""The LAS reader and writer in ParaView: OpenDataFile picks the plugin's reader for .las (no
-reader choice), the points are there with one vertex each, a damaged file gives one error and
+"""The LAS reader and writer in ParaView: OpenDataFile picks the plugin's reader for .las and
+.laz (no reader choice), the points are there with one vertex each, a damaged file gives one error and
 no points, and SaveData writes .las with the plugin's writer.
 
     pvpython TestParaViewLAS.py PLUGIN LAS_FOLDER SCRATCH_FOLDER
@@ -76,6 +76,25 @@ bad.UpdatePipeline()
 check(bad.GetDataInformation().GetNumberOfPoints() == 0, "a truncated file gives no points")
 message = bad.GetClientSideObject().GetErrorMessage()
 check("truncated" in message and "\n" not in message, f"and one error: {message}")
+
+# LAZ (beside the LAS samples, when there): opened by the same reader, saved compressed.
+laz = os.path.join(folder, "..", "laz", "autzen_trim.laz")
+if os.path.isfile(laz):
+    compressed = simple.OpenDataFile(laz)
+    check(compressed is not None and compressed.GetXMLName() == "LASPointCloudReader",
+          f"OpenDataFile picks the LAS reader for .laz: "
+          f"{compressed.GetXMLName() if compressed else None}")
+    compressed.UpdatePipeline()
+    check(compressed.GetDataInformation().GetNumberOfPoints() == 110000, "110000 LAZ points")
+    saved = os.path.join(scratch, "autzen_copy.laz")
+    simple.SaveData(saved, proxy=compressed)
+    again = simple.OpenDataFile(saved)
+    again.UpdatePipeline()
+    d = open(saved, "rb").read()
+    check(d[104] == 0x83 and again.GetDataInformation().GetNumberOfPoints() == 110000,
+          f"SaveData wrote LAZ ({len(d)} bytes) that reads back")
+else:
+    print(f"skipped the LAZ checks: no {laz}")
 
 if failures:
     sys.exit(f"{len(failures)} check(s) failed")

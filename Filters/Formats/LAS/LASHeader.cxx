@@ -65,6 +65,7 @@ void DecodeFixedFields(const std::uint8_t* data, LASHeader& h)
 std::string CheckLayout(const std::uint8_t* data,
   std::size_t size,
   const std::string& source,
+  bool acceptCompressed,
   LASHeader& h)
 {
   const std::string version = std::to_string(h.VersionMajor) + "." + std::to_string(h.VersionMinor);
@@ -74,11 +75,11 @@ std::string CheckLayout(const std::uint8_t* data,
   }
   // LASzip marks its files by setting the top bits of the point format.
   const std::uint8_t formatByte = data[104];
-  if (formatByte & 0xC0)
+  if ((formatByte & 0xC0) && !acceptCompressed)
   {
     return CompressedProblem(source);
   }
-  h.PointFormat = formatByte;
+  h.PointFormat = formatByte & 0x3F;
   if (h.PointFormat > 10)
   {
     return "point format " + std::to_string(h.PointFormat) +
@@ -124,9 +125,11 @@ std::string DecodeScalesAndBounds(const std::uint8_t* data, LASHeader& h)
 /// The VLRs, between the header and the point data.
 std::string DecodeVLRs(const std::uint8_t* data,
   const std::string& source,
-  const LASHeader& h,
-  std::vector<LASRecord>& vlrs)
+  bool acceptCompressed,
+  LASFileInfo& info)
 {
+  const LASHeader& h = info.Header;
+  std::vector<LASRecord>& vlrs = info.VLRs;
   const std::uint32_t vlrCount = Load<std::uint32_t>(data + 100);
   std::size_t at = h.HeaderSize;
   if (vlrCount > (h.OffsetToPointData - at) / VLRHeaderSize)
@@ -149,7 +152,13 @@ std::string DecodeVLRs(const std::uint8_t* data,
     LASRecord record = DecodeRecord(data + at, false, length);
     if (record.UserId == "laszip encoded" && record.RecordId == 22204)
     {
-      return CompressedProblem(source);
+      if (!acceptCompressed)
+      {
+        return CompressedProblem(source);
+      }
+      info.LASzipRecord = std::move(record.Data);
+      at += VLRHeaderSize + length;
+      continue;
     }
     vlrs.push_back(std::move(record));
     at += VLRHeaderSize + length;
@@ -201,7 +210,10 @@ std::string DecodeEVLRs(const std::uint8_t* data,
 {
   const std::uint64_t start = Load<std::uint64_t>(data + 235);
   const std::uint32_t count = Load<std::uint32_t>(data + 243);
-  const std::uint64_t pointsEnd = h.OffsetToPointData + h.NumberOfPoints * h.RecordLength;
+  // Compressed points take an unknown part of the file, checked when they are decompressed.
+  const bool compressed = (data[104] & 0xC0) != 0;
+  const std::uint64_t pointsEnd =
+    h.OffsetToPointData + (compressed ? 0 : h.NumberOfPoints * h.RecordLength);
   if (count > 0 && (start < pointsEnd || start > size || count > (size - start) / EVLRHeaderSize))
   {
     return "the header announces " + Str(count) + " extended variable-length records at byte " +
@@ -240,7 +252,8 @@ std::string DescribeExtraBytesByEVLR(LASFileInfo& info)
 std::string ParseLASHeader(const std::uint8_t* data,
   std::size_t size,
   const std::string& source,
-  LASFileInfo& info)
+  LASFileInfo& info,
+  bool acceptCompressed)
 {
   info = LASFileInfo();
   LASHeader& h = info.Header;
@@ -248,7 +261,7 @@ std::string ParseLASHeader(const std::uint8_t* data,
   if (problem.empty())
   {
     DecodeFixedFields(data, h);
-    problem = CheckLayout(data, size, source, h);
+    problem = CheckLayout(data, size, source, acceptCompressed, h);
   }
   if (problem.empty())
   {
@@ -256,14 +269,21 @@ std::string ParseLASHeader(const std::uint8_t* data,
   }
   if (problem.empty())
   {
-    problem = DecodeVLRs(data, source, h, info.VLRs);
+    problem = DecodeVLRs(data, source, acceptCompressed, info);
   }
   if (problem.empty())
   {
     DecodePointCounts(data, h);
     problem = LASDimensionsFor(h.PointFormat, h.RecordLength, info.VLRs, info.Dimensions);
   }
-  if (problem.empty())
+  const bool compressed = problem.empty() && (data[104] & 0xC0) != 0;
+  if (problem.empty() && compressed != !info.LASzipRecord.empty())
+  {
+    problem = compressed
+                ? "the point format marks it compressed (LAZ) but it has no LASzip record"
+                : "it has a LASzip record (LAZ) but its point format is not marked compressed";
+  }
+  if (problem.empty() && !compressed)
   {
     problem = CheckPointRecords(size, h);
   }

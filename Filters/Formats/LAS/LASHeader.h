@@ -47,18 +47,24 @@ struct LASFileInfo
   std::vector<LASRecord> EVLRs;
   /// The fields of the records, standard ones first, then those of the extra bytes.
   std::vector<LASDimension> Dimensions;
+  /// A LAZ file's LASzip record (the VLR "laszip encoded" 22204), empty for a LAS file. It is
+  /// not among the VLRs: a LAS file written from a LAZ one must not carry it.
+  std::vector<std::uint8_t> LASzipRecord;
 };
 
 /**
  * Decodes and checks the header and the (E)VLRs of a LAS file held in memory, and that the
  * point records it announces are all there. Returns an empty string, or a one-line message
- * starting with `sourceName`: not a LAS file, compressed (LAZ), a point format beyond 10, a
- * truncated file, counts or offsets beyond the file...
+ * starting with `sourceName`: not a LAS file, compressed (LAZ) unless `acceptCompressed`, a
+ * point format beyond 10, a truncated file, counts or offsets beyond the file... A compressed
+ * file accepted has its LASzip record in `info.LASzipRecord`, its point format without
+ * LASzip's mark, and its records are left to DecompressLAZPoints (LAZReader.h) to check.
  */
 std::string ParseLASHeader(const std::uint8_t* data,
   std::size_t size,
   const std::string& sourceName,
-  LASFileInfo& info);
+  LASFileInfo& info,
+  bool acceptCompressed = false);
 
 } // namespace pcbilateral
 

@@ -5,6 +5,7 @@
 #include "LASPointFormat.h"
 #include "LASRecordBytes.h"
 #include "LASWritePoints.h"
+#include "LAZWriter.h"
 #include "ReplacingFile.h"
 
 #include <algorithm>
@@ -81,8 +82,13 @@ RecordsToWrite SortRecords(const LASFileInfo& info)
 }
 
 /// The header block of a LAS file to write: `h` with this file's sizes, offsets, counts and
-/// bounds, and its numbers of VLRs and EVLRs.
-std::vector<std::uint8_t> EncodeHeader(const LASHeader& h, std::uint32_t vlrs, std::uint32_t evlrs)
+/// bounds, and its numbers of VLRs and EVLRs, which follow `pointBytes` of point data
+/// (compressed ones for LAZ, whose point format gets LASzip's mark).
+std::vector<std::uint8_t> EncodeHeader(const LASHeader& h,
+  std::uint32_t vlrs,
+  std::uint32_t evlrs,
+  std::uint64_t pointBytes,
+  bool compressed)
 {
   std::vector<std::uint8_t> out(h.HeaderSize, 0);
   std::uint8_t* d = out.data();
@@ -100,7 +106,7 @@ std::vector<std::uint8_t> EncodeHeader(const LASHeader& h, std::uint32_t vlrs, s
   Store<std::uint16_t>(d + 94, h.HeaderSize);
   Store<std::uint32_t>(d + 96, h.OffsetToPointData);
   Store<std::uint32_t>(d + 100, vlrs);
-  d[104] = h.PointFormat;
+  d[104] = static_cast<std::uint8_t>(h.PointFormat | (compressed ? 0x80 : 0));
   Store<std::uint16_t>(d + 105, h.RecordLength);
   const bool legacy =
     h.PointFormat <= 5 && h.NumberOfPoints <= std::numeric_limits<std::uint32_t>::max();
@@ -120,9 +126,7 @@ std::vector<std::uint8_t> EncodeHeader(const LASHeader& h, std::uint32_t vlrs, s
   }
   if (h.VersionMinor >= 4)
   {
-    const std::uint64_t evlrStart =
-      evlrs ? h.OffsetToPointData + h.NumberOfPoints * static_cast<std::uint64_t>(h.RecordLength)
-            : 0;
+    const std::uint64_t evlrStart = evlrs ? h.OffsetToPointData + pointBytes : 0;
     Store<std::uint64_t>(d + 235, evlrStart);
     Store<std::uint32_t>(d + 243, evlrs);
     Store<std::uint64_t>(d + 247, h.NumberOfPoints);
@@ -238,11 +242,110 @@ std::string WriteLAS(const std::string& path,
   ok = ok && std::fwrite(evlrBytes.data(), 1, evlrBytes.size(), file) == evlrBytes.size();
 
   SumBlocks(summaries, written);
-  header =
-    EncodeHeader(written, records.VLRCount, static_cast<std::uint32_t>(records.Extended.size()));
+  header = EncodeHeader(written,
+    records.VLRCount,
+    static_cast<std::uint32_t>(records.Extended.size()),
+    count * static_cast<std::uint64_t>(h.RecordLength),
+    false);
   ok = ok && std::fseek(file, 0, SEEK_SET) == 0 &&
        std::fwrite(header.data(), 1, header.size(), file) == header.size();
   return output.Commit(ok, failure);
+}
+
+namespace
+{
+/// The records of the points encoded in memory, in parallel, for compression.
+std::vector<std::uint8_t> EncodeAllRecords(const BlockEncoder& encoder,
+  std::size_t count,
+  std::size_t recordLength,
+  std::vector<BlockSummary>& summaries)
+{
+  std::vector<std::uint8_t> records(count * recordLength, 0);
+  const auto blocks = static_cast<std::int64_t>(summaries.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t b = 0; b < blocks; ++b)
+  {
+    summaries[static_cast<std::size_t>(b)] = encoder.Encode(static_cast<std::size_t>(b),
+      records.data() + static_cast<std::size_t>(b) * PointsPerBlock * recordLength);
+  }
+  return records;
+}
+} // namespace
+
+std::string WriteLAZ(const std::string& path,
+  const LASFileInfo& info,
+  std::size_t count,
+  const double* positions,
+  const void* const* columns)
+{
+  const LASHeader& h = info.Header;
+  LAZParameters parameters;
+  std::string problem = CheckWritable(h, count);
+  if (problem.empty())
+  {
+    problem = LAZParametersFor(h.PointFormat, h.RecordLength, parameters);
+  }
+  if (problem.empty() && count == 0)
+  {
+    problem = "a LAZ file of no points is not written: write .las";
+  }
+  // A COPC file's records (its octree) describe its chunks, which are not the ones written.
+  LASFileInfo kept = info;
+  auto isCOPC = [](const LASRecord& record) { return record.UserId == "copc"; };
+  kept.VLRs.erase(std::remove_if(kept.VLRs.begin(), kept.VLRs.end(), isCOPC), kept.VLRs.end());
+  kept.EVLRs.erase(std::remove_if(kept.EVLRs.begin(), kept.EVLRs.end(), isCOPC), kept.EVLRs.end());
+  RecordsToWrite records = SortRecords(kept);
+  if (problem.empty() && !records.Extended.empty() && h.VersionMinor < 4)
+  {
+    problem = "a variable-length record longer than 65535 bytes needs LAS 1.4";
+  }
+  if (!problem.empty())
+  {
+    return path + ": " + problem;
+  }
+  LASRecord laszip;
+  laszip.UserId = "laszip encoded";
+  laszip.RecordId = 22204;
+  laszip.Description = "LASzip chunked, by pcbilateral";
+  laszip.Data = EncodeLAZParameters(parameters);
+  AppendRecord(records.VLRBytes, laszip, false);
+  ++records.VLRCount;
+  LASHeader written = h;
+  written.HeaderSize = static_cast<std::uint16_t>(HeaderSizeOfVersion(h.VersionMinor));
+  written.OffsetToPointData =
+    static_cast<std::uint32_t>(written.HeaderSize + records.VLRBytes.size());
+  written.NumberOfPoints = count;
+
+  const BlockEncoder encoder(info, count, positions, columns);
+  std::vector<BlockSummary> summaries(encoder.Blocks());
+  const std::vector<std::uint8_t> raw = EncodeAllRecords(encoder, count, h.RecordLength, summaries);
+  if (AnyOutOfRange(summaries))
+  {
+    return path + ": a point's coordinates do not fit the LAS records' 32-bit integers with "
+                  "the scale and offset of the header (or are not finite)";
+  }
+  const std::vector<std::uint8_t> points =
+    CompressLAZPoints(raw.data(), count, h.RecordLength, parameters, written.OffsetToPointData);
+  SumBlocks(summaries, written);
+  std::vector<std::uint8_t> bytes = EncodeHeader(written,
+    records.VLRCount,
+    static_cast<std::uint32_t>(records.Extended.size()),
+    points.size(),
+    true);
+  bytes.insert(bytes.end(), records.VLRBytes.begin(), records.VLRBytes.end());
+  bytes.insert(bytes.end(), points.begin(), points.end());
+  for (const LASRecord* record : records.Extended)
+  {
+    AppendRecord(bytes, *record, true);
+  }
+  ReplacingFile output(path);
+  std::FILE* file = output.Get();
+  if (!file)
+  {
+    return output.OpenError();
+  }
+  const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
+  return output.Commit(ok, ok ? 0 : errno);
 }
 
 LASFileInfo DefaultLASFileInfo(std::size_t count, const double bounds[6], bool gpsTime, bool rgb)

@@ -26,6 +26,17 @@ std::string WriteLAS(const std::string& path,
   const void* const* columns);
 
 /**
+ * Writes a LAZ file (LASzip-compressed LAS, chunks of 50,000 points compressed in parallel) as
+ * WriteLAS writes a LAS file, with the LASzip record added to the VLRs. Point formats 0 to 3
+ * (pointwise items) and 6 to 8 (layered); the waveform formats are a one-line error. Returns an empty string or a one-line message.
+ */
+std::string WriteLAZ(const std::string& path,
+  const LASFileInfo& info,
+  std::size_t count,
+  const double* positions,
+  const void* const* columns);
+
+/**
  * A header for points that come from no LAS file: LAS 1.2 (1.4 beyond 2^32 - 1 points), the
  * smallest point format holding GPS time and colour when asked for, offsets at the bounds'
  * lower corner and a power-of-ten scale fine enough to keep the points' precision within the

@@ -1,0 +1,224 @@
+#include "LAZReader.h"
+
+#include "LASBinary.h"
+#include "LAZFormat.h"
+#include "LAZItemDecoders.h"
+#include "LAZLayeredDecoder.h"
+
+#include <algorithm>
+#include <cstring>
+#include <memory>
+#include <new>
+#include <vector>
+
+namespace pcbilateral
+{
+
+namespace
+{
+using las::Str;
+
+/// Decodes the `points` records of a chunk of the pointwise compressors into `out`.
+std::string DecodePointwiseChunk(const std::uint8_t* begin,
+  const std::uint8_t* end,
+  const LAZParameters& parameters,
+  std::size_t recordLength,
+  std::uint64_t points,
+  std::uint8_t* out)
+{
+  if (static_cast<std::size_t>(end - begin) < recordLength)
+  {
+    return "truncated: the chunk is shorter than its first point";
+  }
+  std::vector<std::unique_ptr<laz::ItemDecoder>> items;
+  std::vector<std::size_t> offsets;
+  std::size_t offset = 0;
+  for (const LAZItem& item : parameters.Items)
+  {
+    items.push_back(laz::MakeItemDecoder(item));
+    if (!items.back())
+    {
+      return "the LAZ item " + LAZItemName(item) + " is not supported";
+    }
+    offsets.push_back(offset);
+    offset += item.Size;
+  }
+  std::memcpy(out, begin, recordLength);
+  for (std::size_t i = 0; i < items.size(); ++i)
+  {
+    items[i]->Start(out + offsets[i]);
+  }
+  laz::ArithmeticDecoder decoder(begin + recordLength, end);
+  for (std::uint64_t p = 1; p < points; ++p)
+  {
+    if ((p & 4095) == 0 && decoder.Overrun())
+    {
+      break; // damaged: reported below, without decoding the rest
+    }
+    std::uint8_t* record = out + p * recordLength;
+    for (std::size_t i = 0; i < items.size(); ++i)
+    {
+      items[i]->Decode(decoder, record + offsets[i]);
+    }
+  }
+  if (decoder.Overrun())
+  {
+    return "truncated or damaged: its compressed points end before its last point";
+  }
+  return std::string();
+}
+
+std::string DecodeChunk(const std::uint8_t* data,
+  const LAZChunk& chunk,
+  const LAZParameters& parameters,
+  std::size_t recordLength,
+  std::uint8_t* out)
+{
+  const std::uint8_t* begin = data + chunk.Offset;
+  const std::uint8_t* end = begin + chunk.Bytes;
+  if (static_cast<LAZCompressor>(parameters.Compressor) == LAZCompressor::LayeredChunked)
+  {
+    return laz::DecodeLayeredChunk(begin, end, parameters, recordLength, chunk.Points, out);
+  }
+  return DecodePointwiseChunk(begin, end, parameters, recordLength, chunk.Points, out);
+}
+
+/// Decodes the chunks [firstChunk, lastChunk], each by one thread, copying the points
+/// [first, first + count) into `records`.
+std::string DecodeChunks(const std::uint8_t* data,
+  const std::vector<LAZChunk>& chunks,
+  std::size_t firstChunk,
+  std::size_t lastChunk,
+  const LAZParameters& parameters,
+  std::size_t recordLength,
+  std::uint64_t first,
+  std::uint64_t count,
+  std::uint8_t* records)
+{
+  std::vector<std::string> problems(lastChunk + 1 - firstChunk);
+  const auto total = static_cast<std::int64_t>(problems.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t k = 0; k < total; ++k)
+  {
+    const LAZChunk& chunk = chunks[firstChunk + static_cast<std::size_t>(k)];
+    const std::uint64_t begin = std::max(first, chunk.FirstPoint);
+    const std::uint64_t end = std::min(first + count, chunk.FirstPoint + chunk.Points);
+    std::string& problem = problems[static_cast<std::size_t>(k)];
+    if (begin == chunk.FirstPoint && end == chunk.FirstPoint + chunk.Points)
+    {
+      // The whole chunk is wanted: decoded in place.
+      problem = DecodeChunk(
+        data, chunk, parameters, recordLength, records + (begin - first) * recordLength);
+    }
+    else
+    {
+      std::vector<std::uint8_t> scratch(chunk.Points * recordLength);
+      problem = DecodeChunk(data, chunk, parameters, recordLength, scratch.data());
+      std::memcpy(records + (begin - first) * recordLength,
+        scratch.data() + (begin - chunk.FirstPoint) * recordLength,
+        (end - begin) * recordLength);
+    }
+    if (!problem.empty())
+    {
+      problem = "chunk " + Str(firstChunk + k + 1) + " of " + Str(chunks.size()) + " (" +
+                Str(chunk.Points) + " points at byte " + Str(chunk.Offset) + "): " + problem;
+    }
+  }
+  for (const std::string& problem : problems)
+  {
+    if (!problem.empty())
+    {
+      return problem;
+    }
+  }
+  return std::string();
+}
+} // namespace
+
+bool IsLAZ(const std::uint8_t* data, std::size_t size)
+{
+  return size > 104 && std::memcmp(data, "LASF", 4) == 0 && (data[104] & 0xC0) != 0;
+}
+
+std::string DecompressLAZPoints(const std::uint8_t* data,
+  std::size_t size,
+  const LASFileInfo& info,
+  const std::string& sourceName,
+  std::uint64_t first,
+  std::uint64_t count,
+  std::uint8_t* records)
+{
+  const LASHeader& h = info.Header;
+  LAZParameters parameters;
+  std::string problem =
+    ParseLAZParameters(info.LASzipRecord, h.PointFormat, h.RecordLength, parameters);
+  std::vector<LAZChunk> chunks;
+  if (problem.empty())
+  {
+    problem =
+      ReadLAZChunkTable(data, size, h.OffsetToPointData, h.NumberOfPoints, parameters, chunks);
+  }
+  if (problem.empty() && (first > h.NumberOfPoints || count > h.NumberOfPoints - first))
+  {
+    problem = "points " + Str(first) + " to " + Str(first + count) + " asked for, the file has " +
+              Str(h.NumberOfPoints);
+  }
+  if (problem.empty() && count > 0)
+  {
+    auto holds = [](const LAZChunk& chunk, std::uint64_t point)
+    { return chunk.FirstPoint + chunk.Points <= point; };
+    const auto firstChunk = static_cast<std::size_t>(
+      std::partition_point(
+        chunks.begin(), chunks.end(), [&](const LAZChunk& c) { return holds(c, first); }) -
+      chunks.begin());
+    const auto lastChunk =
+      static_cast<std::size_t>(std::partition_point(chunks.begin(),
+                                 chunks.end(),
+                                 [&](const LAZChunk& c) { return holds(c, first + count - 1); }) -
+                               chunks.begin());
+    problem = DecodeChunks(
+      data, chunks, firstChunk, lastChunk, parameters, h.RecordLength, first, count, records);
+  }
+  return problem.empty() ? problem : sourceName + ": " + problem;
+}
+
+std::string UncompressedLASRecords(const std::uint8_t* data,
+  std::size_t size,
+  const LASFileInfo& info,
+  const std::string& sourceName,
+  std::vector<std::uint8_t>& decompressed,
+  const std::uint8_t*& records)
+{
+  const LASHeader& h = info.Header;
+  if (info.LASzipRecord.empty())
+  {
+    records = data + h.OffsetToPointData;
+    return std::string();
+  }
+  decompressed.clear();
+  std::string problem;
+  const std::uint64_t compressedBytes = size - h.OffsetToPointData;
+  if (h.NumberOfPoints > LAZMostPointsPerByte * compressedBytes + 1)
+  {
+    return sourceName + ": truncated or damaged: " + Str(h.NumberOfPoints) +
+           " points announced, impossible in " + Str(compressedBytes) +
+           " bytes of compressed points";
+  }
+  try
+  {
+    decompressed.resize(h.NumberOfPoints * h.RecordLength);
+  }
+  catch (const std::bad_alloc&)
+  {
+    problem = sourceName + ": not enough memory for " + Str(h.NumberOfPoints) + " points";
+  }
+  if (problem.empty())
+  {
+    problem =
+      DecompressLAZPoints(data, size, info, sourceName, 0, h.NumberOfPoints, decompressed.data());
+  }
+  records = decompressed.data();
+  return problem;
+}
+
+} // namespace pcbilateral

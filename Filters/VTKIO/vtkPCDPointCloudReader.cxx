@@ -1,0 +1,164 @@
+#include "vtkPCDPointCloudReader.h"
+
+#include "PCDFile.h"
+#include "vtkPCDPointCloudFieldData.h"
+#include "vtkPointCloudVertices.h"
+
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+vtkStandardNewMacro(vtkPCDPointCloudReader);
+
+namespace
+{
+/// A field's values as an array of its own type.
+vtkSmartPointer<vtkDataArray> MakeArray(const pcbilateral::PCDColumn& column)
+{
+  const pcbilateral::PCDField& field = column.Field;
+  auto array =
+    vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(vtkPCDArrayType(field)));
+  array->SetName(field.Name.c_str());
+  array->SetNumberOfComponents(static_cast<int>(field.Count));
+  array->SetNumberOfTuples(static_cast<vtkIdType>(column.Bytes.size() / field.Bytes()));
+  std::copy(
+    column.Bytes.begin(), column.Bytes.end(), static_cast<std::uint8_t*>(array->GetVoidPointer(0)));
+  return array;
+}
+
+vtkSmartPointer<vtkDataArray> MakeColours(const pcbilateral::PCDColumn& column)
+{
+  const std::vector<std::uint8_t> channels = pcbilateral::UnpackPCDColours(column);
+  const int components = column.Field.Name == "rgba" ? 4 : 3;
+  auto colours = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  colours->SetName(components == 4 ? "RGBA" : "RGB");
+  colours->SetNumberOfComponents(components);
+  colours->SetNumberOfTuples(static_cast<vtkIdType>(channels.size() / components));
+  std::copy(channels.begin(), channels.end(), colours->GetPointer(0));
+  return colours;
+}
+
+/// normal_x, normal_y and normal_z, of one type and one value each, as one 3-component array.
+vtkSmartPointer<vtkDataArray> MakeNormals(const std::vector<pcbilateral::PCDColumn>& columns)
+{
+  const pcbilateral::PCDColumn* axes[3] = { nullptr, nullptr, nullptr };
+  for (const pcbilateral::PCDColumn& column : columns)
+  {
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      if (column.Field.Name == std::string("normal_") + static_cast<char>('x' + axis) &&
+          column.Field.Count == 1)
+      {
+        axes[axis] = &column;
+      }
+    }
+  }
+  if (!axes[0] || !axes[1] || !axes[2] || axes[0]->Field.Type != axes[1]->Field.Type ||
+      axes[0]->Field.Type != axes[2]->Field.Type || axes[0]->Field.Size != axes[1]->Field.Size ||
+      axes[0]->Field.Size != axes[2]->Field.Size)
+  {
+    return nullptr;
+  }
+  const std::size_t size = axes[0]->Field.Size;
+  const std::size_t count = axes[0]->Bytes.size() / size;
+  auto normals = vtkSmartPointer<vtkDataArray>::Take(
+    vtkDataArray::CreateDataArray(vtkPCDArrayType(axes[0]->Field)));
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(static_cast<vtkIdType>(count));
+  auto* out = static_cast<std::uint8_t*>(normals->GetVoidPointer(0));
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      std::memcpy(out + (3 * i + axis) * size, axes[axis]->Bytes.data() + i * size, size);
+    }
+  }
+  return normals;
+}
+
+void AddPointArrays(const std::vector<pcbilateral::PCDColumn>& columns, vtkPointData* pointData)
+{
+  vtkSmartPointer<vtkDataArray> normals = MakeNormals(columns);
+  if (normals)
+  {
+    pointData->SetNormals(normals);
+  }
+  for (const pcbilateral::PCDColumn& column : columns)
+  {
+    if (normals && column.Field.Name.compare(0, 7, "normal_") == 0 && column.Field.Name.size() == 8)
+    {
+      continue;
+    }
+    pointData->AddArray(
+      pcbilateral::IsPCDPackedColour(column.Field) ? MakeColours(column) : MakeArray(column));
+  }
+}
+} // namespace
+
+vtkPCDPointCloudReader::vtkPCDPointCloudReader()
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+vtkPCDPointCloudReader::~vtkPCDPointCloudReader()
+{
+  this->SetFileName(nullptr);
+}
+
+int vtkPCDPointCloudReader::RequestData(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  this->ErrorMessage.clear();
+  this->NumberOfDroppedPoints = 0;
+  if (!this->FileName || !*this->FileName)
+  {
+    this->ErrorMessage = "no file name was given";
+    vtkErrorMacro(<< this->ErrorMessage);
+    return 0;
+  }
+  pcbilateral::PCDReadOptions options;
+  options.KeepNaNPoints = this->KeepNaNPoints;
+  pcbilateral::PCDCloud cloud;
+  this->ErrorMessage = pcbilateral::ReadPCD(this->FileName, options, cloud);
+  if (!this->ErrorMessage.empty())
+  {
+    vtkErrorMacro(<< this->ErrorMessage);
+    return 0;
+  }
+  this->NumberOfDroppedPoints = static_cast<vtkIdType>(cloud.NumberOfDroppedPoints);
+  const auto count = static_cast<vtkIdType>(cloud.NumberOfPoints);
+  vtkNew<vtkDoubleArray> positions;
+  positions->SetNumberOfComponents(3);
+  positions->SetNumberOfTuples(count);
+  std::copy(cloud.Positions.begin(), cloud.Positions.end(), positions->GetPointer(0));
+  vtkNew<vtkPoints> points;
+  points->SetData(positions);
+  output->SetPoints(points);
+  output->SetVerts(vtkPointCloudVertices(count));
+  AddPointArrays(cloud.Columns, output->GetPointData());
+  vtkPCDStoreLayout(cloud.Header, output->GetFieldData());
+  return 1;
+}
+
+void vtkPCDPointCloudReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "KeepNaNPoints: " << this->KeepNaNPoints << "\n";
+  os << indent << "NumberOfDroppedPoints: " << this->NumberOfDroppedPoints << "\n";
+}
