@@ -378,6 +378,11 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   observer.Progress = [this](double fraction) { this->UpdateProgress(fraction); };
   observer.ShouldAbort = [this]() { return this->GetAbortExecute() != 0; };
   observer.Warning = [this](const std::string& warning) { vtkWarningMacro(<< warning); };
+  observer.ParametersChosen = [this](const pcbilateral::BilateralResult& chosen)
+  {
+    this->RecordRunInformation(chosen);
+    this->InvokeEvent(ParametersChosenEvent);
+  };
   this->UpdateProgress(0.0);
   const pcbilateral::BilateralResult result =
     this->RunOnChosen(cloud, chosen, observer, problem.empty());
@@ -388,6 +393,7 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
       vtkErrorMacro(<< result.Error);
     }
     this->LastRunSummary = "failed: " + (problem.empty() ? result.Error : problem);
+    this->RecordRunInformation(pcbilateral::BilateralResult()); // (ParametersChosen set them)
     // A failed run is reported once, above, and gives an empty output; the request itself
     // succeeds. Returning 0 would add the executive's "returned failure for request" dump of
     // pipeline internals, and in ParaView it stops the update before the representation: the

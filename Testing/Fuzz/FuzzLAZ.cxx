@@ -22,15 +22,6 @@
 
 namespace
 {
-void CheckOneLine(const std::string& error, const std::string& source)
-{
-  if (error.compare(0, source.size() + 2, source + ": ") != 0 ||
-      error.find('\n') != std::string::npos)
-  {
-    std::abort(); // an error must be one line naming the source
-  }
-}
-
 /// The records decoded into columns, as the VTK reader does.
 struct Columns
 {
@@ -119,14 +110,8 @@ void CheckWrittenBack(const pcbilateral::LASFileInfo& info,
     static_cast<std::size_t>(info.Header.NumberOfPoints),
     columns.Positions.data(),
     pointers.data());
-  std::error_code ignored;
-  if (!error.empty())
+  if (RefusedWithoutFile(error, path))
   {
-    CheckOneLine(error, path);
-    if (std::filesystem::exists(path, ignored))
-    {
-      std::abort(); // a refused write left a file
-    }
     return;
   }
   pcbilateral::LASFileBytes file;
@@ -151,6 +136,7 @@ void CheckWrittenBack(const pcbilateral::LASFileInfo& info,
       std::abort(); // the written records differ
     }
   }
+  std::error_code ignored;
   std::filesystem::remove(path, ignored);
 }
 } // namespace
