@@ -302,9 +302,20 @@ struct Options
   bool Quiet = false;
 };
 
-/// --copc-level N (N >= -1) and --copc-bounds xmin,xmax,ymin,ymax,zmin,zmax.
-void ParseCOPCOption(const std::string& option, const char* text, Options& options)
+/// --copc-level N (N >= -1) and --copc-bounds xmin,xmax,ymin,ymax,zmin,zmax at argv[i] (and
+/// its value, advancing i); false when argv[i] is neither.
+bool ParseCOPCOption(int argc, char* argv[], int& i, Options& options)
 {
+  const std::string option = argv[i];
+  if (option != "--copc-level" && option != "--copc-bounds")
+  {
+    return false;
+  }
+  if (++i >= argc)
+  {
+    Fail(option + " needs a value");
+  }
+  const char* text = argv[i];
   if (option == "--copc-level")
   {
     options.COPCLevel = ParseCount("--copc-level", text);
@@ -312,7 +323,7 @@ void ParseCOPCOption(const std::string& option, const char* text, Options& optio
     {
       Fail(std::string("--copc-level: '") + text + "' is not a level (0 or more, -1: all)");
     }
-    return;
+    return true;
   }
   const char* at = text;
   for (int i = 0; i < 6; ++i)
@@ -329,6 +340,7 @@ void ParseCOPCOption(const std::string& option, const char* text, Options& optio
     at = end + 1;
   }
   options.COPCUseBounds = true;
+  return true;
 }
 
 /// --classes LIST: integers separated by commas.
@@ -425,10 +437,6 @@ bool ParseOption(int argc, char* argv[], int& i, Options& options)
   {
     options.Quiet = true;
   }
-  else if (argument == "--copc-level" || argument == "--copc-bounds")
-  {
-    ParseCOPCOption(argument, value(), options);
-  }
   else if (argument.size() > 1 && argument[0] == '-')
   {
     Fail("unknown option '" + argument + "' (see pcbilateral -h)");
@@ -464,7 +472,7 @@ Options ParseArguments(int argc, char* argv[])
   std::vector<std::string> positional;
   for (int i = 1; i < argc; ++i)
   {
-    if (!ParseOption(argc, argv, i, options))
+    if (!ParseCOPCOption(argc, argv, i, options) && !ParseOption(argc, argv, i, options))
     {
       positional.push_back(argv[i]);
     }
