@@ -452,4 +452,26 @@ std::string WritePointCloudText(const std::string& path, const PointCloudTable& 
   return output.Commit(ok);
 }
 
+void KeepPointRange(PointCloudTable& table, std::size_t first, std::size_t count)
+{
+  const auto keep = [&](std::vector<double>& values, std::size_t perPoint)
+  {
+    if (values.empty())
+    {
+      return;
+    }
+    values.erase(
+      values.begin() + static_cast<std::ptrdiff_t>((first + count) * perPoint), values.end());
+    values.erase(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(first * perPoint));
+    values.shrink_to_fit();
+  };
+  keep(table.Positions, 3);
+  keep(table.Normals, 3);
+  for (std::vector<double>& column : table.ExtraColumns)
+  {
+    keep(column, 1);
+  }
+  table.NumberOfPoints = count;
+}
+
 } // namespace pcbilateral

@@ -76,6 +76,13 @@ std::string ParsePointCloudText(const char* text,
 std::string ReadPointCloudText(const std::string& path, bool hasNormals, PointCloudTable& table);
 
 /**
+ * Keeps only points [first, first + count) of a table (a piece of a distributed read,
+ * PointPieces.h): their positions, normals and extra columns, in order; the layout stays.
+ * The range must lie within the table.
+ */
+void KeepPointRange(PointCloudTable& table, std::size_t first, std::size_t count);
+
+/**
  * Writes a table as text, in its Layout: a header line naming the columns when the layout has
  * one ("x y z", "nx ny nz" when there are normals, or the layout's names of them, then the
  * extra columns' names, with spaces replaced by '_'), then one line per point, values

@@ -2,6 +2,7 @@
 #include "vtkPointCloudVertices.h"
 
 #include "PointCloudText.h"
+#include "PointPieces.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -12,6 +13,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
 #include <algorithm>
@@ -108,10 +110,20 @@ vtkPointCloudTextReader::~vtkPointCloudTextReader()
   this->SetFileName(nullptr);
 }
 
+int vtkPointCloudTextReader::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  // Each piece keeps its own share of the points (PieceOfPoints).
+  outputVector->GetInformationObject(0)->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
 int vtkPointCloudTextReader::RequestData(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->ErrorMessage.clear();
   if (!this->FileName || !*this->FileName)
@@ -126,6 +138,15 @@ int vtkPointCloudTextReader::RequestData(vtkInformation*,
   {
     vtkErrorMacro(<< this->ErrorMessage);
     return 0;
+  }
+  // Lines end anywhere: the whole text is parsed, then only the piece's share kept.
+  const pcbilateral::PointRange share = pcbilateral::PieceOfPoints(table.NumberOfPoints,
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()),
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()));
+  if (share.Count != table.NumberOfPoints)
+  {
+    pcbilateral::KeepPointRange(
+      table, static_cast<std::size_t>(share.First), static_cast<std::size_t>(share.Count));
   }
 
   const auto count = static_cast<vtkIdType>(table.NumberOfPoints);
