@@ -2,12 +2,15 @@
 the file's points, and the distributed filter on those shares gives, gathered, the bits of one
 process on the whole file.
 
-    mpirun -np P pvbatch TestPieces.py PLUGIN SCRATCH_FOLDER FILE [--shuffled] [--iterations N]
+    mpirun -np P pvbatch TestPieces.py PLUGIN SCRATCH_FOLDER FILE [--shuffled] [--dark-first-third]
+        [--iterations N]
 
 FILE is a LAS, LAZ, PCD or text file (.xyz or .txt), read with the plugin's reader. With
 --shuffled, the script first writes FILE's points in a random order to a LAS or LAZ file (as
 FILE is) with the project's writer and reads that instead: each rank's share then spans the
-whole cloud. Exits with 77 (skipped) when FILE does not exist.
+whole cloud. With --dark-first-third, the RGB values (8-bit in FILE) of all but the first third
+of the points are made 16-bit (times 257) first: the display colours ("Colors") must still
+follow the whole file (16-bit) on the pieces that hold only 8-bit values. Exits with 77 (skipped) when FILE does not exist.
 
 Checks:
 - each rank holds exactly points [floor(r N / P), floor((r + 1) N / P)) of the file: the
@@ -37,6 +40,7 @@ parser.add_argument("plugin")
 parser.add_argument("scratch")
 parser.add_argument("file")
 parser.add_argument("--shuffled", action="store_true")
+parser.add_argument("--dark-first-third", action="store_true")
 parser.add_argument("--iterations", type=int, default=1)
 args = parser.parse_args()
 
@@ -66,21 +70,28 @@ def read_piece(path, piece, pieces):
 
 
 path = args.file
-if args.shuffled:
-    # The file's points in a random order, written by the project's LAS writer: each rank's
-    # contiguous share is then spread over the whole cloud.
+if args.shuffled or args.dark_first_third:
+    # The file's points in a random order, or with dark colours first, written by the project's
+    # LAS writer: each rank's contiguous share is then spread over the whole cloud.
     whole = dsa.WrapDataObject(read_piece(args.file, 0, 1))
-    order = np.random.default_rng(27).permutation(whole.GetNumberOfPoints())
-    shuffled = dsa.WrapDataObject(type(whole.VTKObject)())
-    shuffled.Points = np.asarray(whole.Points)[order]
-    for name in whole.PointData.keys():
-        shuffled.PointData.append(np.asarray(whole.PointData[name])[order], name)
-    shuffled.VTKObject.GetFieldData().ShallowCopy(whole.VTKObject.GetFieldData())
-    path = os.path.join(args.scratch, f"shuffled-{ranks}-" + os.path.basename(args.file))
+    count = whole.GetNumberOfPoints()
+    order = np.random.default_rng(27).permutation(count) if args.shuffled else np.arange(count)
+    rewritten = dsa.WrapDataObject(type(whole.VTKObject)())
+    rewritten.Points = np.asarray(whole.Points)[order]
+    for name in set(whole.PointData.keys()) - {"Colors"}:
+        values = np.array(whole.PointData[name])[order]
+        if name == "RGB" and args.dark_first_third:  # 8-bit values first, 16-bit ones after
+            check(values.max() <= 255, "the file's RGB holds 8-bit values")
+            values[count // 3:] *= 257
+            check(values[count // 3:].max() > 255, "the other points' RGB is 16-bit")
+        rewritten.PointData.append(values, name)
+    rewritten.VTKObject.GetFieldData().ShallowCopy(whole.VTKObject.GetFieldData())
+    kind = "shuffled" if args.shuffled else "dark"
+    path = os.path.join(args.scratch, f"{kind}-{ranks}-" + os.path.basename(args.file))
     writer = vtkLASPointCloudWriter()
-    writer.SetInputData(shuffled.VTKObject)
+    writer.SetInputData(rewritten.VTKObject)
     writer.SetFileName(path)
-    check(writer.Write() == 1, f"the shuffled cloud written to {path}")
+    check(writer.Write() == 1, f"the {kind} cloud written to {path}")
 
 whole = read_piece(path, 0, 1)
 total = whole.GetNumberOfPoints()
