@@ -2,7 +2,7 @@
 // (IPOL 2017), with the option letters of the authors' program.
 //
 //   pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [--paper] [-R] [-t THREADS]
-//               [--remove-isolated] [--edge-aware] [--keep-nan]
+//               [--remove-isolated] [--edge-aware] [--keep-nan] [-q]
 //               [--classes LIST [--class-array NAME]]
 //
 // Formats by extension: .txt and .xyz (the authors' ASCII format), .las, .laz, .pcd, .ply,
@@ -27,6 +27,7 @@
 #include <chrono>
 #include <climits>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -41,7 +42,7 @@ namespace
 // (AutomaticRule.h), inserted by HelpText.
 const char* const UsageHead =
   "usage: pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [--paper] [-R] [-t THREADS]\n"
-  "                   [--remove-isolated] [--edge-aware] [--keep-nan]\n"
+  "                   [--remove-isolated] [--edge-aware] [--keep-nan] [-q]\n"
   "                   [--classes LIST [--class-array NAME]]\n"
   "\n"
   "Denoises a point cloud with the bilateral filter (Digne & de Franchis, IPOL 2017).\n"
@@ -75,6 +76,9 @@ const char* const UsageTail =
   "  --keep-nan         PCD input: keep the points without coordinates (NaN) of an\n"
   "                     organised frame in place, never as neighbours, so that a .pcd\n"
   "                     output keeps the frame's WIDTH and HEIGHT (default: left out)\n"
+  "  -q, --quiet        print nothing but warnings and errors (default: what was read,\n"
+  "                     measured, chosen and written, each line as soon as it is known, and\n"
+  "                     on a terminal a progress bar with the time left)\n"
   "  -p                 accepted for compatibility and ignored: the filter always runs in "
   "parallel\n"
   "  -h, --help         this text\n";
@@ -134,6 +138,75 @@ public:
 vtkStandardNewMacro(QuietOutputWindow);
 
 /// Prints the filter's errors and warnings as one line each, as they arise.
+/// What the program prints while it runs: each summary line as soon as it is known, and on a
+/// terminal a progress bar for the filtering, with the time left, redrawn at most four times a
+/// second and erased before anything else is printed. --quiet prints neither.
+struct Terminal
+{
+  bool Quiet = false;
+  bool ShowBar = false;
+  bool BarShown = false;
+  std::chrono::steady_clock::time_point Start, LastDrawn;
+
+  void ClearBar()
+  {
+    if (this->BarShown)
+    {
+      std::fputs("\r\033[K", stdout);
+      std::fflush(stdout);
+      this->BarShown = false;
+    }
+  }
+
+  void Bar(double fraction)
+  {
+    const auto now = std::chrono::steady_clock::now();
+    if (!this->ShowBar || now - this->LastDrawn < std::chrono::milliseconds(250))
+    {
+      return;
+    }
+    this->LastDrawn = now;
+    const double elapsed = std::chrono::duration<double>(now - this->Start).count();
+    constexpr int Width = 30;
+    const int filled = static_cast<int>(fraction * Width);
+    char left[32] = "";
+    if (fraction > 0.02 && fraction < 1.0)
+    {
+      std::snprintf(left, sizeof left, ", %.0f s left", elapsed * (1.0 - fraction) / fraction);
+    }
+    std::printf("\rfiltering:     [%s%s] %3.0f%%%s\033[K",
+      std::string(static_cast<std::size_t>(filled), '#').c_str(),
+      std::string(static_cast<std::size_t>(Width - filled), '.').c_str(),
+      100.0 * fraction,
+      left);
+    std::fflush(stdout);
+    this->BarShown = true;
+  }
+};
+
+Terminal& Screen()
+{
+  static Terminal terminal;
+  return terminal;
+}
+
+/// printf to the standard output, unless --quiet; the progress bar erased first, the line out at
+/// once.
+void Say(const char* format, ...)
+{
+  Terminal& screen = Screen();
+  if (screen.Quiet)
+  {
+    return;
+  }
+  screen.ClearBar();
+  va_list arguments;
+  va_start(arguments, format);
+  std::vprintf(format, arguments);
+  va_end(arguments);
+  std::fflush(stdout);
+}
+
 struct ReportMessages
 {
   bool ErrorSeen = false;
@@ -151,6 +224,7 @@ struct ReportMessages
         const bool isError = event == vtkCommand::ErrorEvent;
         if (!(isError && self->ErrorSeen))
         {
+          Screen().ClearBar();
           std::fprintf(
             stderr, "pcbilateral: %s%s\n", isError ? "error: " : "warning: ", message.c_str());
         }
@@ -216,6 +290,7 @@ struct Options
   std::vector<long long> Classes;
   std::string ClassArray = "Classification";
   bool KeepNaNPoints = false;
+  bool Quiet = false;
 };
 
 /// --classes LIST: integers separated by commas.
@@ -308,6 +383,10 @@ bool ParseOption(int argc, char* argv[], int& i, Options& options)
   {
     options.KeepNaNPoints = true;
   }
+  else if (argument == "--quiet" || argument == "-q")
+  {
+    options.Quiet = true;
+  }
   else if (argument.size() > 1 && argument[0] == '-')
   {
     Fail("unknown option '" + argument + "' (see pcbilateral -h)");
@@ -372,7 +451,7 @@ void ReadInput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData* 
   }
   if (files->GetNumberOfDroppedPoints() > 0)
   {
-    std::printf("input:         dropped %lld points without coordinates (NaN)\n",
+    Say("input:         dropped %lld points without coordinates (NaN)\n",
       static_cast<long long>(files->GetNumberOfDroppedPoints()));
   }
 }
@@ -420,7 +499,7 @@ void PrintClasses(vtkPointCloudBilateralFilter* filter, const Options& options)
   {
     list += (list.empty() ? "" : ", ") + std::to_string(value);
   }
-  std::printf("classes:       %s in '%s': %lld points filtered, the others unchanged\n",
+  Say("classes:       %s in '%s': %lld points filtered, the others unchanged\n",
     list.c_str(),
     options.ClassArray.c_str(),
     static_cast<long long>(filter->GetNumberOfFilteredPoints()));
@@ -437,12 +516,12 @@ void PrintParametersUsed(vtkPointCloudBilateralFilter* filter, const Options& op
   const bool measured = filter->GetPointSpacing() > 0.0;
   if (measured)
   {
-    std::printf("measured:      point spacing %.6g, noise sigma %.6g\n",
+    Say("measured:      point spacing %.6g, noise sigma %.6g\n",
       filter->GetPointSpacing(),
       filter->GetNoiseSigma());
     const double* distances = filter->GetNearestNeighbourDistances();
-    std::printf("sampling:      nearest-neighbour distance %.6g (5%%), %.6g (median), %.6g "
-                "(95%%); local spacing varies %.3g times\n",
+    Say("sampling:      nearest-neighbour distance %.6g (5%%), %.6g (median), %.6g "
+        "(95%%); local spacing varies %.3g times\n",
       distances[0],
       distances[1],
       distances[2],
@@ -454,32 +533,26 @@ void PrintParametersUsed(vtkPointCloudBilateralFilter* filter, const Options& op
   {
     const double* radii = filter->GetRadiusRange();
     const double* normalRadii = filter->GetNormalRadiusRange();
-    std::printf("radius:        %s, following the density (automatic, each point's from its "
-                "local spacing)\n",
+    Say("radius:        %s, following the density (automatic, each point's from its "
+        "local spacing)\n",
       Range(radii[0], radii[1]).c_str());
-    std::printf("normal radius: %s%s\n",
+    Say("normal radius: %s%s\n",
       Range(normalRadii[0], normalRadii[1]).c_str(),
       options.NormalRadius > 0.0 ? "" : automatic);
   }
   else
   {
-    std::printf(
-      "radius:        %.9g%s\n", filter->GetRadiusUsed(), options.Radius > 0.0 ? "" : automatic);
-    std::printf("normal radius: %.9g%s\n",
+    Say("radius:        %.9g%s\n", filter->GetRadiusUsed(), options.Radius > 0.0 ? "" : automatic);
+    Say("normal radius: %.9g%s\n",
       filter->GetNormalRadiusUsed(),
       options.NormalRadius > 0.0 ? "" : automatic);
   }
-  std::printf("iterations:    %d%s\n",
+  Say("iterations:    %d%s\n",
     filter->GetNumberOfIterationsUsed(),
     options.Iterations > 0 ? "" : automatic);
-  std::printf("mode:          %s\n",
+  Say("mode:          %s\n",
     options.EdgeAware ? "edge-aware (normals filtered bilaterally, beyond the paper)"
                       : "the paper's filter");
-  if (options.RemoveIsolated)
-  {
-    std::printf("removed:       %lld isolated points\n",
-      static_cast<long long>(filter->GetNumberOfRemovedPoints()));
-  }
 }
 
 void WriteOutput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData* output)
@@ -497,7 +570,7 @@ void WriteOutput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData
   {
     std::fprintf(stderr, "pcbilateral: warning: %s\n", files->GetWarning(w));
   }
-  std::printf("output:        %s, %lld points\n",
+  Say("output:        %s, %lld points\n",
     options.Output.c_str(),
     static_cast<long long>(output->GetNumberOfPoints()));
 }
@@ -531,6 +604,8 @@ int main(int argc, char* argv[])
   vtkNew<QuietOutputWindow> quiet;
   vtkOutputWindow::SetInstance(quiet);
   const Options options = ParseArguments(argc, argv);
+  Screen().Quiet = options.Quiet;
+  Screen().ShowBar = !options.Quiet && isatty(fileno(stdout));
 
   // One place picks the reader and writer by extension and checks the file first.
   vtkNew<vtkPointCloudFileIO> files;
@@ -539,13 +614,43 @@ int main(int argc, char* argv[])
   vtkNew<vtkPolyData> input;
   ReadInput(files, options, input);
 
+  Say("input:         %s, %lld points\n",
+    options.Input.c_str(),
+    static_cast<long long>(input->GetNumberOfPoints()));
+
   ReportMessages messages;
   vtkNew<vtkPointCloudBilateralFilter> filter;
   messages.Observe(filter);
   filter->SetInputData(input);
   ConfigureFilter(filter, options);
+  // What was measured and chosen, as soon as it is (a large cloud then filters for minutes),
+  // and the progress bar.
+  struct Watch
+  {
+    vtkPointCloudBilateralFilter* Filter;
+    const Options* Chosen;
+    bool ParametersSaid = false;
+  } watch{ filter, &options };
+  vtkNew<vtkCallbackCommand> watcher;
+  watcher->SetClientData(&watch);
+  watcher->SetCallback(
+    [](vtkObject*, unsigned long event, void* client, void* callData)
+    {
+      auto* self = static_cast<Watch*>(client);
+      if (event == vtkCommand::ProgressEvent)
+      {
+        Screen().Bar(*static_cast<double*>(callData));
+        return;
+      }
+      PrintParametersUsed(self->Filter, *self->Chosen);
+      self->ParametersSaid = true;
+    });
+  filter->AddObserver(vtkPointCloudBilateralFilter::ParametersChosenEvent, watcher);
+  filter->AddObserver(vtkCommand::ProgressEvent, watcher);
   const auto start = std::chrono::steady_clock::now();
+  Screen().Start = start;
   filter->Update();
+  Screen().ClearBar();
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (messages.ErrorSeen)
@@ -555,11 +660,16 @@ int main(int argc, char* argv[])
 
   vtkNew<vtkPolyData> output;
   output->ShallowCopy(filter->GetOutput());
-  std::printf("input:         %s, %lld points\n",
-    options.Input.c_str(),
-    static_cast<long long>(input->GetNumberOfPoints()));
-  PrintParametersUsed(filter, options);
-  std::printf("filtering:     %.3f s\n", seconds);
+  if (!watch.ParametersSaid)
+  {
+    PrintParametersUsed(filter, options); // (no iteration ran: nothing to filter)
+  }
+  if (options.RemoveIsolated)
+  {
+    Say("removed:       %lld isolated points\n",
+      static_cast<long long>(filter->GetNumberOfRemovedPoints()));
+  }
+  Say("filtering:     %.3f s\n", seconds);
   WriteOutput(files, options, output);
   return EXIT_SUCCESS;
 }

@@ -636,6 +636,10 @@ bool BilateralRun::Start(const CloudExtent& wholeCloud, const CloudScales* whole
     this->Stop(BilateralStatus::Failed, problem);
     return false;
   }
+  if (run.Observer.ParametersChosen)
+  {
+    run.Observer.ParametersChosen(result);
+  }
   return true;
 }
 

@@ -20,6 +20,8 @@ namespace pcbilateral
 struct CloudScales;
 
 /// Hooks called from the calling thread while the filter runs.
+struct BilateralResult;
+
 struct BilateralObserver
 {
   /// Fraction done, from 0 to 1, at least every percent.
@@ -28,6 +30,9 @@ struct BilateralObserver
   std::function<bool()> ShouldAbort;
   /// Called with each warning as soon as it arises (they are also in BilateralResult::Warnings).
   std::function<void(const std::string&)> Warning;
+  /// Called once the parameters are resolved (measured, chosen), before the first iteration,
+  /// with the result so far: the parameters used and the measured scales are filled in.
+  std::function<void(const BilateralResult&)> ParametersChosen;
 };
 
 enum class BilateralStatus

@@ -291,6 +291,8 @@ vtkPointCloudBilateralFilter::vtkPointCloudBilateralFilter()
   this->NumberOfThreads = defaults.NumberOfThreads;
   this->EdgeAware = defaults.EdgeAware;
   this->SetClassArrayName("Classification");
+  // What ParaView's progress bar shows (the class name otherwise).
+  this->SetProgressText("Point Cloud Bilateral Filter");
 }
 
 vtkPointCloudBilateralFilter::~vtkPointCloudBilateralFilter()
@@ -376,6 +378,11 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   observer.Progress = [this](double fraction) { this->UpdateProgress(fraction); };
   observer.ShouldAbort = [this]() { return this->GetAbortExecute() != 0; };
   observer.Warning = [this](const std::string& warning) { vtkWarningMacro(<< warning); };
+  observer.ParametersChosen = [this](const pcbilateral::BilateralResult& chosen)
+  {
+    this->RecordRunInformation(chosen);
+    this->InvokeEvent(ParametersChosenEvent);
+  };
   this->UpdateProgress(0.0);
   const pcbilateral::BilateralResult result =
     this->RunOnChosen(cloud, chosen, observer, problem.empty());
@@ -386,6 +393,7 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
       vtkErrorMacro(<< result.Error);
     }
     this->LastRunSummary = "failed: " + (problem.empty() ? result.Error : problem);
+    this->RecordRunInformation(pcbilateral::BilateralResult()); // (ParametersChosen set them)
     // A failed run is reported once, above, and gives an empty output; the request itself
     // succeeds. Returning 0 would add the executive's "returned failure for request" dump of
     // pipeline internals, and in ParaView it stops the update before the representation: the
@@ -566,12 +574,19 @@ std::string vtkPointCloudBilateralFilter::DescribeRun(
   const pcbilateral::BilateralResult& result) const
 {
   // Short enough for the Properties panel's field; the measured scales have their own getters.
+  // Where some parameters were given and others automatic, each says which it was.
+  const char* automatic = result.Measured ? " (measured)" : " (paper's rule)";
+  const bool given[3] = {
+    this->Radius > 0.0, this->NormalRadius > 0.0, this->NumberOfIterations > 0
+  };
+  const bool mixed = !(given[0] == given[1] && given[1] == given[2]);
+  auto source = [&](int k) { return mixed ? (given[k] ? " (given)" : automatic) : ""; };
   std::ostringstream summary;
   summary.precision(3);
   if (result.RadiusFollowsDensity)
   {
-    summary << "r " << result.RadiusRange[0] << "-" << result.RadiusRange[1]
-            << " (follows density), rn " << result.NormalRadiusRange[0];
+    summary << "r " << result.RadiusRange[0] << "-" << result.RadiusRange[1] << " (follows density)"
+            << (mixed ? automatic : "") << ", rn " << result.NormalRadiusRange[0];
     if (result.NormalRadiusRange[1] != result.NormalRadiusRange[0])
     {
       summary << "-" << result.NormalRadiusRange[1];
@@ -579,12 +594,13 @@ std::string vtkPointCloudBilateralFilter::DescribeRun(
   }
   else
   {
-    summary << "r " << result.RadiusUsed << ", rn " << result.NormalRadiusUsed;
+    summary << "r " << result.RadiusUsed << source(0) << ", rn " << result.NormalRadiusUsed;
   }
-  summary << ", N " << result.NumberOfIterationsUsed;
-  const bool allGiven =
-    this->Radius > 0.0 && this->NormalRadius > 0.0 && this->NumberOfIterations > 0;
-  summary << (allGiven ? " (given)" : (result.Measured ? " (measured)" : " (paper's rule)"));
+  summary << source(1) << ", N " << result.NumberOfIterationsUsed << source(2);
+  if (!mixed)
+  {
+    summary << (given[0] ? " (given)" : automatic);
+  }
   if (!this->Classes.empty())
   {
     summary << "; " << this->NumberOfFilteredPoints << " points of the chosen classes";

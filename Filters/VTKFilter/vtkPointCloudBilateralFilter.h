@@ -89,6 +89,7 @@
 #ifndef vtkPointCloudBilateralFilter_h
 #define vtkPointCloudBilateralFilter_h
 
+#include "vtkCommand.h"                          // For ParametersChosenEvent
 #include "vtkFiltersPointCloudBilateralModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
@@ -117,6 +118,16 @@ public:
   {
     MEASURED = 0,
     PAPER = 1
+  };
+
+  /**
+   * Invoked during an update once the parameters are resolved (measured and chosen), before the
+   * first iteration: the getters below (GetRadiusUsed, GetPointSpacing, ...) then hold this run's
+   * values, so a front end can say what was chosen while the filter still runs.
+   */
+  enum
+  {
+    ParametersChosenEvent = vtkCommand::UserEvent + 179
   };
 
   ///@{

@@ -2,7 +2,8 @@
 (radius 1.5 on the 40,000-point cube: every point is a neighbour of every other), logged as the
 GUI sees it. Each line of PCB_LOG is "<absolute time> <what> [value]", flushed at once so that
 the driving script can follow the run and click Abort:
-  progress P   the session's progress handler (what the progress bar shows) reported P percent
+  progress P T the session's progress handler (what the progress bar shows) reported P percent
+               and the text T
   warning      a warning reached the output window (the Output Messages window)
   returned     the filter returned (aborted or not)
   aborted-message   the plugin's message after an aborted run reached the output window
@@ -25,7 +26,8 @@ def note(what):
 
 
 handler = servermanager.ActiveConnection.Session.GetProgressHandler()
-handler.AddObserver("ProgressEvent", lambda caller, event: note(f"progress {caller.GetLastProgress()}"))
+handler.AddObserver("ProgressEvent", lambda caller, event: note(
+    f"progress {caller.GetLastProgress()} {caller.GetLastProgressText()}"))
 
 
 @calldata_type(VTK_STRING)

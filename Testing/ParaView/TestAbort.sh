@@ -81,6 +81,10 @@ print(f"measured: the filter returned {returned - clicked:.3f} s after the click
 check(returned - clicked < 5.0, f"the filter returned {returned - clicked:.3f} s after Abort was clicked")
 check(points == ["0"], f"an aborted run has an empty output ({points})")
 check("aborted-message" in times, "the Output Messages window says the run was aborted")
+texts = {" ".join(line[3:]) for line in lines if line[1] == "progress"}
+ours = {text for text in texts if "ilateral" in text}
+check(ours == {"Point Cloud Bilateral Filter"},
+      f"the progress bar names the filter by its label, not its class ({sorted(texts)})")
 again = [line[2] for line in lines if line[1] == "again"]
 check(again == ["40000", "40000"], f"the two Applies after the abort ran to the end ({again})")
 check(len(progress) > 3 and max(gaps) < 2.0, "progress reaches the GUI while the run goes on")

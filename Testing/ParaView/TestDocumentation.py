@@ -32,4 +32,18 @@ for page, expected in [
     print(("ok:     " if not missing else "FAILED: ") + f"{page}: {len(text)} characters" +
           (f", missing {missing}" if missing else ""))
     failures += bool(missing)
+
+# Each property's row is headed by its label in the panel ("Number Of Iterations"), never by its
+# internal name ("NumberOfIterations"); the input's row asks for no array the filter does not
+# need (its array choosers once put "must contain a field array with 3 component(s)" there).
+import re  # noqa: E402
+for page, text in sorted(pages.items()):
+    headers = re.findall(r"<th>(.*?)</th>", text)
+    internal = [h for h in headers if re.fullmatch(r"[A-Z][a-z]+(?:[A-Z][a-z]+)+", h)]
+    print(("ok:     " if not internal else "FAILED: ") + f"{page}: row headers {headers[1:]}")
+    failures += bool(internal)
+filter_page = pages.get("filters.PointCloudBilateralFilter.html", "")
+asks = "must contain a field array" in filter_page
+print(("FAILED: " if asks else "ok:     ") + "the filter's input asks for no particular array")
+failures += asks
 sys.exit(1 if failures else 0)

@@ -49,8 +49,9 @@ check(bilateral.RadiusUsed == 0.05 and bilateral.NumberOfIterationsUsed == 2
       f"information properties: radius used {bilateral.RadiusUsed}, normal radius used "
       f"{bilateral.NormalRadiusUsed}, iterations used {bilateral.NumberOfIterationsUsed}, "
       f"noise sigma {bilateral.NoiseSigma} (true {PLANE_NOISE}), spacing {bilateral.PointSpacing}")
-check(bilateral.LastRun.startswith("r 0.05, rn ") and bilateral.LastRun.endswith("N 2 (measured)"),
-      f"last run: '{bilateral.LastRun}'")
+# Each parameter says where it came from when some were given (it once said "(measured)" only).
+check(bilateral.LastRun.startswith("r 0.05 (given), rn ") and
+      bilateral.LastRun.endswith(" (measured), N 2 (given)"), f"last run: '{bilateral.LastRun}'")
 # The spread of the sampling, measured with the spacing: on a jittered grid (each point anywhere
 # in its cell) the 95th percentile is some 4.4 times the 5th, where a scan spans hundreds.
 distances = list(bilateral.NearestNeighbourDistances)
