@@ -2,7 +2,6 @@
 #include "vtkPointCloudVertices.h"
 
 #include "PointCloudText.h"
-#include "PointPieces.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -114,7 +113,7 @@ int vtkPointCloudTextReader::RequestInformation(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
-  // Each piece keeps its own share of the points (PieceOfPoints).
+  // Each piece parses only its own share of the points' lines (ParsePointCloudTextPiece).
   outputVector->GetInformationObject(0)->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
   return 1;
 }
@@ -133,22 +132,16 @@ int vtkPointCloudTextReader::RequestData(vtkInformation*,
     return 0;
   }
   pcbilateral::PointCloudTable table;
-  this->ErrorMessage = pcbilateral::ReadPointCloudText(this->FileName, this->HasNormals, table);
+  this->ErrorMessage = pcbilateral::ReadPointCloudText(this->FileName,
+    this->HasNormals,
+    table,
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()),
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()));
   if (!this->ErrorMessage.empty())
   {
     vtkErrorMacro(<< this->ErrorMessage);
     return 0;
   }
-  // Lines end anywhere: the whole text is parsed, then only the piece's share kept.
-  const pcbilateral::PointRange share = pcbilateral::PieceOfPoints(table.NumberOfPoints,
-    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()),
-    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()));
-  if (share.Count != table.NumberOfPoints)
-  {
-    pcbilateral::KeepPointRange(
-      table, static_cast<std::size_t>(share.First), static_cast<std::size_t>(share.Count));
-  }
-
   const auto count = static_cast<vtkIdType>(table.NumberOfPoints);
   vtkNew<vtkPoints> points;
   points->SetData(MakeArray("Points", 3, table.Positions));

@@ -25,8 +25,8 @@
  * The reader honours streaming pieces (UPDATE_PIECE_NUMBER and UPDATE_NUMBER_OF_PIECES, one
  * piece per process under `mpirun pvbatch` or pvserver): piece p of n keeps only the points
  * [floor(p N / n), floor((p + 1) N / n)) of the file's N, in file order. A line can end
- * anywhere, so every piece parses the whole file (the time and peak memory of one process)
- * and then keeps its share; the output holds only the share.
+ * anywhere, so every piece reads the whole text and finds every line, but parses only its
+ * share's lines (a malformed line is reported by the piece that holds it).
  *
  * @sa
  * vtkPointCloudTextWriter vtkPointCloudBilateralFilter
