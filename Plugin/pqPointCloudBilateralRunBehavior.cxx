@@ -123,11 +123,14 @@ void pqPointCloudBilateralRunBehavior::startup()
   // Settings dialog replaces this until the next start).
   vtkPVRepresentedArrayListSettings* colourArrays =
     vtkPVRepresentedArrayListSettings::GetInstance();
+  // Likewise the file headers the LAS and PCD readers keep in field data ("LAS Scale", "PCD
+  // Viewpoint"...), which crowded the list of a LAS file's attributes.
   const int count = colourArrays->GetNumberOfFilterExpressions();
-  colourArrays->SetNumberOfFilterExpressions(count + 1);
+  colourArrays->SetNumberOfFilterExpressions(count + 2);
   colourArrays->SetFilterExpression(count,
     "^Bilateral(Radius|NormalRadius|NumberOfIterations|PointSpacing|NoiseSigma|"
     "NearestNeighbourDistances|SpacingSpread|RadiusRange|NormalRadiusRange|Mode)$");
+  colourArrays->SetFilterExpression(count + 1, "^(LAS|PCD) [A-Z]");
   // A .xyz file opens with the Point Cloud Text Reader: ParaView 5.11's open dialog offers the
   // PLOT3D reader first (it claims .xyz too, and gives an empty multiblock for a point file).
   // This is ParaView's "default reader" setting, at a priority below the user's own settings

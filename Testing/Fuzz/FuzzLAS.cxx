@@ -46,15 +46,6 @@ DecodedPoints Decode(const pcbilateral::LASFileInfo& info, const std::uint8_t* d
   return points;
 }
 
-void CheckOneLine(const std::string& error, const std::string& source)
-{
-  if (error.compare(0, source.size() + 2, source + ": ") != 0 ||
-      error.find('\n') != std::string::npos)
-  {
-    std::abort(); // an error must be one line naming the source
-  }
-}
-
 void CheckWrittenBack(const pcbilateral::LASFileInfo& info,
   const std::uint8_t* data,
   const DecodedPoints& points)
@@ -64,14 +55,8 @@ void CheckWrittenBack(const pcbilateral::LASFileInfo& info,
   const std::vector<const void*> columns(points.Columns.begin(), points.Columns.end());
   const std::string error =
     pcbilateral::WriteLAS(path, info, count, points.Positions.data(), columns.data());
-  std::error_code ignored;
-  if (!error.empty())
+  if (RefusedWithoutFile(error, path))
   {
-    CheckOneLine(error, path);
-    if (std::filesystem::exists(path, ignored))
-    {
-      std::abort(); // a refused write left a file
-    }
     return;
   }
   pcbilateral::LASFileBytes file;
@@ -126,6 +111,7 @@ void CheckWrittenBack(const pcbilateral::LASFileInfo& info,
       std::abort(); // the other fields of a record changed
     }
   }
+  std::error_code ignored;
   std::filesystem::remove(path, ignored);
 }
 } // namespace

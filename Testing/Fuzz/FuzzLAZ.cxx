@@ -19,15 +19,6 @@
 
 namespace
 {
-void CheckOneLine(const std::string& error, const std::string& source)
-{
-  if (error.compare(0, source.size() + 2, source + ": ") != 0 ||
-      error.find('\n') != std::string::npos)
-  {
-    std::abort(); // an error must be one line naming the source
-  }
-}
-
 /// The records decoded into columns, as the VTK reader does.
 struct Columns
 {
@@ -79,14 +70,8 @@ void CheckWrittenBack(const pcbilateral::LASFileInfo& info,
     static_cast<std::size_t>(info.Header.NumberOfPoints),
     columns.Positions.data(),
     pointers.data());
-  std::error_code ignored;
-  if (!error.empty())
+  if (RefusedWithoutFile(error, path))
   {
-    CheckOneLine(error, path);
-    if (std::filesystem::exists(path, ignored))
-    {
-      std::abort(); // a refused write left a file
-    }
     return;
   }
   pcbilateral::LASFileBytes file;
@@ -111,6 +96,7 @@ void CheckWrittenBack(const pcbilateral::LASFileInfo& info,
       std::abort(); // the written records differ
     }
   }
+  std::error_code ignored;
   std::filesystem::remove(path, ignored);
 }
 } // namespace

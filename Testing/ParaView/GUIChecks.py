@@ -11,6 +11,7 @@ from paraview import servermanager, simple
 
 data = os.path.join(os.environ["PCB_SOURCE_DIR"], "Data", "sharp_edge_noise0.5.ply")
 reader = simple.PLYReader(FileNames=[data])
+reader_display = simple.Show(reader)  # (the GUI picks its representation when first shown)
 bilateral = simple.PointCloudBilateralFilter(Input=reader, OutputDisplacementLength=1)
 display = simple.Show(bilateral)
 simple.Render()
@@ -26,8 +27,29 @@ with open(os.environ["PCB_LOG"], "w") as log:
     check(all(name in field for name in recorded),
           f"the output's field data has the parameters used and the scales measured: {field}")
     check("DisplacementLength" in offered, f"colour-by offers {offered}")
+    # Before and after look alike: the filter's output is shown as the GUI shows the PLY input.
+    check(display.Representation == reader_display.Representation == "Point Gaussian" and
+          display.PointSize == reader_display.PointSize,
+          f"input shown as {reader_display.Representation}, output as {display.Representation}")
     check(not any(name.startswith("Bilateral") for name in offered),
           f"colour-by does not offer the recorded parameters ({offered})")
+
+    # A LAS file (the project's small one, written here): its point attributes are offered,
+    # the header values kept in field data ("LAS Scale"...) are not.
+    las_path = os.path.join(os.environ.get("PCB_LOG") + ".las")
+    simple.SaveData(las_path, proxy=reader)
+    las = simple.OpenDataFile(las_path)
+    las_display = simple.Show(las)
+    check(las_display.Representation == "Point Gaussian",
+          f"a LAS file is shown as a PLY one ({las_display.Representation})")
+    simple.Render()
+    las_domain = las_display.GetProperty("ColorArrayName").SMProperty.FindDomain(
+        "vtkSMArrayListDomain")
+    las_offered = [las_domain.GetString(i) for i in range(las_domain.GetNumberOfStrings())]
+    las_field = [array.GetName() for array in las.FieldData]
+    check(any(name.startswith("LAS ") for name in las_field) and "Intensity" in las_offered
+          and not any(name.startswith("LAS ") for name in las_offered),
+          f"a LAS file's colour-by offers {las_offered}, not its header ({las_field})")
 
     # ParaView's open dialog (pqLoadDataReaction) reads this setting: pattern, description,
     # reader name, three strings per entry, the last matching entry first.

@@ -14,21 +14,11 @@ from paraview import servermanager, simple
 
 # The wrapped classes, so that the reader's own methods are reachable from Python.
 import pointcloudbilateral  # noqa: F401
+from pcb_testing import check, finish, shared_file_or_skip
 
 plugin, folder, scratch = sys.argv[1], sys.argv[2], sys.argv[3]
-capture = os.path.join(folder, "capture0001.pcd")
-if not folder or not os.path.isfile(capture):
-    print(f"skipped: no capture0001.pcd in '{folder}' (set PCB_PCD_DATA_DIR)")
-    sys.exit(77)
+capture = shared_file_or_skip(folder, "capture0001.pcd", "PCB_PCD_DATA_DIR")
 os.makedirs(scratch, exist_ok=True)
-failures = []
-
-
-def check(condition, message):
-    print(("ok: " if condition else "FAILED: ") + message)
-    if not condition:
-        failures.append(message)
-
 
 simple.LoadPlugin(plugin, remote=False, ns=vars(simple))
 manager = servermanager.vtkSMProxyManager.GetProxyManager()
@@ -70,6 +60,5 @@ check(bad.GetDataInformation().GetNumberOfPoints() == 0, "a cut file gives no po
 message = bad.GetClientSideObject().GetErrorMessage()
 check("do not match the file" in message and "\n" not in message, f"and one error: {message}")
 
-if failures:
-    sys.exit(f"{len(failures)} check(s) failed")
+finish()
 print("all checks passed")

@@ -24,6 +24,16 @@ def finish():
     sys.exit(1 if failures else 0)
 
 
+def shared_file_or_skip(folder, name, variable):
+    """The path of a shared sample file, or exit 77 (ctest: skipped) when it is not there."""
+    import os
+    path = os.path.join(folder, name)
+    if not folder or not os.path.isfile(path):
+        print(f"skipped: no {name} in '{folder}' (set {variable})")
+        sys.exit(77)
+    return path
+
+
 def noisy_plane():
     """A unit patch of the plane z = 0 with Gaussian noise, colours and an intensity."""
     rng = np.random.default_rng(2017)

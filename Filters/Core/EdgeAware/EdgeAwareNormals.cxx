@@ -133,6 +133,13 @@ private:
   }
 };
 
+/// One thread's neighbourhoods: step 1 selects KernelLanes points' neighbours at a time, the
+/// other steps use the first.
+struct NeighbourhoodGroup
+{
+  Neighbourhood Hoods[KernelLanes];
+};
+
 /**
  * The neighbour lists the first step found, for the next steps: scanning the cells around a
  * point costs about three times its neighbours, reading a list once. Lists are kept up to a
@@ -256,8 +263,10 @@ public:
     this->EstimateNormals();
     for (int pass = 0; pass < EdgeAwareNormalPasses; ++pass)
     {
+      this->WriteRecords();
       this->FilterNormals(EdgeAwareNormalPasses - pass);
     }
+    this->WriteRecords();
     this->Displace();
     if (this->Aborted)
     {
@@ -277,13 +286,25 @@ private:
   template<typename Body>
   void ForEachPoint(const Body& body)
   {
+    this->ForEachItem(this->Grid.Size(),
+      PointsPerBlock,
+      16,
+      [&](std::size_t i, NeighbourhoodGroup& group, std::uint64_t& visited)
+      { body(i, group.Hoods[0], visited); });
+  }
+
+  /// Calls body(item, the thread's neighbourhoods, its visit count) for items 0 to count - 1,
+  /// in blocks of itemsPerBlock run in parallel (`chunk` items at a time), polling for abort
+  /// and reporting progress between blocks.
+  template<typename Body>
+  void ForEachItem(std::size_t count, std::size_t itemsPerBlock, int chunk, const Body& body)
+  {
     constexpr int Steps = EdgeAwareNormalPasses + 2;
-    const std::size_t count = this->Grid.Size();
-    for (std::size_t begin = 0; begin < count && !this->Aborted; begin += PointsPerBlock)
+    for (std::size_t begin = 0; begin < count && !this->Aborted; begin += itemsPerBlock)
     {
       const auto first = static_cast<std::int64_t>(begin);
-      const auto last = static_cast<std::int64_t>(std::min(count, begin + PointsPerBlock));
-#pragma omp parallel for schedule(dynamic, 16) num_threads(this->Threads)
+      const auto last = static_cast<std::int64_t>(std::min(count, begin + itemsPerBlock));
+#pragma omp parallel for schedule(dynamic, chunk) num_threads(this->Threads)
       for (std::int64_t i = first; i < last; ++i)
       {
         const int thread = CurrentThreadIndex();
@@ -300,6 +321,34 @@ private:
       }
     }
     ++this->Step;
+  }
+
+  /// Sorted point i's neighbours with the current normals (NeighbourCache::Fetch).
+  SortedNeighbours Fetch(std::size_t i, Neighbourhood& hood) const
+  {
+    SortedNeighbours neighbours = this->Cache->Fetch(
+      this->Kernel, this->Grid, this->RadiusSquared, i, hood, this->Normals.data());
+    neighbours.Records = this->Records;
+    neighbours.PaddingRow = this->Grid.Size();
+    return neighbours;
+  }
+
+  /// Each sorted point's coordinates and current normal in one record of 8 values, 64-byte
+  /// aligned, and a padding row after the last (see SortedNeighbours).
+  void WriteRecords()
+  {
+    const std::size_t n = this->Grid.Size();
+    constexpr std::size_t Row = 8;
+    this->RecordStorage.assign(Row * (n + 1) + Row, 0.0);
+    const auto address = reinterpret_cast<std::uintptr_t>(this->RecordStorage.data());
+    this->Records = this->RecordStorage.data() + (64 - address % 64) % 64 / sizeof(double);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      double* record = this->Records + Row * i;
+      this->Position(i, record);
+      std::copy_n(&this->Normals[3 * i], 3, record + 3);
+    }
+    std::fill_n(this->Records + Row * n, 3, 1e300);
   }
 
   const double* Position(std::size_t i, double p[3]) const
@@ -369,34 +418,56 @@ private:
   }
 
   /// 1. The paper's regression-plane normals, refitted with a residual weight; zero for points
-  /// with too few neighbours.
+  /// with too few neighbours. KernelLanes consecutive sorted points at a time, whose 3 x 3
+  /// solves the kernel runs side by side.
   void EstimateNormals()
   {
-    this->Normals.assign(3 * this->Grid.Size(), 0.0);
-    this->ForEachPoint(
-      [&](std::size_t i, Neighbourhood& hood, std::uint64_t& visited)
+    const std::size_t n = this->Grid.Size();
+    this->Normals.assign(3 * n, 0.0);
+    this->ForEachItem((n + KernelLanes - 1) / KernelLanes,
+      PointsPerBlock / KernelLanes,
+      2,
+      [&](std::size_t group, NeighbourhoodGroup& hoods, std::uint64_t& visited)
       {
-        if (this->CellsFromOwn[i] > EdgeAwareNormalPasses + 1)
+        PackedNeighbours points[KernelLanes];
+        std::size_t ids[KernelLanes];
+        std::size_t count = 0;
+        for (std::size_t i = group * KernelLanes; i < std::min(n, (group + 1) * KernelLanes); ++i)
         {
-          return; // never read (MeasureDistanceToOwnPoints)
+          if (this->CellsFromOwn[i] > EdgeAwareNormalPasses + 1)
+          {
+            continue; // never read (MeasureDistanceToOwnPoints)
+          }
+          Neighbourhood& hood = hoods.Hoods[count];
+          hood.Select(this->Kernel, this->Grid, this->RadiusSquared, i);
+          this->Cache->Keep(i, hood);
+          visited += hood.Count;
+          if (hood.Count < MinimumNeighbourCount)
+          {
+            continue;
+          }
+          points[count] = {
+            hood.Dx.data(), hood.Dy.data(), hood.Dz.data(), hood.Weight.data(), hood.Count
+          };
+          ids[count++] = i;
         }
-        hood.Select(this->Kernel, this->Grid, this->RadiusSquared, i);
-        this->Cache->Keep(i, hood);
-        visited += hood.Count;
-        if (hood.Count < MinimumNeighbourCount)
-        {
-          return;
-        }
-        this->Kernel.PlaneNormal(hood.Dx.data(),
-          hood.Dy.data(),
-          hood.Dz.data(),
-          hood.Count,
+        double normals[KernelLanes][3];
+        bool found[KernelLanes];
+        this->Kernel.PlaneNormals(points,
+          count,
           this->Constants.DistanceScale,
           // Residuals weighed as the heights of step 3 (sigma_n = rn / 3).
           this->Constants.NormalScale,
           EdgeAwareRefits,
-          hood.Weight.data(),
-          &this->Normals[3 * i]);
+          normals,
+          found);
+        for (std::size_t point = 0; point < count; ++point)
+        {
+          if (found[point])
+          {
+            std::copy_n(normals[point], 3, &this->Normals[3 * ids[point]]);
+          }
+        }
       });
   }
 
@@ -418,8 +489,7 @@ private:
         {
           return;
         }
-        const SortedNeighbours neighbours = this->Cache->Fetch(
-          this->Kernel, this->Grid, this->RadiusSquared, i, hood, this->Normals.data());
+        const SortedNeighbours neighbours = this->Fetch(i, hood);
         visited += neighbours.Count;
         double p[3], sum[3];
         this->Kernel.NormalSum(this->Position(i, p),
@@ -486,8 +556,7 @@ private:
           this->Isolated[i] = 1; // fewer than MinimumNeighbourCount neighbours
           return;
         }
-        const SortedNeighbours neighbours = this->Cache->Fetch(
-          this->Kernel, this->Grid, this->RadiusSquared, i, hood, this->Normals.data());
+        const SortedNeighbours neighbours = this->Fetch(i, hood);
         visited += neighbours.Count;
         EdgeAwareHeights sums;
         this->Kernel.HeightSums(p,
@@ -540,7 +609,7 @@ private:
   const EdgeAwareKernel Kernel;
   const double AgreementScale;
   const double SmoothAgreementScale;
-  std::vector<Neighbourhood> Scratch;
+  std::vector<NeighbourhoodGroup> Scratch;
   std::vector<std::uint64_t> Counts;
   PointGrid Grid;
   std::unique_ptr<NeighbourCache> Cache;
@@ -548,6 +617,9 @@ private:
   /// where they are for want of neighbours.
   std::vector<double> Normals;
   std::vector<double> Moved;
+  /// WriteRecords.
+  std::vector<double> RecordStorage;
+  double* Records = nullptr;
   std::vector<std::uint8_t> Isolated;
   /// By sorted index: MeasureDistanceToOwnPoints.
   std::vector<std::uint8_t> CellsFromOwn;

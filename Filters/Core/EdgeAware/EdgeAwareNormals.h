@@ -7,8 +7,9 @@
 // point being computed):
 //  1. every point's normal n_i: the paper's weighted regression plane over |q - p| < r, with
 //     the distance weight exp(-|q - p|^2 / (2 sd^2)), sd = r / 3 (the same fit as Algorithm 1),
-//     then EdgeAwareRefits refits with the weights multiplied by exp(-res^2 / (2 sn^2)), sn =
-//     rn / 3, res the neighbour's height over the last plane (through the weighted mean): the
+//     then EdgeAwareRefits refits with the weights multiplied by beta(-res^2 / (2 sn^2)), sn =
+//     rn / 3, beta(x) = max(0, 1 + x / 4)^4 (shaped like exp(x) near 0, without its cost), res
+//     the neighbour's height over the last plane (through the weighted mean): the
 //     plane of a neighbourhood that straddles an edge is tilted, and the refit leaves out the
 //     points farthest from it, those of the other face (an iteratively reweighted fit, as in
 //     robust moving least squares);
@@ -32,8 +33,9 @@
 //       projection), which keeps a point on its own face up to an edge but swells a convex
 //       smooth surface (the tangent planes lie outside it);
 //     - a_i the share of the first: 1 where at least EdgeAwareSmoothAgreement of the
-//       neighbourhood (by distance weight) has normals within about EdgeAwareSmoothAngle of m_i
-//       (smooth), 0 where at most EdgeAwareEdgeAgreement does (an edge), linear between.
+//       neighbourhood (weighted by max(0, 1 - |q - p|^2 / r^2)^4) has normals within about
+//       EdgeAwareSmoothAngle of m_i (weighted by beta of psi's exponent at that angle; smooth),
+//       0 where at most EdgeAwareEdgeAgreement does (an edge), linear between.
 //
 // Each step reads the neighbours' results of the step before, so a point's result depends on
 // the points within EdgeAwareReachInRadii radii of it: that is the ghost margin of a

@@ -133,7 +133,9 @@ bool SetKernelInstructionSet(KernelInstructionSet instructionSet);
 void KernelExp(const double* x, double* result, std::size_t count);
 
 /// A point's neighbours for steps 2 and 3 of the edge-aware mode: Count indices into the
-/// sorted coordinates X, Y, Z and the normals (3 per index).
+/// sorted coordinates X, Y, Z and the normals (3 per index), and the same in Records, 8 values
+/// per sorted point (x, y, z, the normal, 2 unused; the AVX-512 build reads these) with a
+/// padding row at PaddingRow (1e300 three times, then zeros).
 struct SortedNeighbours
 {
   const std::uint32_t* Index = nullptr;
@@ -142,17 +144,31 @@ struct SortedNeighbours
   const double* Y = nullptr;
   const double* Z = nullptr;
   const double* Normals = nullptr;
+  const double* Records = nullptr;
+  std::size_t PaddingRow = 0;
+};
+
+/// One point's neighbours as step 1 of the edge-aware mode selected them: Count packed offsets
+/// q - p, with room for KernelLanes more (padding), and room for their distance weights.
+struct PackedNeighbours
+{
+  double* Dx = nullptr;
+  double* Dy = nullptr;
+  double* Dz = nullptr;
+  double* Weight = nullptr;
+  std::size_t Count = 0;
 };
 
 /// The sums of step 3 of the edge-aware mode for one point (see EdgeAwareHeightSums in
-/// BilateralKernelBody.h).
+/// EdgeAwareKernelBody.h).
 struct EdgeAwareHeights
 {
   double WeightSum = 0.0;
   double WeightedHeightSum = 0.0;
   /// The weighted sum of the moves onto the neighbours' own tangent planes.
   double Projection[3] = { 0.0, 0.0, 0.0 };
-  /// The sums of the distance weights, and of the same times the wide agreement weight.
+  /// The sums of the distance bumps, and of the same times the wide agreement bump (see
+  /// EdgeAwareHeightSums).
   double DistanceWeightSum = 0.0;
   double AgreeingWeightSum = 0.0;
 };
@@ -162,7 +178,7 @@ struct EdgeAwareHeights
  * for each instruction set: the same lanes, sum tree and exponential, so the same bits in every
  * build. Step 1 packs the neighbours' offsets q - p in arrays with room for KernelLanes values
  * more, for padding; steps 2 and 3 read them through their sorted indices. See
- * BilateralKernelBody.h.
+ * EdgeAwareKernelBody.h.
  */
 struct EdgeAwareKernel
 {
@@ -180,18 +196,17 @@ struct EdgeAwareKernel
     double* dz,
     std::uint32_t* index,
     std::size_t count);
-  /// The paper's regression plane normal of `count` selected neighbours, then `rounds` refits
-  /// with the weights multiplied by exp(-res^2 * residualScale), res the height over the last
-  /// plane (through the weighted mean); false if none.
-  bool (*PlaneNormal)(double* dx,
-    double* dy,
-    double* dz,
+  /// For each of `count` points (at most KernelLanes), the paper's regression plane normal of
+  /// its selected neighbours, then `rounds` refits with the weights multiplied by
+  /// Bump(-res^2 * residualScale), res the height over the last plane (through the weighted
+  /// mean); found[point] false (normal untouched) if none.
+  void (*PlaneNormals)(const PackedNeighbours* points,
     std::size_t count,
     double distanceScale,
     double residualScale,
     int rounds,
-    double* distanceWeight,
-    double n[3]);
+    double (*normals)[3],
+    bool* found);
   /// The bilateral sum of the neighbours' normals (step 2).
   void (*NormalSum)(const double p[3],
     const SortedNeighbours& neighbours,
