@@ -3,6 +3,7 @@
 #include "LASHeader.h"
 #include "LASReader.h"
 #include "LAZReader.h"
+#include "PointPieces.h"
 #include "vtkLASPointCloudFieldData.h"
 #include "vtkPointCloudVertices.h"
 
@@ -16,6 +17,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnsignedShortArray.h"
 
@@ -27,12 +29,11 @@ vtkStandardNewMacro(vtkLASPointCloudReader);
 namespace
 {
 /// 8-bit colours for display: the 16-bit values' high bytes, unless the file stored 8-bit
-/// values in its 16-bit fields (as many programs do).
-vtkSmartPointer<vtkUnsignedCharArray> DisplayColours(vtkUnsignedShortArray* rgb)
+/// values in its 16-bit fields (`eightBit`).
+vtkSmartPointer<vtkUnsignedCharArray> DisplayColours(vtkUnsignedShortArray* rgb, bool eightBit)
 {
   const vtkIdType values = rgb->GetNumberOfValues();
   const unsigned short* in = rgb->GetPointer(0);
-  const bool eightBit = std::all_of(in, in + values, [](unsigned short v) { return v <= 255; });
   auto colours = vtkSmartPointer<vtkUnsignedCharArray>::New();
   colours->SetName("Colors");
   colours->SetNumberOfComponents(3);
@@ -56,10 +57,20 @@ vtkLASPointCloudReader::~vtkLASPointCloudReader()
   this->SetFileName(nullptr);
 }
 
+int vtkLASPointCloudReader::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  // Each piece reads its own share of the points (PieceOfPoints).
+  outputVector->GetInformationObject(0)->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
 int vtkLASPointCloudReader::RequestData(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->ErrorMessage.clear();
   pcbilateral::LASFileBytes file;
@@ -77,23 +88,49 @@ int vtkLASPointCloudReader::RequestData(vtkInformation*,
     this->ErrorMessage =
       pcbilateral::ParseLASHeader(file.Data(), file.Size(), this->FileName, info, true);
   }
-  // A LAZ file's records are decompressed first (in parallel, by chunk); a LAS file's are read
-  // where they lie.
+  const pcbilateral::PointRange share = pcbilateral::PieceOfPoints(info.Header.NumberOfPoints,
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()),
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()));
+  // A LAZ file's records of the share are decompressed first (in parallel, by chunk); a LAS
+  // file's are read where they lie.
   std::vector<std::uint8_t> decompressed;
   const std::uint8_t* records = nullptr;
   if (this->ErrorMessage.empty())
   {
-    this->ErrorMessage = pcbilateral::UncompressedLASRecords(
-      file.Data(), file.Size(), info, this->FileName, decompressed, records);
+    this->ErrorMessage = pcbilateral::UncompressedLASRecordRange(file.Data(),
+      file.Size(),
+      info,
+      this->FileName,
+      share.First,
+      share.Count,
+      decompressed,
+      records);
+  }
+  if (this->ErrorMessage.empty())
+  {
+    this->ErrorMessage = this->DecodePoints(info, records, share.Count, output);
+  }
+  if (this->ErrorMessage.empty())
+  {
+    this->ErrorMessage = this->AddDisplayColours(file.Data(), file.Size(), info, share, output);
   }
   if (!this->ErrorMessage.empty())
   {
     // One error and an empty output: a failed request would add the pipeline's own report.
+    output->Initialize();
     vtkErrorMacro(<< this->ErrorMessage);
     return 1;
   }
+  vtkLASStoreFileInfo(info, output->GetFieldData());
+  return 1;
+}
 
-  const auto count = static_cast<vtkIdType>(info.Header.NumberOfPoints);
+std::string vtkLASPointCloudReader::DecodePoints(const pcbilateral::LASFileInfo& info,
+  const std::uint8_t* records,
+  std::uint64_t numberOfPoints,
+  vtkPolyData* output)
+{
+  const auto count = static_cast<vtkIdType>(numberOfPoints);
   vtkNew<vtkDoubleArray> positions;
   positions->SetNumberOfComponents(3);
   positions->SetNumberOfTuples(count);
@@ -116,17 +153,48 @@ int vtkLASPointCloudReader::RequestData(vtkInformation*,
   points->SetData(positions);
   output->SetPoints(points);
   output->SetVerts(vtkPointCloudVertices(count));
-  vtkPointData* pointData = output->GetPointData();
   for (const auto& array : arrays)
   {
-    pointData->AddArray(array);
+    output->GetPointData()->AddArray(array);
   }
-  if (auto* rgb = vtkUnsignedShortArray::SafeDownCast(pointData->GetArray("RGB")))
+  return std::string();
+}
+
+std::string vtkLASPointCloudReader::AddDisplayColours(const std::uint8_t* data,
+  std::size_t size,
+  const pcbilateral::LASFileInfo& info,
+  const pcbilateral::PointRange& share,
+  vtkPolyData* output)
+{
+  auto* rgb = vtkUnsignedShortArray::SafeDownCast(output->GetPointData()->GetArray("RGB"));
+  if (!rgb)
   {
-    pointData->AddArray(DisplayColours(rgb));
+    return std::string();
   }
-  vtkLASStoreFileInfo(info, output->GetFieldData());
-  return 1;
+  const unsigned short* values = rgb->GetPointer(0);
+  bool eightBit = std::all_of(
+    values, values + rgb->GetNumberOfValues(), [](unsigned short v) { return v <= 255; });
+  // Whether the file holds 8-bit colours is a property of the whole file: a piece whose own
+  // colours all fit 8 bits looks at the other points' (up to the first larger value), so that
+  // every piece shows the colours the whole file would.
+  const std::uint64_t total = info.Header.NumberOfPoints;
+  const std::uint64_t end = share.First + share.Count;
+  std::string problem;
+  if (eightBit && share.First > 0)
+  {
+    problem = pcbilateral::LASColoursFitEightBits(
+      data, size, info, this->FileName, 0, share.First, eightBit);
+  }
+  if (problem.empty() && eightBit && end < total)
+  {
+    problem = pcbilateral::LASColoursFitEightBits(
+      data, size, info, this->FileName, end, total - end, eightBit);
+  }
+  if (problem.empty())
+  {
+    output->GetPointData()->AddArray(DisplayColours(rgb, eightBit));
+  }
+  return problem;
 }
 
 void vtkLASPointCloudReader::PrintSelf(ostream& os, vtkIndent indent)

@@ -25,10 +25,18 @@
  * vtkLASPointCloudWriter writes a file like the one read.
  *
  * A damaged or unsupported file (truncated, counts or offsets beyond the file, not LAS, a
- * point format beyond 10, a LAZ variant not supported such as waveforms, a damaged chunk) gives one error naming the file and the problem
- * (also from GetErrorMessage()) and an empty output. Nothing is read outside the file.
+ * point format beyond 10, a LAZ variant not supported such as waveforms, a damaged chunk) gives one
+ * error naming the file and the problem (also from GetErrorMessage()) and an empty output. Nothing
+ * is read outside the file.
  *
  * Decoding is parallel (OpenMP) over a memory-mapped file.
+ *
+ * The reader honours streaming pieces (UPDATE_PIECE_NUMBER and UPDATE_NUMBER_OF_PIECES, one
+ * piece per process under `mpirun pvbatch` or pvserver): piece p of n reads only the points
+ * [floor(p N / n), floor((p + 1) N / n)) of the file's N, in file order; of a LAZ file only
+ * the chunks that hold them are decompressed. The field data is the same on every piece;
+ * "Colors" too follows the whole file (a piece whose colours all fit 8 bits looks at the
+ * others' until one does not). One piece is the whole file.
  *
  * @sa
  * vtkLASPointCloudWriter vtkPointCloudFileIO
@@ -39,7 +47,15 @@
 #include "vtkIOPointCloudBilateralModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
-#include <string> // For the error message
+#include <cstdint> // For the record bytes
+#include <string>  // For the error message
+
+namespace pcbilateral
+{
+struct LASFileInfo;
+struct PointRange;
+}
+class vtkPolyData;
 
 class VTKIOPOINTCLOUDBILATERAL_EXPORT vtkLASPointCloudReader : public vtkPolyDataAlgorithm
 {
@@ -61,12 +77,23 @@ protected:
   vtkLASPointCloudReader();
   ~vtkLASPointCloudReader() override;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   char* FileName = nullptr;
   std::string ErrorMessage;
 
 private:
+  std::string DecodePoints(const pcbilateral::LASFileInfo& info,
+    const std::uint8_t* records,
+    std::uint64_t numberOfPoints,
+    vtkPolyData* output);
+  std::string AddDisplayColours(const std::uint8_t* data,
+    std::size_t size,
+    const pcbilateral::LASFileInfo& info,
+    const pcbilateral::PointRange& share,
+    vtkPolyData* output);
+
   vtkLASPointCloudReader(const vtkLASPointCloudReader&) = delete;
   void operator=(const vtkLASPointCloudReader&) = delete;
 };
