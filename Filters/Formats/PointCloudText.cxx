@@ -1,4 +1,5 @@
 #include "PointCloudText.h"
+#include "PointPieces.h"
 
 #include "TextFields.h"
 
@@ -269,12 +270,88 @@ std::string ParsePoints(const TextStart& start,
   JoinPieces(pieces, table);
   return std::string();
 }
+/**
+ * Narrows `start` (from the first point on) to the lines of piece `piece` of `pieces` of the
+ * points: moves FirstPoint and LineNumber to its first line, returns where its lines end.
+ */
+const char* ShareOfLines(TextStart& start, const char* end, int piece, int pieces)
+{
+  // Two passes over the lines, keeping nothing per line: count the points, then find the
+  // share's first line and the line after its last.
+  std::uint64_t points = 0;
+  for (const char* line = start.FirstPoint; line < end; line = LineEnd(line, end) + 1)
+  {
+    points += IsSkipped(line, LineEnd(line, end)) ? 0 : 1;
+  }
+  const PointRange share = PieceOfPoints(points, piece, pieces);
+  std::uint64_t point = 0;
+  std::size_t number = start.LineNumber;
+  const char* line = start.FirstPoint;
+  for (; line < end; line = LineEnd(line, end) + 1)
+  {
+    ++number;
+    if (IsSkipped(line, LineEnd(line, end)))
+    {
+      continue;
+    }
+    if (point == share.First)
+    {
+      start.FirstPoint = line;
+      start.LineNumber = number - 1;
+    }
+    if (point == share.First + share.Count)
+    {
+      return line;
+    }
+    ++point;
+  }
+  if (share.Count == 0)
+  {
+    start.FirstPoint = end;
+  }
+  return end;
+}
+
+std::string ParseTextPiece(const char* text,
+  std::size_t length,
+  bool hasNormals,
+  const std::string& sourceName,
+  int piece,
+  int pieces,
+  PointCloudTable& table,
+  std::size_t minimumPieceBytes);
 } // namespace
 
 std::string ParsePointCloudText(const char* text,
   std::size_t length,
   bool hasNormals,
   const std::string& sourceName,
+  PointCloudTable& table,
+  std::size_t minimumPieceBytes)
+{
+  return ParseTextPiece(text, length, hasNormals, sourceName, 0, 1, table, minimumPieceBytes);
+}
+
+std::string ParsePointCloudTextPiece(const char* text,
+  std::size_t length,
+  bool hasNormals,
+  const std::string& sourceName,
+  int piece,
+  int pieces,
+  PointCloudTable& table)
+{
+  return ParseTextPiece(
+    text, length, hasNormals, sourceName, piece, pieces, table, std::size_t{ 1 } << 20);
+}
+
+namespace
+{
+std::string ParseTextPiece(const char* text,
+  std::size_t length,
+  bool hasNormals,
+  const std::string& sourceName,
+  int piece,
+  int pieces,
   PointCloudTable& table,
   std::size_t minimumPieceBytes)
 {
@@ -302,10 +379,19 @@ std::string ParsePointCloudText(const char* text,
   {
     table.ExtraColumnNames.push_back(header.empty() ? "column" + std::to_string(c + 1) : header[c]);
   }
+  if (pieces > 1)
+  {
+    end = ShareOfLines(start, end, piece, pieces);
+  }
   return ParsePoints(start, end, leadingColumns, sourceName, minimumPieceBytes, table);
 }
+} // namespace
 
-std::string ReadPointCloudText(const std::string& path, bool hasNormals, PointCloudTable& table)
+std::string ReadPointCloudText(const std::string& path,
+  bool hasNormals,
+  PointCloudTable& table,
+  int piece,
+  int pieces)
 {
   std::error_code error;
   if (std::filesystem::is_directory(path, error))
@@ -332,7 +418,7 @@ std::string ReadPointCloudText(const std::string& path, bool hasNormals, PointCl
   {
     return path + ": read error";
   }
-  return ParsePointCloudText(text.get(), size, hasNormals, path, table);
+  return ParsePointCloudTextPiece(text.get(), size, hasNormals, path, piece, pieces, table);
 }
 
 namespace

@@ -72,8 +72,28 @@ std::string ParsePointCloudText(const char* text,
   PointCloudTable& table,
   std::size_t minimumPieceBytes = std::size_t{ 1 } << 20);
 
-/// Reads and parses a file (see ParsePointCloudText).
-std::string ReadPointCloudText(const std::string& path, bool hasNormals, PointCloudTable& table);
+/**
+ * ParsePointCloudText for piece `piece` of `pieces` (a process's share of a distributed read,
+ * PointPieces.h): the header and the first point are read as there, every line of the text is
+ * found to count the N points, and only the lines of points [floor(piece N / pieces),
+ * floor((piece + 1) N / pieces)) are parsed (and checked: a malformed line outside the share is
+ * not seen by this piece). Errors name the file's own line numbers. One piece is
+ * ParsePointCloudText.
+ */
+std::string ParsePointCloudTextPiece(const char* text,
+  std::size_t length,
+  bool hasNormals,
+  const std::string& sourceName,
+  int piece,
+  int pieces,
+  PointCloudTable& table);
+
+/// Reads and parses a file, or its piece `piece` of `pieces` (see ParsePointCloudTextPiece).
+std::string ReadPointCloudText(const std::string& path,
+  bool hasNormals,
+  PointCloudTable& table,
+  int piece = 0,
+  int pieces = 1);
 
 /**
  * Writes a table as text, in its Layout: a header line naming the columns when the layout has

@@ -4,6 +4,7 @@
 #include "LASHeader.h"
 #include "LASReader.h"
 #include "LAZReader.h"
+#include "PointPieces.h"
 #include "vtkLASPointCloudFieldData.h"
 #include "vtkPointCloudVertices.h"
 
@@ -17,6 +18,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnsignedShortArray.h"
 
@@ -28,12 +30,11 @@ vtkStandardNewMacro(vtkLASPointCloudReader);
 namespace
 {
 /// 8-bit colours for display: the 16-bit values' high bytes, unless the file stored 8-bit
-/// values in its 16-bit fields (as many programs do).
-vtkSmartPointer<vtkUnsignedCharArray> DisplayColours(vtkUnsignedShortArray* rgb)
+/// values in its 16-bit fields (`eightBit`).
+vtkSmartPointer<vtkUnsignedCharArray> DisplayColours(vtkUnsignedShortArray* rgb, bool eightBit)
 {
   const vtkIdType values = rgb->GetNumberOfValues();
   const unsigned short* in = rgb->GetPointer(0);
-  const bool eightBit = std::all_of(in, in + values, [](unsigned short v) { return v <= 255; });
   auto colours = vtkSmartPointer<vtkUnsignedCharArray>::New();
   colours->SetName("Colors");
   colours->SetNumberOfComponents(3);
@@ -57,10 +58,20 @@ vtkLASPointCloudReader::~vtkLASPointCloudReader()
   this->SetFileName(nullptr);
 }
 
+int vtkLASPointCloudReader::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  // Each piece reads its own share of the points (PieceOfPoints).
+  outputVector->GetInformationObject(0)->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
 int vtkLASPointCloudReader::RequestData(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->ErrorMessage.clear();
   pcbilateral::LASFileBytes file;
@@ -80,19 +91,44 @@ int vtkLASPointCloudReader::RequestData(vtkInformation*,
   }
   std::vector<std::uint8_t> decompressed;
   const std::uint8_t* records = nullptr;
-  std::uint64_t read = 0;
+  std::uint64_t count = 0;
+  pcbilateral::PointRange share;
   if (this->ErrorMessage.empty())
   {
-    this->ErrorMessage = this->UncompressedRecords(file, info, decompressed, records, read);
+    this->ErrorMessage = this->ReadShare(file,
+      info,
+      outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()),
+      outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()),
+      decompressed,
+      records,
+      count,
+      share);
+  }
+  if (this->ErrorMessage.empty())
+  {
+    this->ErrorMessage = this->DecodePoints(info, records, count, output);
+  }
+  if (this->ErrorMessage.empty())
+  {
+    this->ErrorMessage = this->AddDisplayColours(file.Data(), file.Size(), info, share, output);
   }
   if (!this->ErrorMessage.empty())
   {
     // One error and an empty output: a failed request would add the pipeline's own report.
+    output->Initialize();
     vtkErrorMacro(<< this->ErrorMessage);
     return 1;
   }
+  vtkLASStoreFileInfo(info, output->GetFieldData());
+  return 1;
+}
 
-  const auto count = static_cast<vtkIdType>(read);
+std::string vtkLASPointCloudReader::DecodePoints(const pcbilateral::LASFileInfo& info,
+  const std::uint8_t* records,
+  std::uint64_t numberOfPoints,
+  vtkPolyData* output)
+{
+  const auto count = static_cast<vtkIdType>(numberOfPoints);
   vtkNew<vtkDoubleArray> positions;
   positions->SetNumberOfComponents(3);
   positions->SetNumberOfTuples(count);
@@ -115,24 +151,58 @@ int vtkLASPointCloudReader::RequestData(vtkInformation*,
   points->SetData(positions);
   output->SetPoints(points);
   output->SetVerts(vtkPointCloudVertices(count));
-  vtkPointData* pointData = output->GetPointData();
   for (const auto& array : arrays)
   {
-    pointData->AddArray(array);
+    output->GetPointData()->AddArray(array);
   }
-  if (auto* rgb = vtkUnsignedShortArray::SafeDownCast(pointData->GetArray("RGB")))
-  {
-    pointData->AddArray(DisplayColours(rgb));
-  }
-  vtkLASStoreFileInfo(info, output->GetFieldData());
-  return 1;
+  return std::string();
 }
 
-std::string vtkLASPointCloudReader::UncompressedRecords(const pcbilateral::LASFileBytes& file,
+std::string vtkLASPointCloudReader::AddDisplayColours(const std::uint8_t* data,
+  std::size_t size,
   const pcbilateral::LASFileInfo& info,
+  const pcbilateral::PointRange& share,
+  vtkPolyData* output)
+{
+  auto* rgb = vtkUnsignedShortArray::SafeDownCast(output->GetPointData()->GetArray("RGB"));
+  if (!rgb)
+  {
+    return std::string();
+  }
+  const unsigned short* values = rgb->GetPointer(0);
+  bool eightBit = std::all_of(
+    values, values + rgb->GetNumberOfValues(), [](unsigned short v) { return v <= 255; });
+  // Whether the file holds 8-bit colours is a property of the whole file: a piece whose own
+  // colours all fit 8 bits looks at the other points' (up to the first larger value), so that
+  // every piece shows the colours the whole file would.
+  const std::uint64_t total = info.Header.NumberOfPoints;
+  const std::uint64_t end = share.First + share.Count;
+  std::string problem;
+  if (eightBit && share.First > 0)
+  {
+    problem = pcbilateral::LASColoursFitEightBits(
+      data, size, info, this->FileName, 0, share.First, eightBit);
+  }
+  if (problem.empty() && eightBit && end < total)
+  {
+    problem = pcbilateral::LASColoursFitEightBits(
+      data, size, info, this->FileName, end, total - end, eightBit);
+  }
+  if (problem.empty())
+  {
+    output->GetPointData()->AddArray(DisplayColours(rgb, eightBit));
+  }
+  return problem;
+}
+
+std::string vtkLASPointCloudReader::ReadShare(const pcbilateral::LASFileBytes& file,
+  const pcbilateral::LASFileInfo& info,
+  int piece,
+  int pieces,
   std::vector<std::uint8_t>& decompressed,
   const std::uint8_t*& records,
-  std::uint64_t& count)
+  std::uint64_t& count,
+  pcbilateral::PointRange& colourShare)
 {
   const bool partAsked = this->COPCMaxLevel >= 0 || this->COPCUseBounds;
   if (partAsked && pcbilateral::IsCOPC(info))
@@ -141,9 +211,13 @@ std::string vtkLASPointCloudReader::UncompressedRecords(const pcbilateral::LASFi
     query.MaxLevel = this->COPCMaxLevel;
     query.UseBounds = this->COPCUseBounds;
     std::copy(this->COPCBounds, this->COPCBounds + 6, query.Bounds);
+    std::uint64_t chosen = 0;
     const std::string problem = pcbilateral::ReadCOPCPoints(
-      file.Data(), file.Size(), info, this->FileName, query, decompressed, count);
-    records = decompressed.data();
+      file.Data(), file.Size(), info, this->FileName, query, decompressed, chosen);
+    const pcbilateral::PointRange part = pcbilateral::PieceOfPoints(chosen, piece, pieces);
+    records = decompressed.data() + part.First * info.Header.RecordLength;
+    count = part.Count;
+    colourShare = pcbilateral::PointRange();
     return problem;
   }
   if (partAsked)
@@ -152,11 +226,18 @@ std::string vtkLASPointCloudReader::UncompressedRecords(const pcbilateral::LASFi
                     << ": not a COPC file: the COPC level and bounds apply to COPC files only; "
                        "every point is read");
   }
-  // A LAZ file's records are decompressed first (in parallel, by chunk); a LAS file's are read
-  // where they lie.
-  count = info.Header.NumberOfPoints;
-  return pcbilateral::UncompressedLASRecords(
-    file.Data(), file.Size(), info, this->FileName, decompressed, records);
+  // A LAZ file's records of the share are decompressed first (in parallel, by chunk); a LAS
+  // file's are read where they lie.
+  colourShare = pcbilateral::PieceOfPoints(info.Header.NumberOfPoints, piece, pieces);
+  count = colourShare.Count;
+  return pcbilateral::UncompressedLASRecordRange(file.Data(),
+    file.Size(),
+    info,
+    this->FileName,
+    colourShare.First,
+    colourShare.Count,
+    decompressed,
+    records);
 }
 
 void vtkLASPointCloudReader::PrintSelf(ostream& os, vtkIndent indent)

@@ -31,14 +31,22 @@
  *
  * Decoding is parallel (OpenMP) over a memory-mapped file.
  *
+ * The reader honours streaming pieces (UPDATE_PIECE_NUMBER and UPDATE_NUMBER_OF_PIECES, one
+ * piece per process under `mpirun pvbatch` or pvserver): piece p of n reads only the points
+ * [floor(p N / n), floor((p + 1) N / n)) of the file's N, in file order; of a LAZ file only
+ * the chunks that hold them are decompressed. The field data is the same on every piece;
+ * "Colors" too follows the whole file (a piece whose colours all fit 8 bits looks at the
+ * others' until one does not). One piece is the whole file.
+ *
  * COPC files (LAZ whose chunks are the nodes of an octree) can be read in part: COPCMaxLevel
  * (default -1, every level) keeps the nodes of that level and above (a level of detail), and
  * with COPCUseBounds (default off) only the points inside COPCBounds (xmin, xmax, ymin, ymax,
  * zmin, zmax, real coordinates, faces included) are read. Only the chosen nodes' chunks are
- * decompressed; the points come in file order. The octree is checked first (COPC.h): a damaged
- * hierarchy is one error and an empty output. With the defaults a COPC file is read as LAZ and
- * its octree is not looked at. Set on a file that is not COPC, these options give one warning
- * (they apply to COPC files only) and every point is read.
+ * decompressed; the points come in file order, and piece p of n gets its share of them. The
+ * octree is checked first (COPC.h): a damaged hierarchy is one error and an empty output. With
+ * the defaults a COPC file is read as LAZ and its octree is not looked at. Set on a file that
+ * is not COPC, these options give one warning (they apply to COPC files only) and every point
+ * is read.
  *
  * @sa
  * vtkLASPointCloudWriter vtkPointCloudFileIO
@@ -49,15 +57,17 @@
 #include "vtkIOPointCloudBilateralModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
-#include <cstdint> // For the records
+#include <cstdint> // For the record bytes
 #include <string>  // For the error message
-#include <vector>  // For the COPC records
+#include <vector>  // For the decompressed records
 
 namespace pcbilateral
 {
 class LASFileBytes;
 struct LASFileInfo;
+struct PointRange;
 }
+class vtkPolyData;
 
 class VTKIOPOINTCLOUDBILATERAL_EXPORT vtkLASPointCloudReader : public vtkPolyDataAlgorithm
 {
@@ -98,15 +108,8 @@ protected:
   vtkLASPointCloudReader();
   ~vtkLASPointCloudReader() override;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-
-  /// The point records to decode (all, or the COPC nodes and box asked for) and their count;
-  /// returns an error message or an empty string.
-  std::string UncompressedRecords(const pcbilateral::LASFileBytes& file,
-    const pcbilateral::LASFileInfo& info,
-    std::vector<std::uint8_t>& decompressed,
-    const std::uint8_t*& records,
-    std::uint64_t& count);
 
   char* FileName = nullptr;
   std::string ErrorMessage;
@@ -115,6 +118,27 @@ protected:
   double COPCBounds[6] = { 0, 0, 0, 0, 0, 0 };
 
 private:
+  /// The records of piece `piece` of `pieces` into `records` and their `count`: a share of the
+  /// file's points, or of those the COPC options choose. `colourShare` is the range of the
+  /// file's points AddDisplayColours looks beyond (none for COPC: the whole file).
+  std::string ReadShare(const pcbilateral::LASFileBytes& file,
+    const pcbilateral::LASFileInfo& info,
+    int piece,
+    int pieces,
+    std::vector<std::uint8_t>& decompressed,
+    const std::uint8_t*& records,
+    std::uint64_t& count,
+    pcbilateral::PointRange& colourShare);
+  std::string DecodePoints(const pcbilateral::LASFileInfo& info,
+    const std::uint8_t* records,
+    std::uint64_t numberOfPoints,
+    vtkPolyData* output);
+  std::string AddDisplayColours(const std::uint8_t* data,
+    std::size_t size,
+    const pcbilateral::LASFileInfo& info,
+    const pcbilateral::PointRange& share,
+    vtkPolyData* output);
+
   vtkLASPointCloudReader(const vtkLASPointCloudReader&) = delete;
   void operator=(const vtkLASPointCloudReader&) = delete;
 };

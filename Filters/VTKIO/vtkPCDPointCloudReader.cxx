@@ -14,6 +14,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
@@ -118,10 +119,20 @@ vtkPCDPointCloudReader::~vtkPCDPointCloudReader()
   this->SetFileName(nullptr);
 }
 
+int vtkPCDPointCloudReader::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  // Each piece reads its own share of the points (PCDReadOptions::Piece).
+  outputVector->GetInformationObject(0)->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
 int vtkPCDPointCloudReader::RequestData(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->ErrorMessage.clear();
   this->NumberOfDroppedPoints = 0;
@@ -133,6 +144,9 @@ int vtkPCDPointCloudReader::RequestData(vtkInformation*,
   }
   pcbilateral::PCDReadOptions options;
   options.KeepNaNPoints = this->KeepNaNPoints;
+  options.Piece = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER());
+  options.NumberOfPieces =
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES());
   pcbilateral::PCDCloud cloud;
   this->ErrorMessage = pcbilateral::ReadPCD(this->FileName, options, cloud);
   if (!this->ErrorMessage.empty())

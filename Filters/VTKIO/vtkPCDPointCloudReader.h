@@ -26,6 +26,14 @@
  * gives one error naming the file and the problem (also from GetErrorMessage()) and an empty
  * output. Nothing is read outside the file.
  *
+ * The reader honours streaming pieces (UPDATE_PIECE_NUMBER and UPDATE_NUMBER_OF_PIECES, one
+ * piece per process under `mpirun pvbatch` or pvserver): piece p of n keeps only the file's
+ * points [floor(p N / n), floor((p + 1) N / n)), in file order (NaN points among them dropped
+ * unless kept, GetNumberOfDroppedPoints() counting the piece's). Binary data is read only at
+ * the piece's records (the file is memory-mapped); ascii data is scanned whole for its lines
+ * but only the piece's are parsed; binary_compressed data is one LZF block, decompressed whole
+ * by every piece, which keeps its share. The field data is the same on every piece.
+ *
  * @sa
  * vtkPCDPointCloudWriter vtkPointCloudFileIO
  */
@@ -67,6 +75,7 @@ protected:
   vtkPCDPointCloudReader();
   ~vtkPCDPointCloudReader() override;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   char* FileName = nullptr;

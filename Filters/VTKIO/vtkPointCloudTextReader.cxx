@@ -12,6 +12,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
 #include <algorithm>
@@ -108,10 +109,20 @@ vtkPointCloudTextReader::~vtkPointCloudTextReader()
   this->SetFileName(nullptr);
 }
 
+int vtkPointCloudTextReader::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  // Each piece parses only its own share of the points' lines (ParsePointCloudTextPiece).
+  outputVector->GetInformationObject(0)->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
 int vtkPointCloudTextReader::RequestData(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->ErrorMessage.clear();
   if (!this->FileName || !*this->FileName)
@@ -121,13 +132,16 @@ int vtkPointCloudTextReader::RequestData(vtkInformation*,
     return 0;
   }
   pcbilateral::PointCloudTable table;
-  this->ErrorMessage = pcbilateral::ReadPointCloudText(this->FileName, this->HasNormals, table);
+  this->ErrorMessage = pcbilateral::ReadPointCloudText(this->FileName,
+    this->HasNormals,
+    table,
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()),
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()));
   if (!this->ErrorMessage.empty())
   {
     vtkErrorMacro(<< this->ErrorMessage);
     return 0;
   }
-
   const auto count = static_cast<vtkIdType>(table.NumberOfPoints);
   vtkNew<vtkPoints> points;
   points->SetData(MakeArray("Points", 3, table.Positions));

@@ -22,6 +22,12 @@
  * Errors (missing file, a directory, a malformed line) name the file and the line; the
  * message of the last one is also available from GetErrorMessage().
  *
+ * The reader honours streaming pieces (UPDATE_PIECE_NUMBER and UPDATE_NUMBER_OF_PIECES, one
+ * piece per process under `mpirun pvbatch` or pvserver): piece p of n keeps only the points
+ * [floor(p N / n), floor((p + 1) N / n)) of the file's N, in file order. A line can end
+ * anywhere, so every piece reads the whole text and finds every line, but parses only its
+ * share's lines (a malformed line is reported by the piece that holds it).
+ *
  * @sa
  * vtkPointCloudTextWriter vtkPointCloudBilateralFilter
  */
@@ -73,6 +79,7 @@ protected:
   vtkPointCloudTextReader();
   ~vtkPointCloudTextReader() override;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   char* FileName = nullptr;

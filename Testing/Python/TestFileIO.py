@@ -106,6 +106,28 @@ check(not os.path.exists(os.path.join(scratch, "no", "out.las")) and
       not io.Write(cloud, os.path.join(scratch, "no", "out.las")) and
       io.GetErrorMessage().startswith(os.path.join(scratch, "no", "out.las")), io.GetErrorMessage())
 
+# Pieces of a text file: each parses only its share of the point lines (comments, blank lines
+# and the header are not points), and a malformed line is reported, with the file's own line
+# number, by the piece that holds it only.
+from pointcloudbilateral import vtkPointCloudTextReader  # noqa: E402
+
+pieces_path = os.path.join(scratch, "pieces.xyz")
+with open(pieces_path, "w") as text:
+    text.write("# comment\nx y z\n\n1 2 3\n# c2\n4 5 6\n\n7 8 9\n10 11 12 13\n")
+for piece, pieces, first, error in [(0, 1, None, True), (0, 3, 1.0, False), (1, 3, 4.0, False),
+                                    (2, 3, None, True), (2, 4, 7.0, False), (3, 4, None, True),
+                                    (0, 5, None, False)]:
+    reader = vtkPointCloudTextReader()
+    reader.SetFileName(pieces_path)
+    reader.GlobalWarningDisplayOff()
+    reader.UpdatePiece(piece, pieces, 0)
+    output = reader.GetOutput()
+    got = output.GetPoint(0)[0] if output.GetNumberOfPoints() == 1 else None
+    message = reader.GetErrorMessage()
+    check(got == first and (message.endswith("pieces.xyz:9: expected 3 columns like the first "
+                                             "point, found 4") if error else message == ""),
+          f"text piece {piece} of {pieces}: first x {got} (expected {first}), error {message!r}")
+
 if failures:
     sys.exit(f"{len(failures)} check(s) failed")
 print("all checks passed")

@@ -233,10 +233,28 @@ std::string UncompressedLASRecords(const std::uint8_t* data,
   std::vector<std::uint8_t>& decompressed,
   const std::uint8_t*& records)
 {
+  return UncompressedLASRecordRange(
+    data, size, info, sourceName, 0, info.Header.NumberOfPoints, decompressed, records);
+}
+
+std::string UncompressedLASRecordRange(const std::uint8_t* data,
+  std::size_t size,
+  const LASFileInfo& info,
+  const std::string& sourceName,
+  std::uint64_t first,
+  std::uint64_t count,
+  std::vector<std::uint8_t>& decompressed,
+  const std::uint8_t*& records)
+{
   const LASHeader& h = info.Header;
+  if (first > h.NumberOfPoints || count > h.NumberOfPoints - first)
+  {
+    return sourceName + ": points " + Str(first) + " to " + Str(first + count) +
+           " asked for, the file has " + Str(h.NumberOfPoints);
+  }
   if (info.LASzipRecord.empty())
   {
-    records = data + h.OffsetToPointData;
+    records = data + h.OffsetToPointData + first * h.RecordLength;
     return std::string();
   }
   decompressed.clear();
@@ -258,19 +276,57 @@ std::string UncompressedLASRecords(const std::uint8_t* data,
   }
   try
   {
-    decompressed.resize(h.NumberOfPoints * h.RecordLength);
+    decompressed.resize(count * h.RecordLength);
   }
   catch (const std::bad_alloc&)
   {
-    problem = sourceName + ": not enough memory for " + Str(h.NumberOfPoints) + " points";
+    problem = sourceName + ": not enough memory for " + Str(count) + " points";
   }
   if (problem.empty())
   {
-    problem =
-      DecompressLAZPoints(data, size, info, sourceName, 0, h.NumberOfPoints, decompressed.data());
+    problem = DecompressLAZPoints(data, size, info, sourceName, first, count, decompressed.data());
   }
   records = decompressed.data();
   return problem;
+}
+
+std::string LASColoursFitEightBits(const std::uint8_t* data,
+  std::size_t size,
+  const LASFileInfo& info,
+  const std::string& sourceName,
+  std::uint64_t first,
+  std::uint64_t count,
+  bool& fit)
+{
+  fit = true;
+  const auto rgb = std::find_if(info.Dimensions.begin(),
+    info.Dimensions.end(),
+    [](const LASDimension& dimension) { return dimension.Name == "RGB"; });
+  if (rgb == info.Dimensions.end())
+  {
+    return std::string();
+  }
+  // A block of points a few LAZ chunks long (50,000 points each by default).
+  constexpr std::uint64_t PointsPerBlock = std::uint64_t(1) << 18;
+  const std::size_t stride = info.Header.RecordLength;
+  std::vector<std::uint8_t> decompressed;
+  for (std::uint64_t start = first; start < first + count && fit; start += PointsPerBlock)
+  {
+    const std::uint64_t points = std::min(PointsPerBlock, first + count - start);
+    const std::uint8_t* records = nullptr;
+    std::string problem = UncompressedLASRecordRange(
+      data, size, info, sourceName, start, points, decompressed, records);
+    if (!problem.empty())
+    {
+      return problem;
+    }
+    for (std::uint64_t i = 0; i < points * 3 && fit; ++i)
+    {
+      fit =
+        las::Load<std::uint16_t>(records + (i / 3) * stride + rgb->ByteOffset + 2 * (i % 3)) <= 255;
+    }
+  }
+  return std::string();
 }
 
 } // namespace pcbilateral

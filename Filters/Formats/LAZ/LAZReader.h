@@ -59,6 +59,38 @@ std::string UncompressedLASRecords(const std::uint8_t* data,
   std::vector<std::uint8_t>& decompressed,
   const std::uint8_t*& records);
 
+/**
+ * The records of points [first, first + count) only (a piece of a distributed read,
+ * PointPieces.h): a LAS file's own bytes (`records` points at the first of them in `data`, so
+ * a memory-mapped file brings in only their pages), or, for a LAZ file, only the chunks that
+ * hold them decompressed and trimmed to the range in `decompressed`. With the whole range it is
+ * UncompressedLASRecords. Returns an empty string or a one-line message starting with
+ * `sourceName` (a range beyond the file's points, DecompressLAZPoints' messages).
+ */
+std::string UncompressedLASRecordRange(const std::uint8_t* data,
+  std::size_t size,
+  const LASFileInfo& info,
+  const std::string& sourceName,
+  std::uint64_t first,
+  std::uint64_t count,
+  std::vector<std::uint8_t>& decompressed,
+  const std::uint8_t*& records);
+
+/**
+ * Whether every 16-bit RGB value of points [first, first + count) is at most 255 (a file that
+ * stores 8-bit colours in the 16-bit fields, as many programs do); true without RGB. Stops at
+ * the first larger value; a LAZ file's points are decompressed a block of chunks at a time, so
+ * the memory stays that of a block. Returns an empty string or UncompressedLASRecordRange's
+ * message.
+ */
+std::string LASColoursFitEightBits(const std::uint8_t* data,
+  std::size_t size,
+  const LASFileInfo& info,
+  const std::string& sourceName,
+  std::uint64_t first,
+  std::uint64_t count,
+  bool& fit);
+
 } // namespace pcbilateral
 
 #endif

@@ -87,6 +87,14 @@ struct PCDReadOptions
   /// Keep points whose coordinates are not finite (an organised frame's pixels without depth),
   /// so that the cloud keeps its WIDTH x HEIGHT layout; off: they are left out and counted.
   bool KeepNaNPoints = false;
+  /// Piece `Piece` of `NumberOfPieces` (a process's share of a distributed read): only the
+  /// file's points [floor(Piece N / NumberOfPieces), floor((Piece + 1) N / NumberOfPieces))
+  /// are kept (PointPieces.h), NaN points among them dropped as above. The whole file is still
+  /// checked against its header (its size; for ascii, its number of lines, though only the
+  /// share's values are parsed); binary data is read only at the share's records;
+  /// binary_compressed data, a single LZF block, is decompressed whole and trimmed.
+  int Piece = 0;
+  int NumberOfPieces = 1;
 };
 
 /**

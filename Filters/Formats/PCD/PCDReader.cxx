@@ -1,7 +1,9 @@
 // Decoding a PCD file's data: every field into a column, then x y z as doubles and, unless
 // asked to keep them, the points without coordinates (NaN) left out.
+#include "LASReader.h"
 #include "PCDFile.h"
 #include "PCDValues.h"
+#include "PointPieces.h"
 
 #include <lzf.h>
 
@@ -36,6 +38,7 @@ std::string DecodeBinary(const std::uint8_t* data,
   std::size_t size,
   const PCDHeader& header,
   std::size_t count,
+  const PointRange& share,
   std::vector<PCDColumn>& columns)
 {
   const std::size_t stride = header.PointBytes();
@@ -44,14 +47,15 @@ std::string DecodeBinary(const std::uint8_t* data,
     return "the binary data holds " + std::to_string(stride ? size / stride : 0) +
            " points, the header announces " + std::to_string(count);
   }
-  columns = EmptyColumns(header, count);
+  columns = EmptyColumns(header, share.Count);
+  const std::uint8_t* records = data + share.First * stride;
   std::size_t offset = 0;
   for (PCDColumn& column : columns)
   {
     const std::size_t bytes = column.Field.Bytes();
-    for (std::size_t i = 0; i < count; ++i)
+    for (std::size_t i = 0; i < share.Count; ++i)
     {
-      std::memcpy(column.Bytes.data() + i * bytes, data + i * stride + offset, bytes);
+      std::memcpy(column.Bytes.data() + i * bytes, records + i * stride + offset, bytes);
     }
     offset += bytes;
   }
@@ -63,6 +67,7 @@ std::string DecodeCompressed(const std::uint8_t* data,
   std::size_t size,
   const PCDHeader& header,
   std::size_t count,
+  const PointRange& share,
   std::vector<PCDColumn>& columns)
 {
   if (size < 8)
@@ -93,12 +98,15 @@ std::string DecodeCompressed(const std::uint8_t* data,
   {
     return "the compressed data is damaged (it does not decompress to its announced size)";
   }
-  columns = EmptyColumns(header, count);
+  // One LZF block: decompressed whole, then only the share's values kept.
+  columns = EmptyColumns(header, share.Count);
   std::size_t offset = 0;
   for (PCDColumn& column : columns)
   {
-    std::copy_n(fields.data() + offset, column.Bytes.size(), column.Bytes.data());
-    offset += column.Bytes.size();
+    const std::size_t bytes = column.Field.Bytes();
+    std::copy_n(
+      fields.data() + offset + share.First * bytes, column.Bytes.size(), column.Bytes.data());
+    offset += count * bytes;
   }
   return std::string();
 }
@@ -109,6 +117,7 @@ std::string DecodeASCII(const char* data,
   std::size_t firstLine,
   const PCDHeader& header,
   std::size_t count,
+  const PointRange& share,
   std::vector<PCDColumn>& columns)
 {
   std::size_t valuesPerPoint = 0;
@@ -123,15 +132,22 @@ std::string DecodeASCII(const char* data,
     return "the ascii data holds fewer than the " + std::to_string(count) +
            " points the header announces";
   }
-  columns = EmptyColumns(header, count);
+  columns = EmptyColumns(header, share.Count);
   PCDTextCursor cursor{ data, data + size, firstLine };
-  for (std::size_t i = 0; i < count; ++i)
+  // Every line is found (the count is the whole file's), only the share's are parsed.
+  for (std::size_t line = 0; line < count; ++line)
   {
     if (!cursor.NextLine())
     {
-      return "the ascii data holds " + std::to_string(i) + " points, the header announces " +
+      return "the ascii data holds " + std::to_string(line) + " points, the header announces " +
              std::to_string(count);
     }
+    if (line < share.First || line >= share.First + share.Count)
+    {
+      cursor.At = cursor.LineEnd;
+      continue;
+    }
+    const std::size_t i = line - share.First;
     for (PCDColumn& column : columns)
     {
       const PCDField& field = column.Field;
@@ -230,6 +246,7 @@ std::string DecodePCD(const char* data,
     return source + ": the header announces more points than the file can hold";
   }
   const auto count = static_cast<std::size_t>(header.NumberOfPoints);
+  const PointRange share = PieceOfPoints(count, options.Piece, options.NumberOfPieces);
   const char* block = data + header.DataOffset;
   const std::size_t blockSize = size - header.DataOffset;
   const auto* bytes = reinterpret_cast<const std::uint8_t*>(block);
@@ -242,13 +259,14 @@ std::string DecodePCD(const char* data,
         1 + static_cast<std::size_t>(std::count(data, block, '\n')),
         header,
         count,
+        share,
         columns);
       break;
     case PCDEncoding::Binary:
-      problem = DecodeBinary(bytes, blockSize, header, count, columns);
+      problem = DecodeBinary(bytes, blockSize, header, count, share, columns);
       break;
     case PCDEncoding::BinaryCompressed:
-      problem = DecodeCompressed(bytes, blockSize, header, count, columns);
+      problem = DecodeCompressed(bytes, blockSize, header, count, share, columns);
       break;
   }
   if (!problem.empty())
@@ -256,13 +274,21 @@ std::string DecodePCD(const char* data,
     cloud = PCDCloud();
     return source + ": " + problem;
   }
-  cloud.NumberOfPoints = count;
+  cloud.NumberOfPoints = static_cast<std::size_t>(share.Count);
   Assemble(columns, options, cloud);
   return std::string();
 }
 
 std::string ReadPCD(const std::string& path, const PCDReadOptions& options, PCDCloud& cloud)
 {
+  // A piece maps the file rather than holding a copy of it: it reads only its share's pages
+  // of binary data. When the file cannot be mapped, the read below says why.
+  LASFileBytes mapped;
+  if (options.NumberOfPieces > 1 && mapped.Open(path).empty())
+  {
+    return DecodePCD(
+      reinterpret_cast<const char*>(mapped.Data()), mapped.Size(), path, options, cloud);
+  }
   std::ifstream file(path, std::ios::binary);
   if (!file)
   {
