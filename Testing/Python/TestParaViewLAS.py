@@ -111,6 +111,19 @@ if os.path.isfile(copc):
     check(filtered.GetDataInformation().GetNumberOfPoints() == 207
           and set(names(octree)) <= set(names(filtered)),
           f"the filter keeps the points and arrays read: {names(filtered)}")
+    # Pieces (MPI) share the chosen points: level 1 in two pieces is the 90 points, in order.
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    def level_one_piece(piece, pieces):
+        vtk_reader = pointcloudbilateral.vtkLASPointCloudReader()
+        vtk_reader.SetFileName(copc)
+        vtk_reader.SetCOPCMaxLevel(1)
+        vtk_reader.UpdatePiece(piece, pieces, 0)
+        return vtk_to_numpy(vtk_reader.GetOutput().GetPoints().GetData()).tolist()
+
+    halves = level_one_piece(0, 2) + level_one_piece(1, 2)
+    check(len(level_one_piece(0, 2)) == 45 and halves == level_one_piece(0, 1),
+          "COPC Max Level 1 in two pieces: 45 + 45 points, those of one piece in order")
     plain = simple.OpenDataFile(autzen)
     plain.COPCMaxLevel = 0
     plain.UpdatePipeline()
