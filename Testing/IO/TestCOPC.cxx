@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <set>
 #include <string>
@@ -280,6 +281,11 @@ void ExpectError(std::vector<std::uint8_t> bytes, const char* fragment)
 template<typename T>
 void Put(std::vector<std::uint8_t>& bytes, std::size_t at, T value)
 {
+  if (at + sizeof(T) > bytes.size())
+  {
+    std::fprintf(stderr, "Put: byte %zu is beyond the %zu bytes of the file\n", at, bytes.size());
+    std::abort(); // a mistake of the test's own
+  }
   std::memcpy(bytes.data() + at, &value, sizeof(T));
 }
 
