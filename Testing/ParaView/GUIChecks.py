@@ -27,10 +27,13 @@ with open(os.environ["PCB_LOG"], "w") as log:
     check(all(name in field for name in recorded),
           f"the output's field data has the parameters used and the scales measured: {field}")
     check("DisplacementLength" in offered, f"colour-by offers {offered}")
-    # Before and after look alike: the filter's output is shown as the GUI shows the PLY input.
-    check(display.Representation == reader_display.Representation == "Point Gaussian" and
+    # Before and after look alike: the filter's output is shown as the GUI's Apply shows a PLY
+    # cloud of points without cells (Point Gaussian; a scripted Show of the PLY reader may keep
+    # Surface, so its representation is printed, not compared).
+    check(display.Representation == "Point Gaussian" and
           display.PointSize == reader_display.PointSize,
-          f"input shown as {reader_display.Representation}, output as {display.Representation}")
+          f"output shown as {display.Representation} (the PLY input, shown by a script: "
+          f"{reader_display.Representation}), point size {display.PointSize}")
     check(not any(name.startswith("Bilateral") for name in offered),
           f"colour-by does not offer the recorded parameters ({offered})")
 
