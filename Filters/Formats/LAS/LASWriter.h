@@ -28,7 +28,8 @@ std::string WriteLAS(const std::string& path,
 /**
  * Writes a LAZ file (LASzip-compressed LAS, chunks of 50,000 points compressed in parallel) as
  * WriteLAS writes a LAS file, with the LASzip record added to the VLRs. Point formats 0 to 3
- * (pointwise items) and 6 to 8 (layered); the waveform formats are a one-line error. Returns an empty string or a one-line message.
+ * (pointwise items) and 6 to 8 (layered); the waveform formats are a one-line error. Returns an
+ * empty string or a one-line message.
  */
 std::string WriteLAZ(const std::string& path,
   const LASFileInfo& info,
