@@ -4,6 +4,7 @@
 // the same records; damaged files to a one-line error.
 //   TestLAZFiles CASE LAS_DATA_DIR   (the LAZ files are in LAS_DATA_DIR/../laz)
 #include "CoreTesting.h"
+#include "LASPointKey.h"
 
 #include "LASReader.h"
 #include "LASWriter.h"
@@ -138,41 +139,17 @@ void COPCPointsAreTheTwins()
   const Decoded las = ReadRecords(LASFolder + "/1.2-with-color.las");
   PCB_CHECK(
     copc.Error.empty() && las.Error.empty(), "%s / %s", copc.Error.c_str(), las.Error.c_str());
-  auto key = [](const Decoded& file, std::size_t i, std::size_t timeAt, std::size_t rgbAt)
-  {
-    const pcbilateral::LASHeader& h = file.Info.Header;
-    const std::uint8_t* record = file.Records.data() + i * h.RecordLength;
-    char text[200];
-    std::int32_t xyz[3];
-    double time;
-    std::uint16_t intensity;
-    std::uint16_t rgb[3];
-    std::memcpy(xyz, record, 12);
-    std::memcpy(&intensity, record + 12, 2);
-    std::memcpy(&time, record + timeAt, 8);
-    std::memcpy(rgb, record + rgbAt, 6);
-    std::snprintf(text,
-      sizeof(text),
-      "%.2f %.2f %.2f %u %.9f %u %u %u",
-      xyz[0] * h.Scale[0] + h.Offset[0],
-      xyz[1] * h.Scale[1] + h.Offset[1],
-      xyz[2] * h.Scale[2] + h.Offset[2],
-      intensity,
-      time,
-      rgb[0],
-      rgb[1],
-      rgb[2]);
-    return std::string(text);
-  };
+  auto key = [](const Decoded& file, std::size_t i)
+  { return PointKey(file.Info.Header, file.Records.data() + i * file.Info.Header.RecordLength); };
   std::multiset<std::string> twin;
   for (std::size_t i = 0; i < las.Info.Header.NumberOfPoints; ++i)
   {
-    twin.insert(key(las, i, 20, 28));
+    twin.insert(key(las, i));
   }
   std::size_t missing = 0;
   for (std::size_t i = 0; i < copc.Info.Header.NumberOfPoints; ++i)
   {
-    const auto found = twin.find(key(copc, i, 22, 30));
+    const auto found = twin.find(key(copc, i));
     missing += found == twin.end() ? 1 : 0;
     if (found != twin.end())
     {

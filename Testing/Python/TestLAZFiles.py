@@ -18,6 +18,8 @@ import sys
 from pointcloudbilateral import vtkLASPointCloudReader, vtkLASPointCloudWriter
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
+from pcb_testing import check, failures
+
 TWINS = [
     ("autzen_trim.laz", "autzen_trim.las"),
     ("simple.laz", "simple.las"),
@@ -49,13 +51,6 @@ def main():
         print(f"skipped: no LAZ samples in '{laz_folder}'")
         return 77
     os.makedirs(scratch, exist_ok=True)
-    failures = []
-
-    def check(condition, message):
-        print(("ok: " if condition else "FAILED: ") + message)
-        if not condition:
-            failures.append(message)
-
     for laz_name, las_name in TWINS:
         laz, error = read(os.path.join(laz_folder, laz_name))
         las, _ = read(os.path.join(las_folder, las_name))
