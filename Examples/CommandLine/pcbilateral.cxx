@@ -5,6 +5,7 @@
 //               [--remove-isolated] [--edge-aware] [--keep-nan] [-q]
 //               [--classes LIST [--class-array NAME]]
 //               [--copc-level N] [--copc-bounds xmin,xmax,ymin,ymax,zmin,zmax]
+//               [--memory-limit SIZE]
 //
 // Formats by extension: .txt and .xyz (the authors' ASCII format), .las, .laz, .pcd, .ply,
 // .vtp. Errors print one line and exit with status 1; a damaged input file is an error, never
@@ -12,6 +13,8 @@
 #include "AutomaticRule.h"
 #include "BilateralFilter.h"
 #include "EdgeAwareRule.h"
+#include "OutOfCoreRun.h"
+#include "StreamedLAS.h"
 #include "vtkPointCloudBilateralFilter.h"
 #include "vtkPointCloudFileIO.h"
 
@@ -24,6 +27,7 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <climits>
@@ -46,6 +50,7 @@ const char* const UsageHead =
   "                   [--remove-isolated] [--edge-aware] [--keep-nan] [-q]\n"
   "                   [--classes LIST [--class-array NAME]]\n"
   "                   [--copc-level N] [--copc-bounds xmin,xmax,ymin,ymax,zmin,zmax]\n"
+  "                   [--memory-limit SIZE]\n"
   "\n"
   "Denoises a point cloud with the bilateral filter (Digne & de Franchis, IPOL 2017).\n"
   "INPUT and OUTPUT: .txt or .xyz (x y z [nx ny nz] [more columns]), .las (LiDAR),\n"
@@ -82,6 +87,11 @@ const char* const UsageTail =
   "                     default -1: every point)\n"
   "  --copc-bounds B    COPC input: read only the points inside the box B =\n"
   "                     xmin,xmax,ymin,ymax,zmin,zmax (the file's coordinates)\n"
+  "  --memory-limit SIZE  filter the file in slabs within SIZE of memory (e.g. 512M, 2G),\n"
+  "                     temporary files in TMPDIR or beside the output; the same output\n"
+  "                     file as in memory. LAS or LAZ in, LAS out. Default: in memory, or\n"
+  "                     streamed within 80% of the available memory when the cloud needs\n"
+  "                     more (said)\n"
   "  -q, --quiet        print nothing but warnings and errors (default: what was read,\n"
   "                     measured, chosen and written, each line as soon as it is known, and\n"
   "                     on a terminal a progress bar with the time left)\n"
@@ -164,7 +174,7 @@ struct Terminal
     }
   }
 
-  void Bar(double fraction)
+  void Bar(double fraction, const char* label = "filtering:")
   {
     const auto now = std::chrono::steady_clock::now();
     if (!this->ShowBar || now - this->LastDrawn < std::chrono::milliseconds(250))
@@ -180,7 +190,8 @@ struct Terminal
     {
       std::snprintf(left, sizeof left, ", %.0f s left", elapsed * (1.0 - fraction) / fraction);
     }
-    std::printf("\rfiltering:     [%s%s] %3.0f%%%s\033[K",
+    std::printf("\r%-15s[%s%s] %3.0f%%%s\033[K",
+      label,
       std::string(static_cast<std::size_t>(filled), '#').c_str(),
       std::string(static_cast<std::size_t>(Width - filled), '.').c_str(),
       100.0 * fraction,
@@ -300,6 +311,8 @@ struct Options
   bool COPCUseBounds = false;
   double COPCBounds[6] = { 0, 0, 0, 0, 0, 0 };
   bool Quiet = false;
+  /// --memory-limit in bytes (0: none given).
+  std::uint64_t MemoryLimit = 0;
 };
 
 /// --copc-level N (N >= -1) and --copc-bounds xmin,xmax,ymin,ymax,zmin,zmax at argv[i] (and
@@ -340,6 +353,25 @@ bool ParseCOPCOption(int argc, char* argv[], int& i, Options& options)
     at = end + 1;
   }
   options.COPCUseBounds = true;
+  return true;
+}
+
+/// --memory-limit SIZE at argv[i] (and its value, advancing i); false when argv[i] is not it.
+bool ParseMemoryOption(int argc, char* argv[], int& i, Options& options)
+{
+  if (std::string(argv[i]) != "--memory-limit")
+  {
+    return false;
+  }
+  if (++i >= argc)
+  {
+    Fail("--memory-limit needs a value");
+  }
+  options.MemoryLimit = pcbilateral::ParseMemorySize(argv[i]);
+  if (options.MemoryLimit == 0)
+  {
+    Fail(std::string("--memory-limit: '") + argv[i] + "' is not a size (e.g. 512M, 2G)");
+  }
   return true;
 }
 
@@ -472,7 +504,8 @@ Options ParseArguments(int argc, char* argv[])
   std::vector<std::string> positional;
   for (int i = 1; i < argc; ++i)
   {
-    if (!ParseCOPCOption(argc, argv, i, options) && !ParseOption(argc, argv, i, options))
+    if (!ParseCOPCOption(argc, argv, i, options) && !ParseMemoryOption(argc, argv, i, options) &&
+        !ParseOption(argc, argv, i, options))
     {
       positional.push_back(argv[i]);
     }
@@ -559,7 +592,49 @@ void PrintClasses(vtkPointCloudBilateralFilter* filter, const Options& options)
     static_cast<long long>(filter->GetNumberOfFilteredPoints()));
 }
 
-/// The parameters the filter used, and for those the user left automatic, from what.
+/// The parameters the filter used (`used`: as the core reports them), and for those the user
+/// left automatic, from what.
+void PrintParameters(const pcbilateral::BilateralResult& used, const Options& options)
+{
+  const bool measured = used.PointSpacing > 0.0;
+  if (measured)
+  {
+    Say(
+      "measured:      point spacing %.6g, noise sigma %.6g\n", used.PointSpacing, used.NoiseSigma);
+    const double* distances = used.NearestNeighbourDistance;
+    Say("sampling:      nearest-neighbour distance %.6g (5%%), %.6g (median), %.6g "
+        "(95%%); local spacing varies %.3g times\n",
+      distances[0],
+      distances[1],
+      distances[2],
+      used.SpacingSpread);
+  }
+  const char* automatic =
+    measured ? " (automatic, from the measured spacing and noise)" : " (automatic: the paper's)";
+  if (used.RadiusFollowsDensity)
+  {
+    Say("radius:        %s, following the density (automatic, each point's from its "
+        "local spacing)\n",
+      Range(used.RadiusRange[0], used.RadiusRange[1]).c_str());
+    Say("normal radius: %s%s\n",
+      Range(used.NormalRadiusRange[0], used.NormalRadiusRange[1]).c_str(),
+      options.NormalRadius > 0.0 ? "" : automatic);
+  }
+  else
+  {
+    Say("radius:        %.9g%s\n", used.RadiusUsed, options.Radius > 0.0 ? "" : automatic);
+    Say("normal radius: %.9g%s\n",
+      used.NormalRadiusUsed,
+      options.NormalRadius > 0.0 ? "" : automatic);
+  }
+  Say(
+    "iterations:    %d%s\n", used.NumberOfIterationsUsed, options.Iterations > 0 ? "" : automatic);
+  Say("mode:          %s\n",
+    options.EdgeAware ? "edge-aware (normals filtered bilaterally, beyond the paper)"
+                      : "the paper's filter");
+}
+
+/// PrintParameters for the VTK filter's run.
 void PrintParametersUsed(vtkPointCloudBilateralFilter* filter, const Options& options)
 {
   PrintClasses(filter, options);
@@ -567,46 +642,18 @@ void PrintParametersUsed(vtkPointCloudBilateralFilter* filter, const Options& op
   {
     return; // (no parameter was used)
   }
-  const bool measured = filter->GetPointSpacing() > 0.0;
-  if (measured)
-  {
-    Say("measured:      point spacing %.6g, noise sigma %.6g\n",
-      filter->GetPointSpacing(),
-      filter->GetNoiseSigma());
-    const double* distances = filter->GetNearestNeighbourDistances();
-    Say("sampling:      nearest-neighbour distance %.6g (5%%), %.6g (median), %.6g "
-        "(95%%); local spacing varies %.3g times\n",
-      distances[0],
-      distances[1],
-      distances[2],
-      filter->GetSpacingSpread());
-  }
-  const char* automatic =
-    measured ? " (automatic, from the measured spacing and noise)" : " (automatic: the paper's)";
-  if (filter->GetRadiusFollowsDensity())
-  {
-    const double* radii = filter->GetRadiusRange();
-    const double* normalRadii = filter->GetNormalRadiusRange();
-    Say("radius:        %s, following the density (automatic, each point's from its "
-        "local spacing)\n",
-      Range(radii[0], radii[1]).c_str());
-    Say("normal radius: %s%s\n",
-      Range(normalRadii[0], normalRadii[1]).c_str(),
-      options.NormalRadius > 0.0 ? "" : automatic);
-  }
-  else
-  {
-    Say("radius:        %.9g%s\n", filter->GetRadiusUsed(), options.Radius > 0.0 ? "" : automatic);
-    Say("normal radius: %.9g%s\n",
-      filter->GetNormalRadiusUsed(),
-      options.NormalRadius > 0.0 ? "" : automatic);
-  }
-  Say("iterations:    %d%s\n",
-    filter->GetNumberOfIterationsUsed(),
-    options.Iterations > 0 ? "" : automatic);
-  Say("mode:          %s\n",
-    options.EdgeAware ? "edge-aware (normals filtered bilaterally, beyond the paper)"
-                      : "the paper's filter");
+  pcbilateral::BilateralResult used;
+  used.PointSpacing = filter->GetPointSpacing();
+  used.NoiseSigma = filter->GetNoiseSigma();
+  std::copy_n(filter->GetNearestNeighbourDistances(), 3, used.NearestNeighbourDistance);
+  used.SpacingSpread = filter->GetSpacingSpread();
+  used.RadiusFollowsDensity = filter->GetRadiusFollowsDensity();
+  std::copy_n(filter->GetRadiusRange(), 2, used.RadiusRange);
+  std::copy_n(filter->GetNormalRadiusRange(), 2, used.NormalRadiusRange);
+  used.RadiusUsed = filter->GetRadiusUsed();
+  used.NormalRadiusUsed = filter->GetNormalRadiusUsed();
+  used.NumberOfIterationsUsed = filter->GetNumberOfIterationsUsed();
+  PrintParameters(used, options);
 }
 
 void WriteOutput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData* output)
@@ -627,6 +674,220 @@ void WriteOutput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData
   Say("output:        %s, %lld points\n",
     options.Output.c_str(),
     static_cast<long long>(output->GetNumberOfPoints()));
+}
+
+/// Why the streamed run (--memory-limit) cannot run with these files and options, or empty.
+std::string StreamingUnsupported(const Options& options)
+{
+  auto endsWith = [](const std::string& name, const char* suffix)
+  {
+    const std::size_t n = std::strlen(suffix);
+    return name.size() >= n &&
+           std::equal(name.end() - static_cast<std::ptrdiff_t>(n),
+             name.end(),
+             suffix,
+             [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
+  };
+  if (!endsWith(options.Input, ".las") && !endsWith(options.Input, ".laz"))
+  {
+    return "streaming reads .las and .laz input (not yet text, PCD, PLY or VTP)";
+  }
+  if (!endsWith(options.Output, ".las"))
+  {
+    return "streaming writes .las output (not yet LAZ, text or PCD)";
+  }
+  if (options.EdgeAware || options.RemoveIsolated || !options.Classes.empty() ||
+      options.OrientedNormals || options.COPCLevel != -1 || options.COPCUseBounds)
+  {
+    return "streaming does not take --edge-aware, --remove-isolated, --classes, -R or the "
+           "--copc options yet";
+  }
+  return std::string();
+}
+
+std::string Megabytes(std::uint64_t bytes)
+{
+  char text[32];
+  std::snprintf(text, sizeof text, "%.0f MB", static_cast<double>(bytes) / 1048576.0);
+  return text;
+}
+
+/// The streamed run's progress: a bar per phase on a terminal, a line per slab otherwise.
+void StreamProgress(const std::string& phase, double fraction)
+{
+  static std::string current;
+  Terminal& screen = Screen();
+  const bool slab = phase.compare(0, 5, "slab ") == 0 || phase == "filtered";
+  const std::string label = slab ? "slabs:" : phase + ":";
+  const auto now = std::chrono::steady_clock::now();
+  if (label != current)
+  {
+    current = label;
+    screen.Start = now;
+    screen.LastDrawn = {};
+  }
+  screen.Bar(fraction, label.c_str());
+  const double elapsed = std::chrono::duration<double>(now - screen.Start).count();
+  if (slab && !screen.ShowBar && fraction > 0.0)
+  {
+    unsigned long done = 0, total = 0;
+    if (phase == "filtered" || std::sscanf(phase.c_str(), "slab %lu of %lu", &done, &total) == 2)
+    {
+      const double left = elapsed * (1.0 - fraction) / fraction;
+      Say(phase == "filtered" ? "slabs:         all done\n"
+                              : "slabs:         %lu of %lu done, %.0f s left\n",
+        done - 1,
+        total,
+        left);
+    }
+  }
+}
+
+/// The settings of a streamed run within `limit` bytes.
+pcbilateral::OutOfCoreSettings StreamSettings(const Options& options, std::uint64_t limit)
+{
+  pcbilateral::OutOfCoreSettings settings;
+  settings.MemoryLimit = limit;
+  // The program, its libraries and the buffers of reading and writing.
+  settings.ReservedBytes = pcbilateral::ResidentMemory() + (96u << 20);
+  settings.TemporaryDirectory = pcbilateral::TemporaryDirectoryFor(options.Output);
+  settings.NumberOfThreads = options.Threads;
+  settings.Progress = StreamProgress;
+  // (For tests: many slabs on a small file.)
+  const char* slabPoints = std::getenv("PCB_STREAMING_SLAB_POINTS");
+  settings.MaximumSlabPoints = slabPoints ? std::strtoull(slabPoints, nullptr, 10) : 0;
+  return settings;
+}
+
+void SayWarnings(const std::vector<std::string>& warnings, std::size_t& said)
+{
+  for (; said < warnings.size(); ++said)
+  {
+    Screen().ClearBar();
+    std::fprintf(stderr, "pcbilateral: warning: %s\n", warnings[said].c_str());
+  }
+}
+
+/// The out-of-core run: the file in slabs within `limit` bytes, the same output file as the
+/// run in memory. Returns an empty string or the one-line error.
+std::string RunStreamed(const Options& options, std::uint64_t limit)
+{
+  pcbilateral::LASPointSource input;
+  std::string problem = input.Open(options.Input);
+  if (problem.empty() && input.GetNumberOfPoints() == 0)
+  {
+    problem = options.Input + ": contains no points";
+  }
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  Say("input:         %s, %llu points, streamed within %s of memory\n",
+    options.Input.c_str(),
+    static_cast<unsigned long long>(input.GetNumberOfPoints()),
+    Megabytes(limit).c_str());
+  pcbilateral::BilateralParameters parameters;
+  parameters.Radius = options.Radius;
+  parameters.NormalRadius = options.NormalRadius;
+  parameters.NumberOfIterations = options.Iterations;
+  parameters.Automatic = options.Automatic;
+  parameters.NumberOfThreads = options.Threads;
+  const pcbilateral::OutOfCoreSettings settings = StreamSettings(options, limit);
+  pcbilateral::RemoveTemporaryFilesOnSignals(options.Output + ".partial");
+  pcbilateral::OutOfCoreRun run(input, parameters, settings);
+  std::size_t warned = 0;
+  problem = run.Measure();
+  SayWarnings(run.GetSummary().Warnings, warned);
+  if (problem.empty())
+  {
+    Say("temporary:     %s on disk in %s (removed at the end)\n",
+      Megabytes(run.GetDiskBytesNeeded()).c_str(),
+      settings.TemporaryDirectory.c_str());
+    problem = run.Bucket();
+  }
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  PrintParameters(run.GetSummary(), options);
+  const pcbilateral::OutOfCorePlan& plan = run.GetPlan();
+  Say("slabs:         %zu along %c, a halo of %.6g, at most %llu points with it\n",
+    plan.NumberOfSlabs,
+    "xyz"[plan.Axis],
+    plan.Halo,
+    static_cast<unsigned long long>(plan.LargestSlabPoints));
+  const auto start = std::chrono::steady_clock::now();
+  problem = run.Filter();
+  SayWarnings(run.GetSummary().Warnings, warned);
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  Say("filtering:     %.3f s\n",
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  problem = pcbilateral::WriteStreamedLAS(input,
+    run,
+    options.Output,
+    1u << 18,
+    [](double fraction) { StreamProgress("writing", fraction); });
+  if (problem.empty())
+  {
+    Say("output:        %s, %llu points\n",
+      options.Output.c_str(),
+      static_cast<unsigned long long>(input.GetNumberOfPoints()));
+  }
+  return problem;
+}
+
+/// The memory limit of the run: --memory-limit, or, for a cloud that would not fit in 80% of
+/// the available memory, that much (said); 0 to run in memory.
+std::uint64_t ChooseMemoryLimit(const Options& options)
+{
+  if (options.MemoryLimit > 0)
+  {
+    const std::string problem = StreamingUnsupported(options);
+    if (!problem.empty())
+    {
+      Fail("--memory-limit: " + problem);
+    }
+    return options.MemoryLimit;
+  }
+  pcbilateral::LASPointSource input;
+  if (!StreamingUnsupported(options).empty() || !input.Open(options.Input).empty())
+  {
+    return 0;
+  }
+  // The run in memory takes about 150 bytes per point, end to end (issue 27: 148).
+  const std::uint64_t needed = 150 * input.GetNumberOfPoints();
+  const std::uint64_t available = pcbilateral::AvailableMemory();
+  const std::uint64_t limit = available / 10 * 8;
+  if (available == 0 || needed <= limit)
+  {
+    return 0;
+  }
+  Say("memory:        about %s needed in memory, %s available: streamed within %s "
+      "(automatic; --memory-limit sets it)\n",
+    Megabytes(needed).c_str(),
+    Megabytes(available).c_str(),
+    Megabytes(limit).c_str());
+  return limit;
+}
+
+/// With a memory limit (given, or needed: ChooseMemoryLimit), the streamed run, then exit.
+void StreamIfLimited(const Options& options)
+{
+  const std::uint64_t memoryLimit = ChooseMemoryLimit(options);
+  if (memoryLimit == 0)
+  {
+    return;
+  }
+  const std::string problem = RunStreamed(options, memoryLimit);
+  Screen().ClearBar();
+  if (!problem.empty())
+  {
+    Fail(problem);
+  }
+  std::exit(EXIT_SUCCESS);
 }
 
 } // namespace
@@ -660,6 +921,7 @@ int main(int argc, char* argv[])
   const Options options = ParseArguments(argc, argv);
   Screen().Quiet = options.Quiet;
   Screen().ShowBar = !options.Quiet && isatty(fileno(stdout));
+  StreamIfLimited(options);
 
   // One place picks the reader and writer by extension and checks the file first.
   vtkNew<vtkPointCloudFileIO> files;

@@ -31,9 +31,11 @@ LAYERS = {
     "VTKFilter": ["VTK", "VTKCommon", "Core", "Core/Common"],
     "VTKIO": ["VTK", "VTKCommon", "Formats", "Core/Common"],
     "Parallel": ["VTK", "VTKFilter", "Core", "Core/Common", "Core/Measurement"],
+    "Streaming": ["Core", "Core/Common", "Core/Measurement", "Formats"],
 }
 # Layers that must know nothing of VTK (nor of ParaView's Qt side).
-PLAIN = [layer for layer in LAYERS if layer.startswith("Core") or layer == "Formats"]
+PLAIN = [layer for layer in LAYERS
+         if layer.startswith("Core") or layer in ("Formats", "Streaming")]
 MAX_FUNCTION_LINES = 80
 MAX_FILE_LINES = 1000
 SOURCE_EXTENSIONS = (".cxx", ".h", ".cpp", ".hpp")

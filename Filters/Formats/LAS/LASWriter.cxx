@@ -348,6 +348,141 @@ std::string WriteLAZ(const std::string& path,
   return output.Commit(ok, ok ? 0 : errno);
 }
 
+struct LASStreamWriter::Internals
+{
+  std::string Path;
+  LASFileInfo Info;
+  LASHeader Written;
+  RecordsToWrite Records;
+  std::unique_ptr<ReplacingFile> Output;
+  std::vector<BlockSummary> Summaries;
+  std::vector<std::uint8_t> Buffer;
+  std::uint64_t Expected = 0;
+  std::uint64_t Appended = 0;
+  bool Failed = false;
+  int Failure = 0;
+
+  std::string Fail(const std::string& message)
+  {
+    this->Failed = true;
+    return message;
+  }
+};
+
+LASStreamWriter::LASStreamWriter()
+  : Impl(std::make_unique<Internals>())
+{
+}
+
+LASStreamWriter::~LASStreamWriter() = default;
+
+std::string LASStreamWriter::Open(const std::string& path,
+  const LASFileInfo& info,
+  std::uint64_t count)
+{
+  Internals& w = *this->Impl;
+  w.Path = path;
+  w.Info = info;
+  w.Expected = count;
+  const std::string problem = CheckWritable(info.Header, static_cast<std::size_t>(count));
+  if (!problem.empty())
+  {
+    return w.Fail(path + ": " + problem);
+  }
+  w.Records = SortRecords(w.Info);
+  if (!w.Records.Extended.empty() && info.Header.VersionMinor < 4)
+  {
+    return w.Fail(path + ": a variable-length record longer than 65535 bytes needs LAS 1.4");
+  }
+  w.Written = info.Header;
+  w.Written.HeaderSize = static_cast<std::uint16_t>(HeaderSizeOfVersion(info.Header.VersionMinor));
+  const std::size_t offsetToPoints = w.Written.HeaderSize + w.Records.VLRBytes.size();
+  if (offsetToPoints > std::numeric_limits<std::uint32_t>::max())
+  {
+    return w.Fail(path + ": the variable-length records are too long for a LAS header");
+  }
+  w.Written.OffsetToPointData = static_cast<std::uint32_t>(offsetToPoints);
+  w.Written.NumberOfPoints = count;
+  w.Output = std::make_unique<ReplacingFile>(path);
+  std::FILE* file = w.Output->Get();
+  if (!file)
+  {
+    return w.Fail(w.Output->OpenError());
+  }
+  // The header's place first; Close writes it with the bounds and counts.
+  const std::vector<std::uint8_t> header(w.Written.HeaderSize, 0);
+  const std::vector<std::uint8_t>& vlrBytes = w.Records.VLRBytes;
+  if (std::fwrite(header.data(), 1, header.size(), file) != header.size() ||
+      std::fwrite(vlrBytes.data(), 1, vlrBytes.size(), file) != vlrBytes.size())
+  {
+    w.Failure = errno;
+    return w.Fail(path + ": write failed (" + std::strerror(w.Failure) + ")");
+  }
+  return std::string();
+}
+
+std::string LASStreamWriter::Append(std::size_t count,
+  const double* positions,
+  const void* const* columns)
+{
+  Internals& w = *this->Impl;
+  if (w.Failed || !w.Output || w.Appended + count > w.Expected)
+  {
+    return w.Fail(w.Path + ": more points written than announced, or after a failure");
+  }
+  const BlockEncoder encoder(w.Info, count, positions, columns);
+  const std::size_t bytes = count * w.Info.Header.RecordLength;
+  w.Buffer.assign(bytes, 0);
+  std::vector<BlockSummary> summaries(encoder.Blocks());
+  const auto blocks = static_cast<std::int64_t>(summaries.size());
+  const std::size_t blockBytes = PointsPerBlock * w.Info.Header.RecordLength;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t b = 0; b < blocks; ++b)
+  {
+    summaries[static_cast<std::size_t>(b)] = encoder.Encode(
+      static_cast<std::size_t>(b), w.Buffer.data() + static_cast<std::size_t>(b) * blockBytes);
+  }
+  if (AnyOutOfRange(summaries))
+  {
+    return w.Fail(w.Path + ": a point's coordinates do not fit the LAS records' 32-bit integers "
+                           "with the scale and offset of the header (or are not finite)");
+  }
+  w.Summaries.insert(w.Summaries.end(), summaries.begin(), summaries.end());
+  if (std::fwrite(w.Buffer.data(), 1, bytes, w.Output->Get()) != bytes)
+  {
+    w.Failure = errno;
+    return w.Fail(w.Path + ": write failed (" + std::strerror(w.Failure) + ")");
+  }
+  w.Appended += count;
+  return std::string();
+}
+
+std::string LASStreamWriter::Close()
+{
+  Internals& w = *this->Impl;
+  if (w.Failed || !w.Output || w.Appended != w.Expected)
+  {
+    return w.Fail(w.Path + ": fewer points written than announced, or after a failure");
+  }
+  std::FILE* file = w.Output->Get();
+  std::vector<std::uint8_t> evlrBytes;
+  for (const LASRecord* record : w.Records.Extended)
+  {
+    AppendRecord(evlrBytes, *record, true);
+  }
+  bool ok = std::fwrite(evlrBytes.data(), 1, evlrBytes.size(), file) == evlrBytes.size();
+  SumBlocks(w.Summaries, w.Written);
+  const std::vector<std::uint8_t> header = EncodeHeader(w.Written,
+    w.Records.VLRCount,
+    static_cast<std::uint32_t>(w.Records.Extended.size()),
+    w.Expected * static_cast<std::uint64_t>(w.Info.Header.RecordLength),
+    false);
+  ok = ok && std::fseek(file, 0, SEEK_SET) == 0 &&
+       std::fwrite(header.data(), 1, header.size(), file) == header.size();
+  w.Failed = !ok;
+  return w.Output->Commit(ok, ok ? 0 : errno);
+}
+
 LASFileInfo DefaultLASFileInfo(std::size_t count, const double bounds[6], bool gpsTime, bool rgb)
 {
   LASFileInfo info;

@@ -6,7 +6,10 @@
 #include "LASHeader.h"
 
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace pcbilateral
 {
@@ -44,6 +47,38 @@ std::string WriteLAZ(const std::string& path,
  * 32-bit records. `bounds` is min x, min y, min z, max x, max y, max z.
  */
 LASFileInfo DefaultLASFileInfo(std::size_t count, const double bounds[6], bool gpsTime, bool rgb);
+
+class ReplacingFile;
+
+/**
+ * Writes an uncompressed LAS file a run of points at a time, for a cloud that is never in memory
+ * whole (pcbilateral --memory-limit): the same bytes as WriteLAS given all the points at once.
+ *
+ *   LASStreamWriter writer;
+ *   writer.Open(path, info, count);     // header and VLRs
+ *   writer.Append(n, positions, columns) ... // count points in all, in file order
+ *   writer.Close();                      // EVLRs, then the header with the bounds and counts
+ *
+ * Each call returns an empty string or a one-line message; after a message the file is not
+ * written (the temporary file beside `path` is removed when the writer is destroyed).
+ */
+class LASStreamWriter
+{
+public:
+  LASStreamWriter();
+  ~LASStreamWriter();
+  LASStreamWriter(const LASStreamWriter&) = delete;
+  LASStreamWriter& operator=(const LASStreamWriter&) = delete;
+
+  std::string Open(const std::string& path, const LASFileInfo& info, std::uint64_t count);
+  /// The next `count` points, their columns laid out as DecodeLASPoints lays them out.
+  std::string Append(std::size_t count, const double* positions, const void* const* columns);
+  std::string Close();
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
+};
 
 } // namespace pcbilateral
 

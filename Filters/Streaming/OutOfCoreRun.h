@@ -1,0 +1,141 @@
+// The bilateral filter on a file larger than a memory limit: the points bucketed on disk into
+// slabs along the cloud's longest axis, each slab filtered with the halo the radius and the
+// iterations need, the results kept on disk until the writer reads them back in file order.
+// Plain C++17 over Core and Formats, no VTK (pcbilateral --memory-limit).
+//
+// Why the result is the same bits as the in-memory run (docs/streaming.md has the argument in
+// full): every parameter is resolved from the whole cloud (its extent, and the measurement's
+// selection, which a hash of each point's coordinates decides, so a stream gathers exactly the
+// points the in-memory run measures); the octree's lattice comes from the whole cloud's extent;
+// a point's sums run over its neighbours within its radius, in an order fixed by their
+// coordinates alone (ProcessingOctree.h: leaves sorted by coordinates; BilateralKernelBody.h:
+// candidates beyond the radius packed out before the lanes are assigned), so points beyond the
+// radius, present or not, change no bit; and a slab's halo is wide enough that no point missing
+// from it, and no halo point whose own neighbourhood is cut, can come within a radius of a core
+// point in any iteration: N^2 x the largest radius (each iteration moves a point by less than its
+// radius, so the uncertain region grows by 2k - 1 radii in iteration k).
+#ifndef pcbilateral_OutOfCoreRun_h
+#define pcbilateral_OutOfCoreRun_h
+
+#include "BilateralFilter.h"
+#include "BilateralParameters.h"
+#include "CloudMeasurement.h"
+#include "PointCloudView.h"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace pcbilateral
+{
+
+/// A file's points, read a range at a time in file order.
+class StreamedPoints
+{
+public:
+  virtual ~StreamedPoints() = default;
+  virtual std::uint64_t GetNumberOfPoints() const = 0;
+  /// Positions (x y z interleaved) of points [first, first + count); an empty string or a
+  /// one-line message.
+  virtual std::string ReadPositions(std::uint64_t first, std::size_t count, double* positions) = 0;
+};
+
+struct OutOfCoreSettings
+{
+  /// The peak memory the run may take, in bytes, the caller's own share (`ReservedBytes`, e.g.
+  /// the program and its libraries) included.
+  std::uint64_t MemoryLimit = 0;
+  std::uint64_t ReservedBytes = 0;
+  /// Where the temporary files go (a folder of their own is made in it).
+  std::string TemporaryDirectory;
+  int NumberOfThreads = 0;
+  /// At most this many points in a slab and its halo (0: as many as the memory limit allows):
+  /// for tests of many slabs on small files.
+  std::uint64_t MaximumSlabPoints = 0;
+  /// Progress of each phase ("measuring", "bucketing", "slab k/n"...), fraction 0 to 1.
+  std::function<void(const std::string& phase, double fraction)> Progress;
+};
+
+/// What the run decided: shown to the user.
+struct OutOfCorePlan
+{
+  int Axis = 0;
+  std::size_t NumberOfSlabs = 0;
+  /// The widest halo of a slab, in the cloud's units.
+  double Halo = 0.0;
+  /// The most points a slab and its halo hold.
+  std::uint64_t LargestSlabPoints = 0;
+  /// The temporary files' size at their largest, in bytes, and where they are.
+  std::uint64_t DiskBytes = 0;
+  std::string TemporaryFolder;
+};
+
+/**
+ * One out-of-core run:
+ *
+ *   OutOfCoreRun run(points, parameters, settings);
+ *   run.Measure();     // pass 1: extent, count, measurement selection; parameters resolved
+ *   run.Bucket();      // pass 2: points into bins on disk; slabs planned within the limit
+ *   run.Filter();      // each slab and its halo filtered; results to disk
+ *   run.ReadFiltered(first, count, positions) ... // the filtered positions in file order
+ *
+ * Each step returns an empty string or a one-line message; after a message, stop. The
+ * temporary files are removed by the destructor, and by SIGINT, SIGTERM and SIGHUP
+ * (RemoveTemporaryFilesOnSignals).
+ */
+class OutOfCoreRun
+{
+public:
+  OutOfCoreRun(StreamedPoints& points,
+    const BilateralParameters& parameters,
+    const OutOfCoreSettings& settings);
+  ~OutOfCoreRun();
+  OutOfCoreRun(const OutOfCoreRun&) = delete;
+  OutOfCoreRun& operator=(const OutOfCoreRun&) = delete;
+
+  std::string Measure();
+  /// The parameters used and the measured scales, as the in-memory run reports them (valid
+  /// after Measure; the radius ranges where it follows the density after Bucket).
+  const BilateralResult& GetSummary() const;
+  /// The disk the run will take at most, known after Measure: checked against the free space
+  /// of the temporary folder by Bucket.
+  std::uint64_t GetDiskBytesNeeded() const;
+  std::string Bucket();
+  const OutOfCorePlan& GetPlan() const;
+  std::string Filter();
+  /// Filtered positions of points [first, first + count), read in increasing order of first;
+  /// points that are not finite are left as they are in `positions`.
+  std::string ReadFiltered(std::uint64_t first, std::size_t count, double* positions);
+
+  /// Bytes of memory a slab takes per point (the run's arrays, the octree, the bins read).
+  static constexpr std::uint64_t BytesPerSlabPoint = 256;
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
+};
+
+/// Installs handlers of SIGINT, SIGTERM and SIGHUP that remove every temporary file of the
+/// running OutOfCoreRun, and `extraPath` (e.g. the output's partial file), then exit with 128 +
+/// the signal. Call once, before the run.
+void RemoveTemporaryFilesOnSignals(const std::string& extraPath);
+
+/// "512M", "2G", "1.5G", "4096" (bytes), "800K": the size in bytes, or 0 when not a size.
+std::uint64_t ParseMemorySize(const std::string& text);
+
+/// The memory the system can give without swapping (MemAvailable of /proc/meminfo), 0 when
+/// unknown.
+std::uint64_t AvailableMemory();
+
+/// The memory this process holds now (VmRSS of /proc/self/status), 0 when unknown.
+std::uint64_t ResidentMemory();
+
+/// Where the temporary files of a run that writes `outputPath` go: TMPDIR when set, else the
+/// output's folder.
+std::string TemporaryDirectoryFor(const std::string& outputPath);
+
+} // namespace pcbilateral
+
+#endif

@@ -1,0 +1,68 @@
+// LAS and LAZ files read a range of points at a time, and the filtered cloud written as LAS a
+// range at a time, for the out-of-core run (OutOfCoreRun.h). Plain C++17 over Formats.
+#ifndef pcbilateral_StreamedLAS_h
+#define pcbilateral_StreamedLAS_h
+
+#include "LASHeader.h"
+#include "OutOfCoreRun.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace pcbilateral
+{
+
+/**
+ * A LAS or LAZ file, mapped without being read in: each range of points is decoded from its own
+ * pages (or LAZ chunks), which are given back to the system after it, so that the memory taken
+ * is that of a range, not of the file.
+ */
+class LASPointSource : public StreamedPoints
+{
+public:
+  LASPointSource() = default;
+  ~LASPointSource() override;
+  LASPointSource(const LASPointSource&) = delete;
+  LASPointSource& operator=(const LASPointSource&) = delete;
+
+  /// Maps the file and checks its header; an empty string or a one-line message.
+  std::string Open(const std::string& path);
+  const LASFileInfo& GetInfo() const { return this->Info; }
+  std::uint64_t GetNumberOfPoints() const override { return this->Info.Header.NumberOfPoints; }
+  std::string ReadPositions(std::uint64_t first, std::size_t count, double* positions) override;
+  /// Positions and every dimension's column (laid out as DecodeLASPoints lays them out).
+  std::string ReadPoints(std::uint64_t first,
+    std::size_t count,
+    double* positions,
+    void* const* columns);
+
+private:
+  void Release();
+  std::string Path;
+  LASFileInfo Info;
+  const std::uint8_t* Data = nullptr;
+  std::size_t Size = 0;
+  std::vector<std::uint8_t> Decompressed;
+};
+
+/// The header a LAS file written from `info` has after pcbilateral's in-memory run (the
+/// reader's field data and the writer's reading of it): the same fields, the dimensions of its
+/// point format and extra bytes, no LASzip record.
+LASFileInfo LASInfoAsWritten(const LASFileInfo& info);
+
+/**
+ * Writes the filtered cloud of `run` as an uncompressed LAS file: the input's records, a range
+ * at a time, with the filtered positions. Progress from 0 to 1. Returns an empty string or a
+ * one-line message (no file is left then).
+ */
+std::string WriteStreamedLAS(LASPointSource& input,
+  OutOfCoreRun& run,
+  const std::string& path,
+  std::size_t pointsPerRange,
+  const std::function<void(double)>& progress);
+
+} // namespace pcbilateral
+
+#endif

@@ -1,0 +1,170 @@
+"""pcbilateral --memory-limit (issue 27, item 3): the file filtered in slabs gives the same output
+file, byte for byte, as the run in memory; a slab that cannot fit is refused; the temporary files
+are removed on every exit.
+
+Cases: a generated LAS survey whose sampling density varies (so that the automatic radius follows
+the density), in spatial order and shuffled, with explicit and automatic parameters, each with
+several slab sizes (PCB_STREAMING_SLAB_POINTS caps the points of a slab and its halo, so that a
+small file makes many slabs); with the shared data, the Autzen survey as LAS and as LAZ. Then the
+refusals (a slab that cannot fit, formats not streamed, a bad size) and the clean-up (after an
+error, after Ctrl-C).
+
+    CheckStreaming.py PCBILATERAL SCRATCH [LAS_DATA_DIR]
+"""
+import os
+import signal
+import struct
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+
+def write_las(path, points):
+    """A LAS 1.2 file of point format 0 (scale 0.001), records in the order given."""
+    scale = 0.001
+    low, high = points.min(axis=0), points.max(axis=0)
+    offset = np.floor(low)
+    header = struct.pack("<4sHH16sBB32s32sHHHIIBHI5I3d3d6d", b"LASF", 0, 0, b"\0" * 16, 1, 2,
+                         b"pcbilateral test", b"CheckStreaming.py", 1, 2026, 227, 227, 0, 0, 20,
+                         len(points), len(points), 0, 0, 0, 0, scale, scale, scale, *offset,
+                         high[0], low[0], high[1], low[1], high[2], low[2])
+    records = np.zeros(len(points), dtype=[("xyz", "<i4", 3), ("intensity", "<u2"),
+                                           ("flags", "u1"), ("class", "u1"), ("angle", "i1"),
+                                           ("user", "u1"), ("source", "<u2")])
+    records["xyz"] = np.round((points - offset) / scale).astype(np.int32)
+    records["intensity"] = np.arange(len(points)) % 65536
+    records["flags"] = 9
+    records["class"] = 2
+    with open(path, "wb") as stream:
+        stream.write(header)
+        stream.write(records.tobytes())
+
+
+def survey(count, seed):
+    """A rolling terrain sampled 6 times more densely at one end (a scan's falloff), with
+    noise, sorted along x as a survey's flight lines are."""
+    rng = np.random.default_rng(seed)
+    # Density falling as 1 / (1 + x / 40)^2 over x in [0, 240]: spacing varying about 7 times.
+    u = rng.random(count)
+    x = 40.0 * (1.0 / (1.0 - u * (1.0 - 1.0 / 7.0)) - 1.0)
+    y = rng.random(count) * 12.0
+    z = 2.0 * np.sin(x / 9.0) * np.cos(y / 5.0) + rng.normal(0.0, 0.03, count)
+    points = np.column_stack([x, y, z])
+    return points[np.argsort(x, kind="stable")]
+
+
+class Checks:
+    def __init__(self, program, scratch):
+        self.program, self.scratch, self.failures = program, scratch, []
+        self.tmp = os.path.join(scratch, "tmp")
+        os.makedirs(self.tmp, exist_ok=True)
+
+    def check(self, condition, message):
+        print(("ok:     " if condition else "FAILED: ") + message, flush=True)
+        if not condition:
+            self.failures.append(message)
+
+    def run(self, arguments, slab_points=None):
+        env = dict(os.environ, TMPDIR=self.tmp)
+        if slab_points is not None:
+            env["PCB_STREAMING_SLAB_POINTS"] = str(slab_points)
+        return subprocess.run([self.program] + arguments, capture_output=True, text=True, env=env)
+
+    def read(self, path):
+        with open(path, "rb") as stream:
+            return stream.read()
+
+    def temporary_left(self):
+        return os.listdir(self.tmp)
+
+    def same_as_in_memory(self, name, source, parameters, slab_sizes, expect=None):
+        in_memory = os.path.join(self.scratch, name + "-memory.las")
+        result = self.run([source, in_memory] + parameters)
+        self.check(result.returncode == 0, f"{name}: the run in memory ({result.stderr.strip()})")
+        if expect is not None:
+            self.check(expect in result.stdout, f"{name}: the run in memory says '{expect}'")
+        for slab_points in slab_sizes:
+            streamed = os.path.join(self.scratch, f"{name}-{slab_points}.las")
+            result = self.run([source, streamed, "--memory-limit", "1G"] + parameters, slab_points)
+            slabs = [line for line in result.stdout.splitlines() if "along" in line]
+            self.check(result.returncode == 0 and os.path.exists(streamed) and
+                       self.read(streamed) == self.read(in_memory),
+                       f"{name}, slabs of at most {slab_points} points ({slabs}): the same "
+                       f"bytes as in memory {result.stderr.strip()}")
+            self.check(not self.temporary_left(), f"{name}: no temporary file left")
+        return result.stdout
+
+
+def check_refusals(c, source):
+    output = os.path.join(c.scratch, "refused.las")
+    result = c.run([source, output, "--memory-limit", "1G", "-r", "3", "-N", "3"], 200)
+    c.check(result.returncode != 0 and "cannot fit" in result.stderr and
+            not os.path.exists(output) and len(result.stderr.strip().splitlines()) == 1,
+            f"a slab that cannot fit: one line, non-zero exit, no output ({result.stderr.strip()})")
+    c.check(not c.temporary_left(), "the refusal leaves no temporary file")
+    for arguments, words in (([source, os.path.join(c.scratch, "o.txt")], "writes .las"),
+                             ([source, output, "--edge-aware"], "does not take"),
+                             ([source, output, "-r", "3"], None)):
+        size = "2X" if words is None else "1G"
+        result = c.run(arguments + ["--memory-limit", size])
+        expected = words or "is not a size"
+        c.check(result.returncode != 0 and expected in result.stderr and not os.path.exists(output),
+                f"refused: {' '.join(arguments[2:])} --memory-limit {size}: "
+                f"{result.stderr.strip()}")
+    # An error after the bins are written: the output's folder does not exist.
+    missing = os.path.join(c.scratch, "no-such-folder", "out.las")
+    result = c.run([source, missing, "--memory-limit", "1G", "-r", "1.2", "-N", "2"], 30000)
+    c.check(result.returncode != 0 and "no-such-folder" in result.stderr and
+            not c.temporary_left(),
+            f"an error while writing leaves no temporary file ({result.stderr.strip()})")
+
+
+def check_interrupt(c, source):
+    output = os.path.join(c.scratch, "interrupted.las")
+    # (A large radius: a run of seconds.)
+    env = dict(os.environ, TMPDIR=c.tmp)
+    process = subprocess.Popen([c.program, source, output, "--memory-limit", "1G", "-r", "5",
+                                "-N", "2", "-t", "1"], stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL, env=env)
+    deadline = time.time() + 60
+    while time.time() < deadline and not any(c.temporary_left()):
+        time.sleep(0.02)
+    seen = bool(c.temporary_left())
+    time.sleep(0.3)
+    process.send_signal(signal.SIGINT)
+    code = process.wait(60)
+    c.check(seen and code == 128 + signal.SIGINT and not c.temporary_left() and not os.path.exists(output),
+            f"Ctrl-C during the run: exit {code}, temporary files removed "
+            f"(seen before: {seen}), no output")
+
+
+def main(program, scratch, las_dir=None):
+    os.makedirs(scratch, exist_ok=True)
+    c = Checks(program, scratch)
+    points = survey(60000, 7)
+    ordered = os.path.join(scratch, "survey.las")
+    write_las(ordered, points)
+    shuffled = os.path.join(scratch, "survey-shuffled.las")
+    write_las(shuffled, points[np.random.default_rng(3).permutation(len(points))])
+    for name, source in (("ordered", ordered), ("shuffled", shuffled)):
+        c.same_as_in_memory(name + "-explicit", source, ["-r", "1.2", "-n", "0.1", "-N", "2"],
+                            [0, 30000, 20000])
+        c.same_as_in_memory(name + "-automatic", source, [], [0, 40000, 30000],
+                            expect="following the density")
+    if las_dir:
+        autzen = os.path.join(las_dir, "autzen_trim.las")
+        c.same_as_in_memory("autzen", autzen, [], [40000, 20000])
+        c.same_as_in_memory("autzen-laz", os.path.join(las_dir, "..", "laz", "autzen_trim.laz"),
+                            ["-r", "5", "-N", "2"], [30000])
+        c.same_as_in_memory("autzen-1.4", os.path.join(las_dir, "autzen_trim_7.las"),
+                            ["-r", "5"], [30000])
+        c.same_as_in_memory("extra-bytes", os.path.join(las_dir, "extrabytes.las"), [], [0])
+    check_refusals(c, ordered)
+    check_interrupt(c, ordered)
+    return 1 if c.failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(*sys.argv[1:]))
