@@ -857,17 +857,16 @@ std::uint64_t ChooseMemoryLimit(const Options& options)
   {
     return 0;
   }
-  // The run in memory takes about 150 bytes per point, end to end (issue 27: 148).
-  const std::uint64_t needed = 150 * input.GetNumberOfPoints();
   const std::uint64_t available = pcbilateral::AvailableMemory();
-  const std::uint64_t limit = available / 10 * 8;
-  if (available == 0 || needed <= limit)
+  const std::uint64_t limit =
+    pcbilateral::AutomaticMemoryLimit(input.GetNumberOfPoints(), available);
+  if (limit == 0)
   {
     return 0;
   }
   Say("memory:        about %s needed in memory, %s available: streamed within %s "
       "(automatic; --memory-limit sets it)\n",
-    Megabytes(needed).c_str(),
+    Megabytes(pcbilateral::InMemoryBytesPerPoint * input.GetNumberOfPoints()).c_str(),
     Megabytes(available).c_str(),
     Megabytes(limit).c_str());
   return limit;

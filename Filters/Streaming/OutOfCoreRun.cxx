@@ -731,6 +731,12 @@ std::uint64_t AvailableMemory()
   return 0;
 }
 
+std::uint64_t AutomaticMemoryLimit(std::uint64_t numberOfPoints, std::uint64_t available)
+{
+  const std::uint64_t limit = available / 10 * 8;
+  return available == 0 || InMemoryBytesPerPoint * numberOfPoints <= limit ? 0 : limit;
+}
+
 std::uint64_t ResidentMemory()
 {
   std::ifstream status("/proc/self/status");

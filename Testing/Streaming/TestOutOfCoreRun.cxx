@@ -175,10 +175,25 @@ void Refusal()
   const std::string problem = run.Bucket();
   PCB_CHECK(problem.find("cannot fit") != std::string::npos, "refused: '%s'", problem.c_str());
 }
+/// The memory limit chosen when none is given: none while the cloud fits 80% of the available
+/// memory, that 80% beyond.
+void AutomaticLimit()
+{
+  const std::uint64_t gigabyte = std::uint64_t{ 1 } << 30;
+  const std::uint64_t fits = 8 * gigabyte / 10 / pcbilateral::InMemoryBytesPerPoint;
+  PCB_CHECK(pcbilateral::AutomaticMemoryLimit(fits, gigabyte) == 0, "fits: in memory");
+  PCB_CHECK(pcbilateral::AutomaticMemoryLimit(fits + 1000, gigabyte) == gigabyte / 10 * 8,
+    "does not fit: streamed within 80%% of the available memory");
+  PCB_CHECK(pcbilateral::AutomaticMemoryLimit(fits * 100, 0) == 0, "unknown: in memory");
+}
 } // namespace
 
 int main(int argc, char* argv[])
 {
-  return RunNamedCase(
-    argc, argv, { { "Selection", Selection }, { "Positions", Positions }, { "Refusal", Refusal } });
+  return RunNamedCase(argc,
+    argv,
+    { { "Selection", Selection },
+      { "Positions", Positions },
+      { "Refusal", Refusal },
+      { "AutomaticLimit", AutomaticLimit } });
 }
