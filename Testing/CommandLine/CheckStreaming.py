@@ -5,13 +5,14 @@ are removed on every exit.
 Cases: a generated LAS survey whose sampling density varies (so that the automatic radius follows
 the density), in spatial order and shuffled, with explicit and automatic parameters, each with
 several slab sizes (PCB_STREAMING_SLAB_POINTS caps the points of a slab and its halo, so that a
-small file makes many slabs); with the shared data, the Autzen survey as LAS and as LAZ. Then the
-refusals (a slab that cannot fit, formats not streamed, a bad size) and the clean-up (after an
-error, after Ctrl-C).
+small file makes many slabs); the refusals (a slab that cannot fit, formats not streamed, a bad
+size) and the clean-up (after an error, after Ctrl-C). Given the shared LAS folder, instead: the
+Autzen survey as LAS, LAZ and LAS 1.4, and a file with extra bytes.
 
     CheckStreaming.py PCBILATERAL SCRATCH [LAS_DATA_DIR]
 """
 import os
+import re
 import signal
 import struct
 import subprocess
@@ -94,6 +95,12 @@ class Checks:
                        f"{name}, slabs of at most {slab_points} points ({slabs}): the same "
                        f"bytes as in memory {result.stderr.strip()}")
             self.check(not self.temporary_left(), f"{name}: no temporary file left")
+            if slab_points and not name.startswith("extra"):
+                # Not on a terminal: a line per slab, with the time left.
+                progress = re.search(r"^slabs: +\d+ of \d+ done, \d+ s left$", result.stdout,
+                                     re.MULTILINE)
+                self.check(progress is not None and "\r" not in result.stdout,
+                           f"{name}: a plain progress line per slab with the time left")
         return result.stdout
 
 
@@ -141,8 +148,19 @@ def check_interrupt(c, source):
 
 
 def main(program, scratch, las_dir=None):
+    """The generated surveys, the refusals and the clean-up; with LAS_DATA_DIR, the shared
+    samples instead."""
     os.makedirs(scratch, exist_ok=True)
     c = Checks(program, scratch)
+    if las_dir:
+        autzen = os.path.join(las_dir, "autzen_trim.las")
+        c.same_as_in_memory("autzen", autzen, [], [40000, 20000])
+        c.same_as_in_memory("autzen-laz", os.path.join(las_dir, "..", "laz", "autzen_trim.laz"),
+                            ["-r", "5", "-N", "2"], [30000])
+        c.same_as_in_memory("autzen-1.4", os.path.join(las_dir, "autzen_trim_7.las"),
+                            ["-r", "5"], [30000])
+        c.same_as_in_memory("extra-bytes", os.path.join(las_dir, "extrabytes.las"), [], [0])
+        return 1 if c.failures else 0
     points = survey(60000, 7)
     ordered = os.path.join(scratch, "survey.las")
     write_las(ordered, points)
@@ -153,14 +171,6 @@ def main(program, scratch, las_dir=None):
                             [0, 30000, 20000])
         c.same_as_in_memory(name + "-automatic", source, [], [0, 40000, 30000],
                             expect="following the density")
-    if las_dir:
-        autzen = os.path.join(las_dir, "autzen_trim.las")
-        c.same_as_in_memory("autzen", autzen, [], [40000, 20000])
-        c.same_as_in_memory("autzen-laz", os.path.join(las_dir, "..", "laz", "autzen_trim.laz"),
-                            ["-r", "5", "-N", "2"], [30000])
-        c.same_as_in_memory("autzen-1.4", os.path.join(las_dir, "autzen_trim_7.las"),
-                            ["-r", "5"], [30000])
-        c.same_as_in_memory("extra-bytes", os.path.join(las_dir, "extrabytes.las"), [], [0])
     check_refusals(c, ordered)
     check_interrupt(c, ordered)
     return 1 if c.failures else 0
