@@ -14,6 +14,7 @@
 #include "BilateralFilter.h"
 #include "EdgeAwareRule.h"
 #include "OutOfCoreRun.h"
+#include "StreamedFile.h"
 #include "StreamedLAS.h"
 #include "vtkPointCloudBilateralFilter.h"
 #include "vtkPointCloudFileIO.h"
@@ -36,6 +37,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <unistd.h>
@@ -89,9 +92,9 @@ const char* const UsageTail =
   "                     xmin,xmax,ymin,ymax,zmin,zmax (the file's coordinates)\n"
   "  --memory-limit SIZE  filter the file in slabs within SIZE of memory (e.g. 512M, 2G),\n"
   "                     temporary files in TMPDIR or beside the output; the same output\n"
-  "                     file as in memory. LAS or LAZ in, LAS out. Default: in memory, or\n"
-  "                     streamed within 80% of the available memory when the cloud needs\n"
-  "                     more (said)\n"
+  "                     file as in memory. LAS or LAZ into LAS, text into text. Default:\n"
+  "                     in memory, or streamed within 80% of the available memory when\n"
+  "                     the cloud needs more (said)\n"
   "  -q, --quiet        print nothing but warnings and errors (default: what was read,\n"
   "                     measured, chosen and written, each line as soon as it is known, and\n"
   "                     on a terminal a progress bar with the time left)\n"
@@ -679,30 +682,13 @@ void WriteOutput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData
 /// Why the streamed run (--memory-limit) cannot run with these files and options, or empty.
 std::string StreamingUnsupported(const Options& options)
 {
-  auto endsWith = [](const std::string& name, const char* suffix)
-  {
-    const std::size_t n = std::strlen(suffix);
-    return name.size() >= n &&
-           std::equal(name.end() - static_cast<std::ptrdiff_t>(n),
-             name.end(),
-             suffix,
-             [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
-  };
-  if (!endsWith(options.Input, ".las") && !endsWith(options.Input, ".laz"))
-  {
-    return "streaming reads .las and .laz input (not yet text, PCD, PLY or VTP)";
-  }
-  if (!endsWith(options.Output, ".las"))
-  {
-    return "streaming writes .las output (not yet LAZ, text or PCD)";
-  }
   if (options.EdgeAware || options.RemoveIsolated || !options.Classes.empty() ||
       options.OrientedNormals || options.COPCLevel != -1 || options.COPCUseBounds)
   {
     return "streaming does not take --edge-aware, --remove-isolated, --classes, -R or the "
            "--copc options yet";
   }
-  return std::string();
+  return pcbilateral::StreamingFormatsProblem(options.Input, options.Output);
 }
 
 std::string Megabytes(std::uint64_t bytes)
@@ -772,9 +758,10 @@ void SayWarnings(const std::vector<std::string>& warnings, std::size_t& said)
 /// run in memory. Returns an empty string or the one-line error.
 std::string RunStreamed(const Options& options, std::uint64_t limit)
 {
-  pcbilateral::LASPointSource input;
-  std::string problem = input.Open(options.Input);
-  if (problem.empty() && input.GetNumberOfPoints() == 0)
+  std::string problem;
+  const std::unique_ptr<pcbilateral::StreamedFile> file =
+    pcbilateral::OpenStreamedFile(options.Input, options.Output, problem);
+  if (problem.empty() && file->GetNumberOfPoints() == 0)
   {
     problem = options.Input + ": contains no points";
   }
@@ -782,6 +769,7 @@ std::string RunStreamed(const Options& options, std::uint64_t limit)
   {
     return problem;
   }
+  pcbilateral::StreamedFile& input = *file;
   Say("input:         %s, %llu points, streamed within %s of memory\n",
     options.Input.c_str(),
     static_cast<unsigned long long>(input.GetNumberOfPoints()),
@@ -825,11 +813,8 @@ std::string RunStreamed(const Options& options, std::uint64_t limit)
   }
   Say("filtering:     %.3f s\n",
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  problem = pcbilateral::WriteStreamedLAS(input,
-    run,
-    options.Output,
-    1u << 18,
-    [](double fraction) { StreamProgress("writing", fraction); });
+  problem = input.WriteFiltered(
+    run, options.Output, 1u << 18, [](double fraction) { StreamProgress("writing", fraction); });
   if (problem.empty())
   {
     Say("output:        %s, %llu points\n",
@@ -852,21 +837,32 @@ std::uint64_t ChooseMemoryLimit(const Options& options)
     }
     return options.MemoryLimit;
   }
-  pcbilateral::LASPointSource input;
-  if (!StreamingUnsupported(options).empty() || !input.Open(options.Input).empty())
+  // The points: a LAS file's header says; a text file's are estimated from its size (a line
+  // of x y z takes 20 bytes and more), without reading it.
+  std::uint64_t points = 0;
+  pcbilateral::LASPointSource las;
+  std::error_code error;
+  if (!StreamingUnsupported(options).empty())
   {
     return 0;
   }
+  if (vtkPointCloudFileIO::IsTextFormat(options.Input.c_str()))
+  {
+    points = std::filesystem::file_size(options.Input, error) / 20;
+  }
+  else if (las.Open(options.Input).empty())
+  {
+    points = las.GetNumberOfPoints();
+  }
   const std::uint64_t available = pcbilateral::AvailableMemory();
-  const std::uint64_t limit =
-    pcbilateral::AutomaticMemoryLimit(input.GetNumberOfPoints(), available);
+  const std::uint64_t limit = pcbilateral::AutomaticMemoryLimit(points, available);
   if (limit == 0)
   {
     return 0;
   }
   Say("memory:        about %s needed in memory, %s available: streamed within %s "
       "(automatic; --memory-limit sets it)\n",
-    Megabytes(pcbilateral::InMemoryBytesPerPoint * input.GetNumberOfPoints()).c_str(),
+    Megabytes(pcbilateral::InMemoryBytesPerPoint * points).c_str(),
     Megabytes(available).c_str(),
     Megabytes(limit).c_str());
   return limit;

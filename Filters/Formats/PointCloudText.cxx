@@ -15,6 +15,11 @@
 #include <sstream>
 #include <system_error>
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 namespace pcbilateral
 {
 
@@ -497,26 +502,15 @@ void FormatLines(const PointCloudTable& table,
   }
   block.resize(static_cast<std::size_t>(out - block.data()));
 }
-} // namespace
-
-std::string WritePointCloudText(const std::string& path, const PointCloudTable& table)
+/// The lines of every point of the table, in blocks formatted in parallel, written in order;
+/// false when a write failed.
+bool WriteLines(std::FILE* file, const PointCloudTable& table, bool withNormals)
 {
-  ReplacingFile output(path);
-  std::FILE* file = output.Get();
-  if (file == nullptr)
-  {
-    return output.OpenError();
-  }
-  const bool withNormals =
-    table.Normals.size() == 3 * table.NumberOfPoints && !table.Normals.empty();
-  const std::string header = MakeHeaderLine(table, withNormals);
-  bool ok = std::fwrite(header.data(), 1, header.size(), file) == header.size();
-
-  // Blocks of lines formatted in parallel, written in order.
   constexpr std::size_t PointsPerBlock = 1 << 13;
   const std::size_t blockCount = (table.NumberOfPoints + PointsPerBlock - 1) / PointsPerBlock;
   constexpr std::size_t BlocksAtOnce = 16; // about 10 MB of text at a time
   std::vector<std::string> blocks(std::min(blockCount, BlocksAtOnce));
+  bool ok = true;
   for (std::size_t first = 0; first < blockCount && ok; first += BlocksAtOnce)
   {
     const auto count = static_cast<std::int64_t>(std::min(BlocksAtOnce, blockCount - first));
@@ -535,7 +529,217 @@ std::string WritePointCloudText(const std::string& path, const PointCloudTable& 
       ok = std::fwrite(blocks[b].data(), 1, blocks[b].size(), file) == blocks[b].size();
     }
   }
+  return ok;
+}
+} // namespace
+
+std::string WritePointCloudText(const std::string& path, const PointCloudTable& table)
+{
+  ReplacingFile output(path);
+  std::FILE* file = output.Get();
+  if (file == nullptr)
+  {
+    return output.OpenError();
+  }
+  const bool withNormals =
+    table.Normals.size() == 3 * table.NumberOfPoints && !table.Normals.empty();
+  const std::string header = MakeHeaderLine(table, withNormals);
+  bool ok = std::fwrite(header.data(), 1, header.size(), file) == header.size();
+  ok = ok && WriteLines(file, table, withNormals);
   return output.Commit(ok);
+}
+
+struct PointCloudTextStream::Internals
+{
+  std::string Path;
+  const char* Text = nullptr;
+  std::size_t Size = 0;
+  std::size_t LeadingColumns = 3;
+  TextStart Start;
+  PointCloudTable Header;
+  std::uint64_t Points = 0;
+  /// Where the next range starts: its first line, that line's number less one, its point.
+  const char* Next = nullptr;
+  std::size_t NextLineNumber = 0;
+  std::uint64_t NextPoint = 0;
+
+  void Release() const
+  {
+    if (this->Text != nullptr)
+    {
+      ::madvise(const_cast<char*>(this->Text), this->Size, MADV_DONTNEED);
+    }
+  }
+};
+
+PointCloudTextStream::PointCloudTextStream()
+  : Impl(std::make_unique<Internals>())
+{
+}
+
+PointCloudTextStream::~PointCloudTextStream()
+{
+  if (this->Impl->Text != nullptr)
+  {
+    ::munmap(const_cast<char*>(this->Impl->Text), this->Impl->Size);
+  }
+}
+
+std::string PointCloudTextStream::Open(const std::string& path, bool hasNormals)
+{
+  Internals& s = *this->Impl;
+  s.Path = path;
+  s.LeadingColumns = hasNormals ? 6 : 3;
+  const int descriptor = ::open(path.c_str(), O_RDONLY);
+  struct stat status;
+  if (descriptor < 0 || ::fstat(descriptor, &status) != 0 || S_ISDIR(status.st_mode))
+  {
+    const bool directory = descriptor >= 0 && S_ISDIR(status.st_mode);
+    const std::string problem =
+      path + ": " +
+      (directory ? std::string("is a directory, not a point file")
+                 : "cannot be opened for reading (" + std::string(std::strerror(errno)) + ")");
+    if (descriptor >= 0)
+    {
+      ::close(descriptor);
+    }
+    return problem;
+  }
+  s.Size = static_cast<std::size_t>(status.st_size);
+  void* mapped =
+    s.Size > 0 ? ::mmap(nullptr, s.Size, PROT_READ, MAP_PRIVATE, descriptor, 0) : MAP_FAILED;
+  ::close(descriptor);
+  if (mapped == MAP_FAILED)
+  {
+    return path + (s.Size == 0 ? ": contains no points" : ": cannot be mapped for reading");
+  }
+  s.Text = static_cast<const char*>(mapped);
+  const char* end = s.Text + s.Size;
+  const std::string error = ReadTextStart(s.Text, end, s.LeadingColumns, path, s.Start);
+  if (!error.empty())
+  {
+    return error;
+  }
+  PointCloudTextLayout& layout = s.Header.Layout;
+  const std::vector<std::string>& names = s.Start.HeaderNames;
+  layout.Header = names.empty() ? PointCloudTextLayout::HeaderLine::Never
+                                : PointCloudTextLayout::HeaderLine::Always;
+  layout.LeadingColumnNames.assign(
+    names.begin(), names.begin() + std::min(s.LeadingColumns, names.size()));
+  layout.Delimiter = s.Start.Delimiter;
+  for (std::size_t c = s.LeadingColumns; c < s.Start.Columns; ++c)
+  {
+    s.Header.ExtraColumnNames.push_back(
+      names.empty() ? "column" + std::to_string(c + 1) : names[c]);
+  }
+  s.Header.ExtraColumns.resize(s.Header.ExtraColumnNames.size());
+  for (const char* line = s.Start.FirstPoint; line != nullptr && line < end;
+       line = LineEnd(line, end) + 1)
+  {
+    s.Points += IsSkipped(line, LineEnd(line, end)) ? 0 : 1;
+  }
+  s.Release();
+  return std::string();
+}
+
+std::uint64_t PointCloudTextStream::GetNumberOfPoints() const
+{
+  return this->Impl->Points;
+}
+
+const PointCloudTable& PointCloudTextStream::GetHeader() const
+{
+  return this->Impl->Header;
+}
+
+std::string PointCloudTextStream::Read(std::uint64_t first,
+  std::size_t count,
+  PointCloudTable& table)
+{
+  Internals& s = *this->Impl;
+  if (first == 0)
+  {
+    s.Next = s.Start.FirstPoint;
+    s.NextLineNumber = s.Start.LineNumber;
+    s.NextPoint = 0;
+  }
+  if (first != s.NextPoint || first + count > s.Points)
+  {
+    return s.Path + ": points read out of order";
+  }
+  // The range's lines end after its count-th point's line.
+  const char* end = s.Text + s.Size;
+  const char* line = s.Next;
+  std::size_t lines = 0;
+  for (std::size_t points = 0; points < count && line < end; line = LineEnd(line, end) + 1)
+  {
+    ++lines;
+    points += IsSkipped(line, LineEnd(line, end)) ? 0 : 1;
+  }
+  TextStart start = s.Start;
+  start.FirstPoint = s.Next;
+  start.LineNumber = s.NextLineNumber;
+  table = PointCloudTable();
+  table.Layout = s.Header.Layout;
+  table.ExtraColumnNames = s.Header.ExtraColumnNames;
+  const std::string error = ParsePoints(
+    start, std::min(line, end), s.LeadingColumns, s.Path, std::size_t{ 1 } << 20, table);
+  s.Release();
+  s.Next = line;
+  s.NextLineNumber += lines;
+  s.NextPoint += count;
+  return error;
+}
+
+struct PointCloudTextStreamWriter::Internals
+{
+  std::unique_ptr<ReplacingFile> Output;
+  bool WithNormals = false;
+  bool Ok = false;
+};
+
+PointCloudTextStreamWriter::PointCloudTextStreamWriter()
+  : Impl(std::make_unique<Internals>())
+{
+}
+
+PointCloudTextStreamWriter::~PointCloudTextStreamWriter() = default;
+
+std::string PointCloudTextStreamWriter::Open(const std::string& path,
+  const PointCloudTable& header,
+  bool withNormals)
+{
+  Internals& w = *this->Impl;
+  w.Output = std::make_unique<ReplacingFile>(path);
+  w.WithNormals = withNormals;
+  if (w.Output->Get() == nullptr)
+  {
+    return w.Output->OpenError();
+  }
+  const std::string line = MakeHeaderLine(header, withNormals);
+  w.Ok = std::fwrite(line.data(), 1, line.size(), w.Output->Get()) == line.size();
+  return std::string();
+}
+
+std::string PointCloudTextStreamWriter::Append(const PointCloudTable& points)
+{
+  Internals& w = *this->Impl;
+  if (!w.Output || w.Output->Get() == nullptr)
+  {
+    return "the text file was not opened";
+  }
+  w.Ok = w.Ok && WriteLines(w.Output->Get(), points, w.WithNormals);
+  return std::string();
+}
+
+std::string PointCloudTextStreamWriter::Close()
+{
+  Internals& w = *this->Impl;
+  if (!w.Output || w.Output->Get() == nullptr)
+  {
+    return "the text file was not opened";
+  }
+  return w.Output->Commit(w.Ok);
 }
 
 } // namespace pcbilateral

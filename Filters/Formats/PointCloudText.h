@@ -5,6 +5,8 @@
 #define pcbilateral_PointCloudText_h
 
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -104,6 +106,56 @@ std::string ReadPointCloudText(const std::string& path,
  * leaves no partial file. Returns an empty string on success, else a one-line message.
  */
 std::string WritePointCloudText(const std::string& path, const PointCloudTable& table);
+
+/**
+ * A text point file read a range of points at a time, for a cloud that is never in memory whole
+ * (pcbilateral --memory-limit): the same points, values and errors as ReadPointCloudText. The
+ * file is mapped, and each range's pages are given back after it.
+ */
+class PointCloudTextStream
+{
+public:
+  PointCloudTextStream();
+  ~PointCloudTextStream();
+  PointCloudTextStream(const PointCloudTextStream&) = delete;
+  PointCloudTextStream& operator=(const PointCloudTextStream&) = delete;
+
+  /// Maps the file, reads its header and first point and counts its points; an empty string or
+  /// a one-line message.
+  std::string Open(const std::string& path, bool hasNormals);
+  std::uint64_t GetNumberOfPoints() const;
+  /// The file's layout and extra columns' names (no points).
+  const PointCloudTable& GetHeader() const;
+  /// Points [first, first + count) into `table`: read in order, each range starting where the
+  /// last ended, or at 0 again. Errors name the file's line.
+  std::string Read(std::uint64_t first, std::size_t count, PointCloudTable& table);
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
+};
+
+/// WritePointCloudText a range of points at a time (PointCloudTextStream's counterpart): the
+/// same bytes as WritePointCloudText given all the points at once.
+class PointCloudTextStreamWriter
+{
+public:
+  PointCloudTextStreamWriter();
+  ~PointCloudTextStreamWriter();
+  PointCloudTextStreamWriter(const PointCloudTextStreamWriter&) = delete;
+  PointCloudTextStreamWriter& operator=(const PointCloudTextStreamWriter&) = delete;
+
+  /// Writes the header line `header` (its layout, extra columns' names) asks for.
+  std::string Open(const std::string& path, const PointCloudTable& header, bool withNormals);
+  /// The next points, with the header's columns.
+  std::string Append(const PointCloudTable& points);
+  /// Moves the file onto the path (no file is left if any write failed).
+  std::string Close();
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
+};
 
 } // namespace pcbilateral
 

@@ -86,6 +86,14 @@ std::string LASPointSource::ReadPoints(std::uint64_t first,
   return problem;
 }
 
+std::string LASPointSource::WriteFiltered(OutOfCoreRun& run,
+  const std::string& path,
+  std::size_t pointsPerRange,
+  const std::function<void(double)>& progress)
+{
+  return WriteStreamedLAS(*this, run, path, pointsPerRange, progress);
+}
+
 LASFileInfo LASInfoAsWritten(const LASFileInfo& info)
 {
   LASFileInfo written;

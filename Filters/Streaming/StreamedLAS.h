@@ -5,6 +5,7 @@
 
 #include "LASHeader.h"
 #include "OutOfCoreRun.h"
+#include "StreamedFile.h"
 
 #include <cstdint>
 #include <functional>
@@ -19,7 +20,7 @@ namespace pcbilateral
  * pages (or LAZ chunks), which are given back to the system after it, so that the memory taken
  * is that of a range, not of the file.
  */
-class LASPointSource : public StreamedPoints
+class LASPointSource : public StreamedFile
 {
 public:
   LASPointSource() = default;
@@ -37,6 +38,10 @@ public:
     std::size_t count,
     double* positions,
     void* const* columns);
+  std::string WriteFiltered(OutOfCoreRun& run,
+    const std::string& path,
+    std::size_t pointsPerRange,
+    const std::function<void(double)>& progress) override;
 
 private:
   void Release();

@@ -2,8 +2,9 @@
 file, byte for byte, as the run in memory; a slab that cannot fit is refused; the temporary files
 are removed on every exit.
 
-Cases: a generated LAS survey whose sampling density varies (so that the automatic radius follows
-the density), in spatial order and shuffled, with explicit and automatic parameters, each with
+Cases: a generated survey whose sampling density varies (so that the automatic radius follows
+the density), as LAS and as text (a header and an extra column; no header, tabs), in spatial
+order and shuffled, with explicit and automatic parameters, each with
 several slab sizes (PCB_STREAMING_SLAB_POINTS caps the points of a slab and its halo, so that a
 small file makes many slabs); the refusals (a slab that cannot fit, formats not streamed, a bad
 size) and the clean-up (after an error, after Ctrl-C). Given the shared LAS folder, instead: the
@@ -41,6 +42,16 @@ def write_las(path, points):
     with open(path, "wb") as stream:
         stream.write(header)
         stream.write(records.tobytes())
+
+
+def write_text(path, points, header, delimiter):
+    """The authors' text format: x y z and an integer column, with or without a header line."""
+    with open(path, "w") as stream:
+        if header:
+            stream.write(delimiter.join(["X", "Y", "Z", "intensity"]) + "\n")
+        for i, p in enumerate(points):
+            stream.write(delimiter.join([f"{p[0]:.6f}", f"{p[1]:.6f}", f"{p[2]:.6f}",
+                                         str(i % 255)]) + "\n")
 
 
 def survey(count, seed):
@@ -81,13 +92,14 @@ class Checks:
         return os.listdir(self.tmp)
 
     def same_as_in_memory(self, name, source, parameters, slab_sizes, expect=None):
-        in_memory = os.path.join(self.scratch, name + "-memory.las")
+        extension = os.path.splitext(source)[1].replace(".laz", ".las")
+        in_memory = os.path.join(self.scratch, name + "-memory" + extension)
         result = self.run([source, in_memory] + parameters)
         self.check(result.returncode == 0, f"{name}: the run in memory ({result.stderr.strip()})")
         if expect is not None:
             self.check(expect in result.stdout, f"{name}: the run in memory says '{expect}'")
         for slab_points in slab_sizes:
-            streamed = os.path.join(self.scratch, f"{name}-{slab_points}.las")
+            streamed = os.path.join(self.scratch, f"{name}-{slab_points}{extension}")
             result = self.run([source, streamed, "--memory-limit", "1G"] + parameters, slab_points)
             slabs = [line for line in result.stdout.splitlines() if "along" in line]
             self.check(result.returncode == 0 and os.path.exists(streamed) and
@@ -111,7 +123,8 @@ def check_refusals(c, source):
             not os.path.exists(output) and len(result.stderr.strip().splitlines()) == 1,
             f"a slab that cannot fit: one line, non-zero exit, no output ({result.stderr.strip()})")
     c.check(not c.temporary_left(), "the refusal leaves no temporary file")
-    for arguments, words in (([source, os.path.join(c.scratch, "o.txt")], "writes .las"),
+    for arguments, words in (([source, os.path.join(c.scratch, "o.txt")], "into .las"),
+                             ([source, os.path.join(c.scratch, "o.laz")], "not yet"),
                              ([source, output, "--edge-aware"], "does not take"),
                              ([source, output, "-r", "3"], None)):
         size = "2X" if words is None else "1G"
@@ -126,6 +139,20 @@ def check_refusals(c, source):
     c.check(result.returncode != 0 and "no-such-folder" in result.stderr and
             not c.temporary_left(),
             f"an error while writing leaves no temporary file ({result.stderr.strip()})")
+
+
+def check_bad_text(c, text):
+    """A malformed line near the end: the same one-line error as in memory, no output, no
+    temporary file."""
+    bad = os.path.join(c.scratch, "bad.xyz")
+    with open(text) as stream, open(bad, "w") as out:
+        out.write(stream.read() + "1.0 2.0 three 4\n")
+    output = os.path.join(c.scratch, "bad-out.xyz")
+    in_memory = c.run([bad, output, "-r", "1.2"])
+    streamed = c.run([bad, output, "--memory-limit", "1G", "-r", "1.2"], 20000)
+    c.check(streamed.returncode != 0 and streamed.stderr == in_memory.stderr and
+            not os.path.exists(output) and not c.temporary_left(),
+            f"a malformed text line: the same error as in memory ({streamed.stderr.strip()})")
 
 
 def check_interrupt(c, source):
@@ -166,11 +193,18 @@ def main(program, scratch, las_dir=None):
     write_las(ordered, points)
     shuffled = os.path.join(scratch, "survey-shuffled.las")
     write_las(shuffled, points[np.random.default_rng(3).permutation(len(points))])
-    for name, source in (("ordered", ordered), ("shuffled", shuffled)):
+    text = os.path.join(scratch, "survey.xyz")
+    write_text(text, points, True, " ")
+    shuffled_text = os.path.join(scratch, "survey-shuffled.txt")
+    write_text(shuffled_text, points[np.random.default_rng(5).permutation(len(points))], False,
+               "\t")
+    for name, source in (("ordered", ordered), ("shuffled", shuffled), ("text", text),
+                         ("shuffled-text", shuffled_text)):
         c.same_as_in_memory(name + "-explicit", source, ["-r", "1.2", "-n", "0.1", "-N", "2"],
                             [0, 30000, 20000])
         c.same_as_in_memory(name + "-automatic", source, [], [0, 40000, 30000],
                             expect="following the density")
+    check_bad_text(c, text)
     check_refusals(c, ordered)
     check_interrupt(c, ordered)
     return 1 if c.failures else 0

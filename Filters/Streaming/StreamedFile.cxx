@@ -1,0 +1,121 @@
+#include "StreamedFile.h"
+
+#include "PointCloudText.h"
+#include "StreamedLAS.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+
+namespace pcbilateral
+{
+
+namespace
+{
+bool EndsWith(const std::string& name, const char* suffix)
+{
+  const std::size_t n = std::strlen(suffix);
+  return name.size() >= n &&
+         std::equal(name.end() - static_cast<std::ptrdiff_t>(n),
+           name.end(),
+           suffix,
+           [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
+}
+
+bool IsLAS(const std::string& name)
+{
+  return EndsWith(name, ".las") || EndsWith(name, ".laz");
+}
+
+bool IsText(const std::string& name)
+{
+  return EndsWith(name, ".txt") || EndsWith(name, ".xyz");
+}
+
+/// A text file (x y z, then further columns) read and written back a range at a time.
+class TextPointSource : public StreamedFile
+{
+public:
+  std::string Open(const std::string& path) { return this->Text.Open(path, false); }
+  std::uint64_t GetNumberOfPoints() const override { return this->Text.GetNumberOfPoints(); }
+  std::string ReadPositions(std::uint64_t first, std::size_t count, double* positions) override
+  {
+    const std::string problem = this->Text.Read(first, count, this->Range);
+    std::copy(this->Range.Positions.begin(), this->Range.Positions.end(), positions);
+    return problem;
+  }
+  std::string WriteFiltered(OutOfCoreRun& run,
+    const std::string& path,
+    std::size_t pointsPerRange,
+    const std::function<void(double)>& progress) override;
+
+private:
+  PointCloudTextStream Text;
+  PointCloudTable Range;
+};
+
+std::string TextPointSource::WriteFiltered(OutOfCoreRun& run,
+  const std::string& path,
+  std::size_t pointsPerRange,
+  const std::function<void(double)>& progress)
+{
+  PointCloudTextStreamWriter writer;
+  std::string problem = writer.Open(path, this->Text.GetHeader(), false);
+  const std::uint64_t total = this->GetNumberOfPoints();
+  for (std::uint64_t first = 0; first < total && problem.empty(); first += pointsPerRange)
+  {
+    const auto count =
+      static_cast<std::size_t>(std::min<std::uint64_t>(pointsPerRange, total - first));
+    problem = this->Text.Read(first, count, this->Range);
+    if (problem.empty())
+    {
+      problem = run.ReadFiltered(first, count, this->Range.Positions.data());
+    }
+    if (problem.empty())
+    {
+      problem = writer.Append(this->Range);
+    }
+    if (progress)
+    {
+      progress(static_cast<double>(first + count) / static_cast<double>(total));
+    }
+  }
+  return problem.empty() ? writer.Close() : problem;
+}
+} // namespace
+
+std::string StreamingFormatsProblem(const std::string& input, const std::string& output)
+{
+  if (IsLAS(input) && EndsWith(output, ".las"))
+  {
+    return std::string();
+  }
+  if (IsText(input) && IsText(output))
+  {
+    return std::string();
+  }
+  return "streaming reads .las or .laz into .las, and .txt or .xyz into .txt or .xyz (not yet "
+         "PCD, PLY, VTP or LAZ output, nor one format into another)";
+}
+
+std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,
+  const std::string& output,
+  std::string& problem)
+{
+  problem = StreamingFormatsProblem(input, output);
+  if (!problem.empty())
+  {
+    return nullptr;
+  }
+  if (IsLAS(input))
+  {
+    auto las = std::make_unique<LASPointSource>();
+    problem = las->Open(input);
+    return problem.empty() ? std::move(las) : nullptr;
+  }
+  auto text = std::make_unique<TextPointSource>();
+  problem = text->Open(input);
+  return problem.empty() ? std::move(text) : nullptr;
+}
+
+} // namespace pcbilateral

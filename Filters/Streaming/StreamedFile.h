@@ -1,0 +1,43 @@
+// The files the out-of-core run reads and writes: an input read a range of points at a time, and
+// the filtered cloud written in the output's format a range at a time. Plain C++17 over Formats.
+#ifndef pcbilateral_StreamedFile_h
+#define pcbilateral_StreamedFile_h
+
+#include "OutOfCoreRun.h"
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace pcbilateral
+{
+
+/// An input file for OutOfCoreRun, which also writes the filtered cloud in its own format.
+class StreamedFile : public StreamedPoints
+{
+public:
+  /**
+   * Writes the file's records again, a range of `pointsPerRange` points at a time, each point
+   * at its filtered position (run.ReadFiltered): the same bytes as pcbilateral's run in memory
+   * writes. Progress from 0 to 1. Returns an empty string or a one-line message (no file is
+   * left then).
+   */
+  virtual std::string WriteFiltered(OutOfCoreRun& run,
+    const std::string& path,
+    std::size_t pointsPerRange,
+    const std::function<void(double)>& progress) = 0;
+};
+
+/// Why `input` cannot be streamed into `output` (by their extensions), or empty: LAS or LAZ into
+/// LAS, text (.txt, .xyz) into text.
+std::string StreamingFormatsProblem(const std::string& input, const std::string& output);
+
+/// The input opened for streaming into `output`'s format, or null with `problem` set.
+std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,
+  const std::string& output,
+  std::string& problem);
+
+} // namespace pcbilateral
+
+#endif
