@@ -279,17 +279,9 @@ struct OutOfCoreRun::Internals
       firstRange ? *normal.second : std::max(s.NormalRadiusRange[1], *normal.second);
   }
 
-  std::size_t BinOf(const double p[3]) const
-  {
-    if (!(this->BinWidth > 0.0))
-    {
-      return 0;
-    }
-    const double at = (p[this->Plan.Axis] - this->Whole.Min[this->Plan.Axis]) / this->BinWidth;
-    return static_cast<std::size_t>(std::clamp(at, 0.0, static_cast<double>(NumberOfBins - 1)));
-  }
+  std::size_t BinOf(const double p[3]) const { return this->BinAt(p[this->Plan.Axis]); }
 
-  /// Where bins [first, last] start and end along the axis.
+  /// Where bin `bin` starts along the axis.
   double BinStart(std::size_t bin) const
   {
     return this->Whole.Min[this->Plan.Axis] + static_cast<double>(bin) * this->BinWidth;
@@ -313,8 +305,8 @@ struct OutOfCoreRun::Internals
       }
       // (Margins for the rounding of the positions' arithmetic, as the ghost reach has.)
       halo = iterations * iterations * 1.01 * largest + 1e-9 * magnitude;
-      const std::size_t newLow = this->BinOf(this->BinStart(first) - halo, true);
-      const std::size_t newHigh = this->BinOf(this->BinStart(last + 1) + halo, false);
+      const std::size_t newLow = this->BinAt(this->BinStart(first) - halo);
+      const std::size_t newHigh = this->BinAt(this->BinStart(last + 1) + halo);
       if (newLow == low && newHigh == high)
       {
         return halo;
@@ -324,15 +316,14 @@ struct OutOfCoreRun::Internals
     }
   }
 
-  /// The bin holding coordinate `at` along the axis (clamped), for a halo's lower or upper end.
-  std::size_t BinOf(double at, bool lower) const
+  /// The bin holding coordinate `at` along the axis (clamped to the bins).
+  std::size_t BinAt(double at) const
   {
     if (!(this->BinWidth > 0.0))
     {
       return 0;
     }
     const double bin = std::floor((at - this->Whole.Min[this->Plan.Axis]) / this->BinWidth);
-    (void)lower;
     return static_cast<std::size_t>(std::clamp(bin, 0.0, static_cast<double>(NumberOfBins - 1)));
   }
 
@@ -521,6 +512,14 @@ std::string OutOfCoreRun::Measure()
     run.Progress("measuring", 0.0);
     run.Scales = MeasureSelection(selection, fraction, run.Threads);
     run.HasScales = true;
+  }
+  const std::uint64_t nonFinite = run.Points.GetNumberOfPoints() - run.Whole.NumberOfFinitePoints;
+  if (nonFinite > 0)
+  {
+    // (The run in memory's warning: the slabs' runs never see these points.)
+    run.Warn(std::to_string(nonFinite) +
+             " point(s) have NaN or infinite coordinates: they are passed through unchanged and "
+             "are never used as neighbours");
   }
   run.ResolveParameters();
   if (run.Summary.Status == BilateralStatus::Failed)

@@ -155,6 +155,27 @@ def check_bad_text(c, text):
             f"a malformed text line: the same error as in memory ({streamed.stderr.strip()})")
 
 
+def check_not_finite_text(c, text):
+    """Points without coordinates (nan) pass through unchanged, with the in-memory warning."""
+    with_nan = os.path.join(c.scratch, "nan.xyz")
+    with open(text) as stream:
+        lines = stream.read().splitlines(True)
+    lines.insert(1000, "nan nan nan 7\n")
+    lines.insert(30000, "1.0 inf 2.0 8\n")
+    with open(with_nan, "w") as out:
+        out.write("".join(lines))
+    in_memory = os.path.join(c.scratch, "nan-memory.xyz")
+    streamed = os.path.join(c.scratch, "nan-streamed.xyz")
+    memory_run = c.run([with_nan, in_memory, "-r", "1.2", "-N", "2"])
+    streamed_run = c.run([with_nan, streamed, "-r", "1.2", "-N", "2", "--memory-limit", "1G"],
+                         20000)
+    c.check(memory_run.returncode == 0 and streamed_run.returncode == 0 and
+            c.read(in_memory) == c.read(streamed) and "2 point(s) have NaN" in streamed_run.stderr
+            and streamed_run.stderr == memory_run.stderr,
+            f"points not finite: the same bytes and warning as in memory "
+            f"({streamed_run.stderr.strip()})")
+
+
 def check_interrupt(c, source):
     output = os.path.join(c.scratch, "interrupted.las")
     # (A large radius: a run of seconds.)
@@ -205,6 +226,14 @@ def main(program, scratch, las_dir=None):
         c.same_as_in_memory(name + "-automatic", source, [], [0, 40000, 30000],
                             expect="following the density")
     check_bad_text(c, text)
+    check_not_finite_text(c, text)
+    # One thread in the slabs, two in memory (the default on this machine's two cores).
+    one_thread = os.path.join(scratch, "one-thread.las")
+    result = c.run([shuffled, one_thread, "-r", "1.2", "-n", "0.1", "-N", "2", "-t", "1",
+                    "--memory-limit", "1G"], 20000)
+    c.check(result.returncode == 0 and
+            c.read(one_thread) == c.read(os.path.join(scratch, "shuffled-explicit-memory.las")),
+            "one thread in the slabs: the same bytes as in memory")
     check_refusals(c, ordered)
     check_interrupt(c, ordered)
     return 1 if c.failures else 0
