@@ -1,7 +1,7 @@
 """Run by TestDebianPackage.sh inside a ParaView program (pvpython, pvbatch, or the GUI with
 --script) started from the unpacked package's usr/bin, with no Load Plugin step: writes
 "ok: ..." / "FAILED: ..." lines to PCB_LOG (or prints them). Checks that the plugin was loaded at
-start-up from the package (PCB_ROOT), that its filter is defined in the Filters menu's group
+start-up from the package (under PCB_ROOT, the unpacked tree, or installed), that its filter is defined in the Filters menu's group
 with its menu category, that ParaView's open and save dialogs list its readers' and writers'
 extensions, and that the filter runs. With PCB_EXPECT_ABSENT=1 it checks the opposite: the
 plugin is not loaded (a program started from a folder without the package's paraview.conf)."""
@@ -10,7 +10,7 @@ import sys
 
 from paraview import servermanager, simple
 
-root = os.environ["PCB_ROOT"]
+root = os.environ.get("PCB_ROOT", "")  # "" for the installed package
 expect_absent = os.environ.get("PCB_EXPECT_ABSENT") == "1"
 lines = []
 
