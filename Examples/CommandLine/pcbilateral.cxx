@@ -848,7 +848,8 @@ std::uint64_t ChooseMemoryLimit(const Options& options)
   }
   if (vtkPointCloudFileIO::IsTextFormat(options.Input.c_str()))
   {
-    points = std::filesystem::file_size(options.Input, error) / 20;
+    const std::uintmax_t bytes = std::filesystem::file_size(options.Input, error);
+    points = error ? 0 : bytes / 20;
   }
   else if (las.Open(options.Input).empty())
   {

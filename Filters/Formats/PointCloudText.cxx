@@ -563,11 +563,20 @@ struct PointCloudTextStream::Internals
   std::size_t NextLineNumber = 0;
   std::uint64_t NextPoint = 0;
 
-  void Release() const
+  void Release() const { this->Release(this->Text, this->Text + this->Size); }
+  /// Gives back the whole pages of the mapping in [from, to).
+  void Release(const char* from, const char* to) const
   {
-    if (this->Text != nullptr)
+    if (this->Text == nullptr)
     {
-      ::madvise(const_cast<char*>(this->Text), this->Size, MADV_DONTNEED);
+      return;
+    }
+    const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
+    const std::uintptr_t first = reinterpret_cast<std::uintptr_t>(from) / page * page;
+    const std::uintptr_t last = reinterpret_cast<std::uintptr_t>(to) / page * page;
+    if (last > first)
+    {
+      ::madvise(reinterpret_cast<void*>(first), last - first, MADV_DONTNEED);
     }
   }
 };
@@ -595,10 +604,14 @@ std::string PointCloudTextStream::Open(const std::string& path, bool hasNormals)
   if (descriptor < 0 || ::fstat(descriptor, &status) != 0 || S_ISDIR(status.st_mode))
   {
     const bool directory = descriptor >= 0 && S_ISDIR(status.st_mode);
+    // (ReadPointCloudText's messages: a missing file is said as the system says it.)
+    const int failure = errno;
     const std::string problem =
       path + ": " +
       (directory ? std::string("is a directory, not a point file")
-                 : "cannot be opened for reading (" + std::string(std::strerror(errno)) + ")");
+        : failure == ENOENT
+          ? std::string(std::strerror(failure))
+          : "cannot be opened for reading (" + std::string(std::strerror(failure)) + ")");
     if (descriptor >= 0)
     {
       ::close(descriptor);
@@ -633,10 +646,18 @@ std::string PointCloudTextStream::Open(const std::string& path, bool hasNormals)
       names.empty() ? "column" + std::to_string(c + 1) : names[c]);
   }
   s.Header.ExtraColumns.resize(s.Header.ExtraColumnNames.size());
+  // Counted a block at a time, each block's pages given back after it: the mapped file's pages
+  // count in the process's memory while they are held.
+  const char* released = s.Text;
   for (const char* line = s.Start.FirstPoint; line != nullptr && line < end;
        line = LineEnd(line, end) + 1)
   {
     s.Points += IsSkipped(line, LineEnd(line, end)) ? 0 : 1;
+    if (line - released > (std::ptrdiff_t{ 1 } << 26))
+    {
+      s.Release(released, line);
+      released = line;
+    }
   }
   s.Release();
   return std::string();

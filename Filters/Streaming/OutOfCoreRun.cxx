@@ -288,14 +288,17 @@ struct OutOfCoreRun::Internals
   }
 
   /// The halo of bins [first, last]: N^2 times the largest radius of the bins it reaches,
-  /// widened until it reaches no further bin; and the bins it reaches.
+  /// widened until it reaches no further bin; and the bins it reaches, which also take in every
+  /// bin whose points could move into the halo in N - 1 iterations (each by less than its
+  /// largest radius): a point never loaded then never comes within the halo, and every point
+  /// that does moves by less than the radius the halo was taken from (docs/streaming.md).
   double HaloOf(std::size_t first, std::size_t last, std::size_t& low, std::size_t& high) const
   {
     const double iterations = this->Summary.NumberOfIterationsUsed;
-    const double magnitude = this->Whole.LargestMagnitude();
+    // (Margins for the rounding of the positions' arithmetic, as the ghost reach has.)
+    const double margin = 1e-9 * this->Whole.LargestMagnitude();
     low = first;
     high = last;
-    double halo = 0.0;
     while (true)
     {
       double largest = 0.0;
@@ -303,11 +306,21 @@ struct OutOfCoreRun::Internals
       {
         largest = std::max(largest, this->BinLargestRadius[b]);
       }
-      // (Margins for the rounding of the positions' arithmetic, as the ghost reach has.)
-      halo = iterations * iterations * 1.01 * largest + 1e-9 * magnitude;
-      const std::size_t newLow = this->BinAt(this->BinStart(first) - halo);
-      const std::size_t newHigh = this->BinAt(this->BinStart(last + 1) + halo);
-      if (newLow == low && newHigh == high)
+      const double halo = iterations * iterations * 1.01 * largest + margin;
+      const double from = this->BinStart(first) - halo;
+      const double to = this->BinStart(last + 1) + halo;
+      std::size_t newLow = this->BinAt(from), newHigh = this->BinAt(to);
+      for (std::size_t b = 0; b < newLow; ++b)
+      {
+        const double travel = (iterations - 1.0) * 1.01 * this->BinLargestRadius[b] + margin;
+        newLow = this->BinStart(b + 1) + travel >= from ? b : newLow;
+      }
+      for (std::size_t b = NumberOfBins - 1; b > newHigh; --b)
+      {
+        const double travel = (iterations - 1.0) * 1.01 * this->BinLargestRadius[b] + margin;
+        newHigh = this->BinStart(b) - travel <= to ? b : newHigh;
+      }
+      if (newLow >= low && newHigh <= high)
       {
         return halo;
       }
@@ -327,12 +340,25 @@ struct OutOfCoreRun::Internals
     return static_cast<std::size_t>(std::clamp(bin, 0.0, static_cast<double>(NumberOfBins - 1)));
   }
 
-  std::uint64_t PointsIn(std::size_t low, std::size_t high) const
+  /// Whether bin b holds points of slab [first, last] or of its halo (a bin the halo takes in
+  /// only for its radius holds none).
+  bool HoldsSlabPoints(std::size_t b, std::size_t first, std::size_t last, double halo) const
   {
+    const double slack = 1e-6 * this->BinWidth;
+    return (b >= first && b <= last) ||
+           (this->BinStart(b + 1) + slack >= this->BinStart(first) - halo &&
+             this->BinStart(b) - slack <= this->BinStart(last + 1) + halo);
+  }
+
+  /// The points a slab and its halo load at most: those of the bins that hold some.
+  std::uint64_t PointsOfSlab(std::size_t first, std::size_t last, double& halo) const
+  {
+    std::size_t low = 0, high = 0;
+    halo = this->HaloOf(first, last, low, high);
     std::uint64_t points = 0;
     for (std::size_t b = low; b <= high; ++b)
     {
-      points += this->BinCounts[b];
+      points += this->HoldsSlabPoints(b, first, last, halo) ? this->BinCounts[b] : 0;
     }
     return points;
   }
@@ -354,9 +380,9 @@ std::string OutOfCoreRun::Internals::PlanSlabs()
   std::size_t first = 0;
   while (first < NumberOfBins)
   {
-    std::size_t last = first, low = 0, high = 0;
-    double halo = this->HaloOf(first, last, low, high);
-    std::uint64_t points = this->PointsIn(low, high);
+    std::size_t last = first;
+    double halo = 0.0;
+    std::uint64_t points = this->PointsOfSlab(first, last, halo);
     if (points > slabPoints)
     {
       std::ostringstream problem;
@@ -367,9 +393,8 @@ std::string OutOfCoreRun::Internals::PlanSlabs()
     }
     while (last + 1 < NumberOfBins)
     {
-      std::size_t nextLow = 0, nextHigh = 0;
-      const double nextHalo = this->HaloOf(first, last + 1, nextLow, nextHigh);
-      const std::uint64_t nextPoints = this->PointsIn(nextLow, nextHigh);
+      double nextHalo = 0.0;
+      const std::uint64_t nextPoints = this->PointsOfSlab(first, last + 1, nextHalo);
       if (nextPoints > slabPoints)
       {
         break;
@@ -398,21 +423,22 @@ std::string OutOfCoreRun::Internals::LoadSlab(std::size_t slab,
   const std::size_t last = this->SlabFirstBin[slab + 1] - 1;
   std::size_t low = 0, high = 0;
   const double halo = this->HaloOf(first, last, low, high);
+  double unused = 0.0;
   const int axis = this->Plan.Axis;
   const double from = this->BinStart(first) - halo;
   const double to = this->BinStart(last + 1) + halo;
   points.clear();
-  points.reserve(static_cast<std::size_t>(this->PointsIn(low, high)));
+  points.reserve(static_cast<std::size_t>(this->PointsOfSlab(first, last, unused)));
   std::vector<IndexedPoint> haloPoints;
   for (std::size_t b = low; b <= high; ++b)
   {
     const bool own = b >= first && b <= last;
-    RecordReader bin;
-    const std::string path = this->Files.PathOf(b);
-    if (this->BinCounts[b] == 0)
+    if (this->BinCounts[b] == 0 || !this->HoldsSlabPoints(b, first, last, halo))
     {
       continue;
     }
+    RecordReader bin;
+    const std::string path = this->Files.PathOf(b);
     std::string problem = bin.Open(path);
     if (!problem.empty())
     {

@@ -223,7 +223,7 @@ def main(program, scratch, las_dir=None):
                          ("shuffled-text", shuffled_text)):
         c.same_as_in_memory(name + "-explicit", source, ["-r", "1.2", "-n", "0.1", "-N", "2"],
                             [0, 30000, 20000])
-        c.same_as_in_memory(name + "-automatic", source, [], [0, 40000, 30000],
+        c.same_as_in_memory(name + "-automatic", source, [], [0, 40000, 35000],
                             expect="following the density")
     check_bad_text(c, text)
     check_not_finite_text(c, text)
