@@ -38,7 +38,12 @@ try:
     # Distributed runs, built when VTK has MPI.
     import vtkmodules.vtkParallelCore  # noqa: F401
     from .vtkFiltersParallelPointCloudBilateral import vtkPPointCloudBilateralFilter  # noqa: F401
-    from .vtkIOParallelPointCloudBilateral import vtkPLASPointCloudWriter  # noqa: F401
+    from .vtkIOParallelPointCloudBilateral import (  # noqa: F401
+        vtkPLASPointCloudReader,
+        vtkPLASPointCloudWriter,
+        vtkPPCDPointCloudReader,
+        vtkPPointCloudTextReader,
+    )
 except ImportError:
     pass
 
@@ -51,5 +56,7 @@ __all__ = [
     "vtkPointCloudFileIO",
     "vtkPointCloudTextReader",
     "vtkPointCloudTextWriter",
-] + [name for name in ("vtkPPointCloudBilateralFilter", "vtkPLASPointCloudWriter")
+] + [name for name in ("vtkPPointCloudBilateralFilter", "vtkPLASPointCloudWriter",
+                                 "vtkPLASPointCloudReader", "vtkPPCDPointCloudReader",
+                                 "vtkPPointCloudTextReader")
      if name in globals()]
