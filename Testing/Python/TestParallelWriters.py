@@ -15,11 +15,14 @@ whole file:
 - .laz: both decode (with the project's reader) to the same points and arrays, bit for bit and
   in order, and the same header fields; the file written under MPI has each rank's points in
   chunks of its own (the LASzip record says the chunks' sizes vary), so more chunks than one
-  process's when a share does not end at a multiple of 50,000 points.
+  process's when a share does not end at a multiple of 50,000 points; with --lazperf and
+  --laz-records (and Node.js), laz-perf decodes it to the records our decoder gives.
 """
 import argparse
 import os
+import shutil
 import struct
+import subprocess
 import sys
 
 import numpy as np
@@ -37,6 +40,8 @@ parser.add_argument("file")
 parser.add_argument("output", choices=["las", "laz"])
 parser.add_argument("--shuffled", action="store_true")
 parser.add_argument("--iterations", type=int, default=1)
+parser.add_argument("--lazperf", help="the laz-perf npm package (LAZ.laz-perf's), if installed")
+parser.add_argument("--laz-records", help="the LAZRecords program of Testing/IO")
 args = parser.parse_args()
 
 if not os.path.isfile(args.file):
@@ -159,6 +164,29 @@ if os.path.isfile(written) and os.path.isfile(reference):
         check(chunk_count(written) == expected,
               f"{chunk_count(written)} chunks: each rank's own ({expected} for shares {shares}; "
               f"one process: {chunk_count(reference)})")
+
+
+def check_with_lazperf(laz):
+    """laz-perf (an independent LASzip implementation) decodes `laz` to our records."""
+    node = shutil.which("node")
+    if not (node and args.lazperf and args.laz_records
+            and os.path.isfile(os.path.join(args.lazperf, "package.json"))):
+        print("laz-perf not installed (.ci/install-lazperf) or no Node.js: its check is skipped")
+        return
+    script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "IO",
+                          "lazperf-records.js")
+    theirs, ours = laz + ".lazperf", laz + ".ours"
+    decoded = subprocess.run([node, script, args.lazperf, laz, theirs], capture_output=True,
+                             text=True)
+    mine = subprocess.run([args.laz_records, laz, ours], capture_output=True, text=True)
+    same = (decoded.returncode == 0 and mine.returncode == 0
+            and open(theirs, "rb").read() == open(ours, "rb").read())
+    check(same, f"laz-perf decodes {os.path.basename(laz)} to our records "
+          f"({(decoded.stderr or decoded.stdout).strip().splitlines()[-1:]})")
+
+
+if args.output == "laz" and os.path.isfile(written):
+    check_with_lazperf(written)
 if failures:
     finish()  # exits with status 1; mpirun then ends the other ranks
 # sys.exit would skip MPI_Finalize, which mpirun reports as a failure: end the script instead.
