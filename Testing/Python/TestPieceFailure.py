@@ -6,8 +6,12 @@ completes on every rank, and a later update on a sound file completes (no rank w
 waiting in a collective).
 
     mpirun -np P pvbatch TestPieceFailure.py PLUGIN SCRATCH_FOLDER FILE
+    mpirun -np P pvbatch TestPieceFailure.py PLUGIN SCRATCH_FOLDER --laz
 
 FILE is a text (.xyz, .txt) or PCD ascii file; the damaged copy is written to SCRATCH_FOLDER.
+With --laz, a LAZ file of 120,000 points (point format 0, three chunks) is written there and its
+last chunk's last 20,000 bytes overwritten: only the last ranks' pieces decode that chunk (the
+LAS reader, which reported the damage and went on with no points on that rank, fails too).
 Before the collective check the other ranks waited for the damaged one in the filter for ever:
 the test's timeout catches that. Exits with 77 (skipped) when FILE does not exist.
 """
@@ -22,27 +26,64 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pcb_testing import check, failures, finish  # noqa: E402
 
 plugin, scratch, source = sys.argv[1:4]
-if not os.path.isfile(source):
+laz = source == "--laz"
+if not laz and not os.path.isfile(source):
     print(f"skipped: no file '{source}' (set the shared data folders)")
     sys.exit(77)
 ranks = vtkMultiProcessController.GetGlobalController().GetNumberOfProcesses()
 check(ranks >= 2, f"{ranks} MPI processes")
 os.makedirs(scratch, exist_ok=True)
 simple.LoadPlugin(plugin, remote=True, ns=vars(simple))
-extension = os.path.splitext(source)[1].lower()
-Reader = simple.PCDPointCloudReader if extension == ".pcd" else simple.PointCloudTextReader
 
-# The damaged copy: the last line cut after its first value, so only the last share is bad.
-with open(source, "rb") as stream:
-    data = stream.read().rstrip(b"\r\n")
-last_line = data.rfind(b"\n") + 1
-first_value_end = data.find(b" ", last_line + 1)
-tab = data.find(b"\t", last_line + 1)
-if tab != -1 and (first_value_end == -1 or tab < first_value_end):
-    first_value_end = tab
+if laz:
+    import numpy as np
+    from vtkmodules.numpy_interface import dataset_adapter as dsa
+    from vtkmodules.vtkCommonDataModel import vtkPolyData
+    from pointcloudbilateral import vtkLASPointCloudWriter
+
+    rng = np.random.default_rng(27)
+    cloud = dsa.WrapDataObject(vtkPolyData())
+    cloud.Points = np.column_stack([rng.random(120000), rng.random(120000),
+                                    rng.normal(0, 0.005, 120000)])
+    source = os.path.join(scratch, f"sound-{ranks}.laz")
+    writer = vtkLASPointCloudWriter()
+    writer.SetInputData(cloud.VTKObject)
+    writer.SetFileName(source)
+    check(writer.Write() == 1, f"{source} written")
+extension = os.path.splitext(source)[1].lower()
+Reader = {".pcd": simple.PCDPointCloudReader, ".laz": simple.LASPointCloudReader}.get(
+    extension, simple.PointCloudTextReader)
 damaged = os.path.join(scratch, f"cut-short-{ranks}-" + os.path.basename(source))
-with open(damaged, "wb") as stream:
-    stream.write(data[:first_value_end] + b"\n")
+
+
+def damage_last_chunk():
+    """The LAZ file with the last 20,000 bytes before its chunk table overwritten."""
+    with open(source, "rb") as stream:
+        data = bytearray(stream.read())
+    point_data = int.from_bytes(data[96:100], "little")
+    table = int.from_bytes(data[point_data:point_data + 8], "little")
+    data[table - 20000:table] = b"\xff" * 20000
+    with open(damaged, "wb") as stream:
+        stream.write(data)
+
+
+def cut_last_line():
+    """The last line cut after its first value, so that only the last share is bad."""
+    with open(source, "rb") as stream:
+        data = stream.read().rstrip(b"\r\n")
+    last_line = data.rfind(b"\n") + 1
+    first_value_end = data.find(b" ", last_line + 1)
+    tab = data.find(b"\t", last_line + 1)
+    if tab != -1 and (first_value_end == -1 or tab < first_value_end):
+        first_value_end = tab
+    with open(damaged, "wb") as stream:
+        stream.write(data[:first_value_end] + b"\n")
+
+
+if laz:
+    damage_last_chunk()
+else:
+    cut_last_line()
 
 
 def update(proxy, fetch=True):
