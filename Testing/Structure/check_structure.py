@@ -32,6 +32,8 @@ LAYERS = {
     "VTKIO": ["VTK", "VTKCommon", "Formats", "Core/Common"],
     "Parallel": ["VTK", "VTKFilter", "Core", "Core/Common", "Core/Measurement"],
     "Streaming": ["Core", "Core/Common", "Core/Measurement", "Formats"],
+    # One file written by every process: the LAS writer of VTKIO over the pieces of Formats.
+    "ParallelIO": ["VTK", "VTKIO", "Formats", "Core/Common"],
 }
 # Layers that must know nothing of VTK (nor of ParaView's Qt side).
 PLAIN = [layer for layer in LAYERS
