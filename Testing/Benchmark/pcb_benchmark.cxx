@@ -17,6 +17,10 @@
 //       the floor and the kernel alone only.
 //   pcb_benchmark --write-lidar20M FILE.las
 //       writes the lidar20M workload as a LAS file (point format 1, millimetre scale).
+//   pcb_benchmark --write-lidar COUNT FILE.las|FILE.laz
+//       writes the same kind of tile with COUNT points (LAZ for .laz), a million points at a
+//       time, so a tile of any size is never in memory (Testing/Benchmark/pcb_scale.sh); for
+//       COUNT = 20000000 and a .las path, the same bytes as --write-lidar20M.
 //   pcb_benchmark --write-cube600k FILE.xyz
 //       writes the cube600k workload as an ASCII file, for other programs.
 //   pcb_benchmark [--runs N] --las FOLDER
@@ -34,6 +38,7 @@
 #include "LASHeader.h"
 #include "LASReader.h"
 #include "LASWriter.h"
+#include "LidarTile.h"
 #include "PointCloudText.h"
 #include "SampleShapes.h"
 
@@ -79,50 +84,11 @@ constexpr std::size_t LidarPoints = 20000000;
 constexpr double LidarRadius = 3.6;
 constexpr double LidarNormalRadius = 0.5;
 
-/**
- * An airborne LiDAR tile in metres: one point per square metre, uniformly at random over a
- * 5000 m x (points / 5000) m rectangle at georeferenced coordinates (UTM-like offsets), seen
- * from above: rolling ground (hills of some 20 m over kilometres) and, on a 60 m grid of
- * blocks, buildings with flat roofs 4 to 25 m high and 15 to 45 m wide in about half of the
- * blocks, whose roofs hide the ground below (no wall points, as from nadir). Vertical noise of
- * 5 cm, as in survey-grade LiDAR.
- */
+/// The lidar20M workload's points (see LidarTile).
 std::vector<double> GenerateLidar(std::size_t points)
 {
-  constexpr double Width = 5000.0;
-  constexpr double Block = 60.0;
-  constexpr double OffsetX = 600000.0, OffsetY = 5000000.0, Noise = 0.05;
-  const double depth = static_cast<double>(points) / Width;
-  Random random(20171029);
   std::vector<double> xyz(3 * points);
-  for (std::size_t i = 0; i < points; ++i)
-  {
-    const double x = random.Uniform(0.0, Width), y = random.Uniform(0.0, depth);
-    double z = 120.0 + 12.0 * std::sin(x / 700.0) * std::cos(y / 900.0) + 0.004 * x;
-    // The block's building, from a hash of the block's indices (the same for every point).
-    const auto bx = static_cast<std::uint64_t>(x / Block);
-    const auto by = static_cast<std::uint64_t>(y / Block);
-    std::uint64_t h = (bx * 0x9E3779B97F4A7C15ull) ^ (by * 0xC2B2AE3D27D4EB4Full);
-    h ^= h >> 29;
-    h *= 0xBF58476D1CE4E5B9ull;
-    h ^= h >> 32;
-    if ((h & 1) != 0)
-    {
-      const double size = 15.0 + static_cast<double>((h >> 8) % 31);
-      const double height = 4.0 + static_cast<double>((h >> 16) % 22);
-      const double lx = x - bx * Block, ly = y - by * Block;
-      const double margin = (Block - size) / 2.0;
-      if (lx > margin && lx < Block - margin && ly > margin && ly < Block - margin)
-      {
-        // Ground level at the block's centre: roofs are flat.
-        const double cx = (bx + 0.5) * Block, cy = (by + 0.5) * Block;
-        z = 120.0 + 12.0 * std::sin(cx / 700.0) * std::cos(cy / 900.0) + 0.004 * cx + height;
-      }
-    }
-    xyz[3 * i] = OffsetX + x;
-    xyz[3 * i + 1] = OffsetY + y;
-    xyz[3 * i + 2] = z + Noise * random.Gaussian();
-  }
+  pcbilateral_benchmark::LidarTile(points).Next(points, xyz.data());
   return xyz;
 }
 
@@ -485,39 +451,26 @@ int Benchmark(int runs, bool skipTenMillion, const std::string& only, int onlyTh
   return EXIT_SUCCESS;
 }
 
-int WriteLidar(const char* path)
+/// Writes the lidar tile of `points` points (LAZ for a .laz path), a block at a time.
+int WriteLidar(const char* count, const char* path)
 {
-  const std::vector<double> xyz = GenerateLidar(LidarPoints);
-  double bounds[6] = { 1e300, 1e300, 1e300, -1e300, -1e300, -1e300 };
-  for (std::size_t i = 0; i < LidarPoints; ++i)
+  char* end = nullptr;
+  const unsigned long long points = std::strtoull(count, &end, 10);
+  if (end == count || *end != '\0' || points == 0 || count[0] == '-')
   {
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      bounds[axis] = std::min(bounds[axis], xyz[3 * i + axis]);
-      bounds[3 + axis] = std::max(bounds[3 + axis], xyz[3 * i + axis]);
-    }
+    std::fprintf(
+      stderr, "--write-lidar: the point count must be a positive integer, not '%s'\n", count);
+    return EXIT_FAILURE;
   }
-  // Point format 1 (GPS time, no colour), millimetres: what airborne surveys deliver.
-  pcbilateral::LASFileInfo info = pcbilateral::DefaultLASFileInfo(LidarPoints, bounds, true, false);
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    info.Header.Scale[axis] = 0.001;
-  }
-  LASColumns columns(info, LidarPoints);
-  for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
-  {
-    const std::size_t bytes = LidarPoints * pcbilateral::LASColumnBytes(info.Dimensions[d]);
-    std::memset(columns.Storage[d].get(), 0, bytes);
-  }
-  const std::string error =
-    pcbilateral::WriteLAS(path, info, LidarPoints, xyz.data(), columns.Columns.data());
+  const std::string error = pcbilateral_benchmark::WriteLidarTile(path, points);
   if (!error.empty())
   {
     std::fprintf(stderr, "%s\n", error.c_str());
     return EXIT_FAILURE;
   }
-  std::printf("wrote %s (20,000,000 points); the workload's parameters: -r %g -n %g -N 2\n",
+  std::printf("wrote %s (%llu points); the workload's parameters: -r %g -n %g -N 2\n",
     path,
+    points,
     LidarRadius,
     LidarNormalRadius);
   return EXIT_SUCCESS;
@@ -766,7 +719,11 @@ int main(int argc, char* argv[])
     }
     else if (argument == "--write-lidar20M" && i + 1 < argc)
     {
-      return WriteLidar(argv[i + 1]);
+      return WriteLidar("20000000", argv[i + 1]);
+    }
+    else if (argument == "--write-lidar" && i + 2 < argc)
+    {
+      return WriteLidar(argv[i + 1], argv[i + 2]);
     }
     else if (argument == "--write-cube600k" && i + 1 < argc)
     {
@@ -786,6 +743,7 @@ int main(int argc, char* argv[])
         "usage: %s [--runs N] [--skip-10m] [--threads 1|2] [--only "
         "cube600k|sphere1M|sphere10M|lidar20M] | "
         "--floor | --write-cube600k FILE.xyz | --write-lidar20M FILE.las | "
+        "--write-lidar COUNT FILE.las|FILE.laz | "
         "[--runs N] --las FOLDER | "
         "[--runs N] --end-to-end PROGRAM ARGUMENTS...\n",
         argv[0]);
