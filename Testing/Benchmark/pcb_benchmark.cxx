@@ -23,6 +23,9 @@
 //       COUNT = 20000000 and a .las path, the same bytes as --write-lidar20M.
 //   pcb_benchmark --write-cube600k FILE.xyz
 //       writes the cube600k workload as an ASCII file, for other programs.
+//   pcb_benchmark [--runs N] --text-io IN.xyz OUT.xyz
+//       times parsing a text file and writing it again (pcbilateral's text input and output
+//       without the filter), median of the runs.
 //   pcb_benchmark [--runs N] --las FOLDER
 //       writes a 10,000,000-point LAS file (point format 3: GPS time and colours) in FOLDER,
 //       then times reading it (decoded into fresh columns, the file released), writing it
@@ -476,6 +479,39 @@ int WriteLidar(const char* count, const char* path)
   return EXIT_SUCCESS;
 }
 
+/// The text file's parse and write alone, as pcbilateral does them (ReadPointCloudText,
+/// WritePointCloudText), one thread: the part of an end-to-end run that is not the filter.
+int TimeTextIO(int runs, const char* input, const char* output)
+{
+  std::vector<double> reads, writes;
+  for (int run = 0; run < runs; ++run)
+  {
+    pcbilateral::PointCloudTable table;
+    const auto start = std::chrono::steady_clock::now();
+    std::string error = pcbilateral::ReadPointCloudText(input, false, table);
+    const double read = Seconds(start);
+    error = error.empty() ? pcbilateral::WritePointCloudText(output, table) : error;
+    const double written = Seconds(start);
+    if (!error.empty())
+    {
+      std::fprintf(stderr, "%s\n", error.c_str());
+      return EXIT_FAILURE;
+    }
+    reads.push_back(read);
+    writes.push_back(written - read);
+  }
+  std::sort(reads.begin(), reads.end());
+  std::sort(writes.begin(), writes.end());
+  std::printf("%s: parse %.3f s (fastest %.3f), write %.3f s (fastest %.3f), median of %d runs\n",
+    input,
+    reads[reads.size() / 2],
+    reads.front(),
+    writes[writes.size() / 2],
+    writes.front(),
+    runs);
+  return EXIT_SUCCESS;
+}
+
 int WriteCube(const char* path)
 {
   const Workload cube{ "cube600k", 600000, Surface::Cube, 0.03, 0.05, 2, 0 };
@@ -729,6 +765,10 @@ int main(int argc, char* argv[])
     {
       return WriteCube(argv[i + 1]);
     }
+    else if (argument == "--text-io" && i + 2 < argc)
+    {
+      return TimeTextIO(runs, argv[i + 1], argv[i + 2]);
+    }
     else if (argument == "--las" && i + 1 < argc)
     {
       return BenchmarkLAS(runs, argv[i + 1]);
@@ -743,7 +783,7 @@ int main(int argc, char* argv[])
         "usage: %s [--runs N] [--skip-10m] [--threads 1|2] [--only "
         "cube600k|sphere1M|sphere10M|lidar20M] | "
         "--floor | --write-cube600k FILE.xyz | --write-lidar20M FILE.las | "
-        "--write-lidar COUNT FILE.las|FILE.laz | "
+        "--write-lidar COUNT FILE.las|FILE.laz | [--runs N] --text-io IN.xyz OUT.xyz | "
         "[--runs N] --las FOLDER | "
         "[--runs N] --end-to-end PROGRAM ARGUMENTS...\n",
         argv[0]);

@@ -128,7 +128,9 @@ run_mpi() {
   start=$(date +%s.%N)
   local rank_cmd="exec /usr/bin/time -f %M -o $work/peak.rank\$OMPI_COMM_WORLD_RANK pvbatch \
     $source_dir/Examples/Python/denoise_mpi.py $input $out --radius 3.6 --normal-radius 0.5 \
-    --iterations 2 --threads 1"
+    --iterations 2 --threads 1 \
+    $(ls "$build"/lib/paraview-*/plugins/PointCloudBilateral/PointCloudBilateral.so 2>/dev/null |
+      head -1 | sed 's/^/--plugin /')"
   local mpi=(mpirun -np 2 --bind-to none sh -c "$rank_cmd")
   if [ "$priority" = 1 ]; then
     setsid /tmp/prio.sh "${mpi[@]}" > "$work/log" 2>&1
@@ -156,10 +158,10 @@ for points in $sizes; do
     input=$work/lidar$points.$format
     reference=$work/memory$points.las
     start=$(date +%s.%N)
-    "$bench" --write-lidar "$points" "$input" > "$work/log" 2>&1 ||
+    measured "$work/peak" "$bench" --write-lidar "$points" "$input" > "$work/log" 2>&1 ||
       { echo "error: $(cat "$work/log")" >&2; exit 1; }
     end=$(date +%s.%N)
-    echo "| $points | $format | generated ($(du -m "$input" | cut -f1) MB) | $(echo "$end - $start" | bc | xargs printf %.1f) s | | | |"
+    echo "| $points | $format | generated ($(du -m "$input" | cut -f1) MB) | $(echo "$end - $start" | bc | xargs printf %.1f) s | $(peak_mb "$work/peak") | | |"
     rm -f "$reference"
     for mode in $modes; do
       case "$mode" in
