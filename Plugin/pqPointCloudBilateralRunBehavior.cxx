@@ -203,11 +203,14 @@ void pqPointCloudBilateralRunBehavior::startup()
   colourArrays->SetFilterExpression(count + 1, "^(LAS|PCD) [A-Z]");
   // A .xyz file opens with the Point Cloud Text Reader: ParaView 5.11's open dialog offers the
   // PLOT3D reader first (it claims .xyz too, and gives an empty multiblock for a point file).
+  // A .las or .laz file opens with the LAS reader without asking the other readers that claim
+  // the extension: GDAL's raster reader, asked, printed "ERROR 4: ... not recognized".
   // This is ParaView's "default reader" setting, at a priority below the user's own settings
   // (which then win) and never saved to them.
   vtkSMSettings::GetInstance()->AddCollectionFromString(
     R"json({ "settings": { "RepresentedArrayListSettings": { "ReaderDetails": [
-      "*.xyz", "Point Cloud Text Files", "PointCloudTextReader" ] } } })json",
+      "*.xyz", "Point Cloud Text Files", "PointCloudTextReader",
+      "*.las *.laz", "LAS and LAZ point cloud", "ASPRSLASPointCloudReader" ] } } })json",
     0.1);
   QObject::connect(core->getProgressManager(),
     &pqProgressManager::abort,

@@ -34,7 +34,8 @@
  *
  * And it keeps the filter's field arrays BilateralRadius and BilateralNormalRadius (one value
  * each) out of the colour-by lists, and makes the Point Cloud Text Reader the default reader of
- * .xyz files (ParaView's "default reader" setting, below the user's settings).
+ * .xyz files, and the LAS reader that of .las and .laz files, so that GDAL's raster reader is not
+ * asked and prints nothing (ParaView's "default reader" setting, below the user's settings).
  */
 #ifndef pqPointCloudBilateralRunBehavior_h
 #define pqPointCloudBilateralRunBehavior_h
