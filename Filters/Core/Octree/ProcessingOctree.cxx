@@ -286,8 +286,20 @@ ProcessingOctree::ProcessingOctree(const double boundsMin[3],
   this->LeafSize = this->CellSize / LeavesPerAxis;
 }
 
-void ProcessingOctree::Load(const double* positions, std::size_t count, int numberOfThreads)
+bool ProcessingOctree::Load(const double* positions,
+  std::size_t count,
+  int numberOfThreads,
+  const std::function<bool()>& shouldStop)
 {
+  const auto stopped = [&]()
+  {
+    if (shouldStop && shouldStop())
+    {
+      this->Reset(0);
+      return true;
+    }
+    return false;
+  };
   this->Reset(count);
   for (std::size_t id = 0; id < count; ++id)
   {
@@ -296,7 +308,15 @@ void ProcessingOctree::Load(const double* positions, std::size_t count, int numb
       this->Ids.push_back(static_cast<std::uint32_t>(id));
     }
   }
+  if (stopped())
+  {
+    return false;
+  }
   this->AssignCellsAndLeaves(positions, numberOfThreads);
+  if (stopped())
+  {
+    return false;
+  }
 
   // The first layout, built here rather than by Compact (which would copy every position and
   // id a second time, beside the input: that copy was the peak memory of sparse clouds): the
@@ -317,6 +337,10 @@ void ProcessingOctree::Load(const double* positions, std::size_t count, int numb
   this->SetUpCells(kept, cellCounts, cellMasks);
   cellCounts = std::vector<std::uint32_t>();
   cellMasks = std::vector<std::uint64_t>();
+  if (stopped())
+  {
+    return false;
+  }
 
   // The points reach their places in two passes, each writing to few places at a time. A cloud
   // whose points are not in spatial order (random, or shuffled by a previous tool) made a single
@@ -327,8 +351,17 @@ void ProcessingOctree::Load(const double* positions, std::size_t count, int numb
   const LoadBuckets buckets = this->PlanBuckets(kept);
   PointArray<std::uint32_t> codes(n);
   this->ScatterToBuckets(positions, buckets, codes, numberOfThreads);
+  if (stopped())
+  {
+    return false;
+  }
   this->OrderBuckets(buckets, codes, numberOfThreads);
+  if (stopped())
+  {
+    return false;
+  }
   this->FinishCells(kept, n, numberOfThreads);
+  return true;
 }
 
 void ProcessingOctree::Reset(std::size_t count)

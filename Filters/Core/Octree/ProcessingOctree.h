@@ -8,6 +8,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <new>
 #include <type_traits>
@@ -157,9 +158,14 @@ public:
   /**
    * Takes the points to filter: the finite ones among `count` interleaved xyz positions, which
    * keep their index as id, and lays them out for the first iteration with numberOfThreads
-   * threads (as Compact lays out placed points).
+   * threads (as Compact lays out placed points). `shouldStop`, when given, is asked between
+   * the passes over the points (each well under a second for 20 million points): when it says
+   * stop, the octree is left empty and Load returns false (an aborted run).
    */
-  void Load(const double* positions, std::size_t count, int numberOfThreads = 1);
+  bool Load(const double* positions,
+    std::size_t count,
+    int numberOfThreads = 1,
+    const std::function<bool()>& shouldStop = nullptr);
 
   ///@{
   /// Placement of points into the next iteration's leaf lists. A point is named by its index
