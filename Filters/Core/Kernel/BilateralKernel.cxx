@@ -199,7 +199,9 @@ bool IsAvailable(KernelInstructionSet instructionSet)
     case KernelInstructionSet::Avx512:
       return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("popcnt");
     case KernelInstructionSet::Avx2:
-      return __builtin_cpu_supports("avx2");
+      // Its multiply-adds are fused (BilateralKernelBody.h): AVX2 without FMA, which a few
+      // processors have, runs the generic build.
+      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
 #endif
     case KernelInstructionSet::Generic:
       return true;

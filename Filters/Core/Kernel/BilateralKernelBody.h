@@ -4,7 +4,9 @@
 //
 // Every build computes the same bits. What makes that true:
 // - arithmetic is element-wise IEEE double (+, -, *, /) on GCC/Clang vector types, with
-//   floating-point contraction off (no FMA), so a lane computes what a scalar would;
+//   floating-point contraction off, so a lane computes what a scalar would; the multiply-adds
+//   that are fused are written as MultiplyAdd, one rounding in every build (the AVX-512 and
+//   AVX2 instructions, or the C library's fma in the generic build);
 // - every sum runs in Lanes partial sums (neighbour k goes to lane k % Lanes) that are added in a
 //   fixed tree at the end, whatever the hardware vector width;
 // - the exponential is this file's own (no libm call, whose last bit differs between libm
@@ -83,6 +85,68 @@ inline IntLanes LessThan(DoubleLanes x, double limit)
   return Less(x, zero + limit);
 }
 
+/**
+ * a * b + c rounded once, as IEEE 754's fusedMultiplyAdd: the same bits in every build. The
+ * AVX-512 and AVX2 builds use the processors' instructions (the AVX2 build is picked only where
+ * FMA is there too); the generic build calls the C library's fma for each lane, correct
+ * everywhere and as fast as a function call on processors with FMA (x86 since about 2013), slow
+ * where the library must compute it in software.
+ */
+inline DoubleLanes MultiplyAdd(DoubleLanes a, DoubleLanes b, DoubleLanes c)
+{
+#if defined(__AVX512F__)
+  __m512d x, y, z;
+  std::memcpy(&x, &a, sizeof(x));
+  std::memcpy(&y, &b, sizeof(y));
+  std::memcpy(&z, &c, sizeof(z));
+  x = _mm512_fmadd_pd(x, y, z);
+  std::memcpy(&a, &x, sizeof(a));
+  return a;
+#elif defined(__FMA__)
+  __m256d x[2], y[2], z[2];
+  std::memcpy(x, &a, sizeof(x));
+  std::memcpy(y, &b, sizeof(y));
+  std::memcpy(z, &c, sizeof(z));
+  x[0] = _mm256_fmadd_pd(x[0], y[0], z[0]);
+  x[1] = _mm256_fmadd_pd(x[1], y[1], z[1]);
+  std::memcpy(&a, x, sizeof(a));
+  return a;
+#else
+  for (std::size_t lane = 0; lane < Lanes; ++lane)
+  {
+    a[lane] = __builtin_fma(a[lane], b[lane], c[lane]);
+  }
+  return a;
+#endif
+}
+
+/// b in every lane. (GCC builds `zero + b` for the AVX2 build in memory, one lane at a time.)
+inline DoubleLanes Broadcast(double b)
+{
+  DoubleLanes lanes;
+#if defined(__AVX512F__)
+  const __m512d all = _mm512_set1_pd(b);
+  std::memcpy(&lanes, &all, sizeof(lanes));
+#elif defined(__AVX2__)
+  const __m256d halves[2] = { _mm256_set1_pd(b), _mm256_set1_pd(b) };
+  std::memcpy(&lanes, halves, sizeof(lanes));
+#else
+  const DoubleLanes zero = {};
+  lanes = zero + b;
+#endif
+  return lanes;
+}
+
+/// MultiplyAdd with b, or b and c, the same in every lane.
+inline DoubleLanes MultiplyAdd(DoubleLanes a, double b, DoubleLanes c)
+{
+  return MultiplyAdd(a, Broadcast(b), c);
+}
+inline DoubleLanes MultiplyAdd(DoubleLanes a, double b, double c)
+{
+  return MultiplyAdd(a, Broadcast(b), Broadcast(c));
+}
+
 /// The sum of the lanes, in a fixed tree: the same bits for any vector width.
 inline double SumLanes(DoubleLanes lanes)
 {
@@ -112,9 +176,9 @@ inline DoubleLanes ExpOfNonPositive(DoubleLanes x)
   const DoubleLanes zero = {};
   const IntLanes underflows = LessThan(x, Lowest);
   x = Select(underflows, zero + Lowest, x); // also turns -inf into a finite number
-  const DoubleLanes shifted = x * InverseLn2 + RoundingShift;
+  const DoubleLanes shifted = MultiplyAdd(x, InverseLn2, RoundingShift);
   const DoubleLanes k = shifted - RoundingShift;
-  const DoubleLanes r = (x - k * Ln2High) - k * Ln2Low;
+  const DoubleLanes r = MultiplyAdd(-k, Ln2Low, MultiplyAdd(-k, Ln2High, x));
 
   // exp(r) = 1 + (r + tail), the tail (r^2/2! to r^13/13!) by Estrin's scheme: a tree four
   // products deep instead of Horner's chain of thirteen, so that consecutive vectors overlap in
@@ -122,15 +186,19 @@ inline DoubleLanes ExpOfNonPositive(DoubleLanes x)
   const DoubleLanes r2 = r * r;
   const DoubleLanes r4 = r2 * r2;
   const DoubleLanes r8 = r4 * r4;
-  const DoubleLanes c23 = r * 0x1.5555555555555p-3 + 0.5;                      // 1/2!, 1/3!
-  const DoubleLanes c45 = r * 0x1.1111111111111p-7 + 0x1.5555555555555p-5;     // 1/4!, 1/5!
-  const DoubleLanes c67 = r * 0x1.a01a01a01a01ap-13 + 0x1.6c16c16c16c17p-10;   // 1/6!, 1/7!
-  const DoubleLanes c89 = r * 0x1.71de3a556c734p-19 + 0x1.a01a01a01a01ap-16;   // 1/8!, 1/9!
-  const DoubleLanes c1011 = r * 0x1.ae64567f544e4p-26 + 0x1.27e4fb7789f5cp-22; // 1/10!, 1/11!
-  const DoubleLanes c1213 = r * 0x1.6124613a86d09p-33 + 0x1.1eed8eff8d898p-29; // 1/12!, 1/13!
-  const DoubleLanes c47 = c67 * r2 + c45;
-  const DoubleLanes c813 = (c1213 * r4 + (c1011 * r2 + c89));
-  const DoubleLanes tail = c23 * r2 + (c47 * r4 + c813 * r8);
+  const DoubleLanes c23 = MultiplyAdd(r, 0x1.5555555555555p-3, 0.5);                  // 1/2!, 1/3!
+  const DoubleLanes c45 = MultiplyAdd(r, 0x1.1111111111111p-7, 0x1.5555555555555p-5); // 1/4!, 1/5!
+  const DoubleLanes c67 =
+    MultiplyAdd(r, 0x1.a01a01a01a01ap-13, 0x1.6c16c16c16c17p-10); // 1/6!, 1/7!
+  const DoubleLanes c89 =
+    MultiplyAdd(r, 0x1.71de3a556c734p-19, 0x1.a01a01a01a01ap-16); // 1/8!, 1/9!
+  const DoubleLanes c1011 =
+    MultiplyAdd(r, 0x1.ae64567f544e4p-26, 0x1.27e4fb7789f5cp-22); // 1/10!, 1/11!
+  const DoubleLanes c1213 =
+    MultiplyAdd(r, 0x1.6124613a86d09p-33, 0x1.1eed8eff8d898p-29); // 1/12!, 1/13!
+  const DoubleLanes c47 = MultiplyAdd(c67, r2, c45);
+  const DoubleLanes c813 = MultiplyAdd(c1213, r4, MultiplyAdd(c1011, r2, c89));
+  const DoubleLanes tail = MultiplyAdd(c23, r2, MultiplyAdd(c47, r4, c813 * r8));
   const DoubleLanes p = (r + tail) + 1.0;
 
   // 2^k: k sits in the low bits of `shifted`; the biased exponent k + 1023 goes in bits 52-62.
@@ -299,12 +367,12 @@ inline void AddWeightedOffsets(DistanceMoments& m,
   m.FirstX += wx;
   m.FirstY += wy;
   m.FirstZ += wz;
-  m.XX += wx * x;
-  m.XY += wx * y;
-  m.XZ += wx * z;
-  m.YY += wy * y;
-  m.YZ += wy * z;
-  m.ZZ += wz * z;
+  m.XX = MultiplyAdd(wx, x, m.XX);
+  m.XY = MultiplyAdd(wx, y, m.XY);
+  m.XZ = MultiplyAdd(wx, z, m.XZ);
+  m.YY = MultiplyAdd(wy, y, m.YY);
+  m.YZ = MultiplyAdd(wy, z, m.YZ);
+  m.ZZ = MultiplyAdd(wz, z, m.ZZ);
 }
 
 /**
@@ -325,8 +393,10 @@ inline DistanceMoments AccumulateDistanceMoments(const double* dx,
     const DoubleLanes ox = Load(dx + k);
     const DoubleLanes oy = Load(dy + k);
     const DoubleLanes oz = Load(dz + k);
-    // The squared distance again, as PackNeighbours computed it: cheaper than packing it.
-    const DoubleLanes distanceSquared = (ox * ox + oy * oy) + oz * oz;
+    // The squared distance again (cheaper than packing it), with fused multiply-adds: it only
+    // weighs the neighbour, whose selection PackNeighbours made unfused, as the paper's
+    // program does.
+    const DoubleLanes distanceSquared = MultiplyAdd(oz, oz, MultiplyAdd(oy, oy, ox * ox));
     const DoubleLanes w = ExpOfNonPositive(-distanceSquared * distanceScale);
     Store(distanceWeight + k, w);
     AddWeightedOffsets(moments, w, ox, oy, oz);
@@ -505,12 +575,14 @@ inline void AccumulateBilateralHeights(const double* dx,
   const DoubleLanes zero = {};
   bilateralWeightSum = zero;
   weightedHeightSum = zero;
+  const DoubleLanes nx = Broadcast(n[0]), ny = Broadcast(n[1]), nz = Broadcast(n[2]);
   for (std::size_t k = 0; k < padded; k += Lanes)
   {
-    const DoubleLanes h = (Load(dx + k) * n[0] + Load(dy + k) * n[1]) + Load(dz + k) * n[2];
+    const DoubleLanes h =
+      MultiplyAdd(Load(dz + k), nz, MultiplyAdd(Load(dy + k), ny, Load(dx + k) * nx));
     const DoubleLanes w = Load(distanceWeight + k) * ExpOfNonPositive(-(h * h) * normalScale);
     bilateralWeightSum += w;
-    weightedHeightSum += w * h;
+    weightedHeightSum = MultiplyAdd(w, h, weightedHeightSum);
   }
 }
 
