@@ -5,13 +5,14 @@
 //
 // The pipeline is the GUI's: the plugin's reader for INPUT (vtkPointCloudFileIO::NewReader), the
 // filter (automatic parameters unless --radius, N iterations, default 1), the LAS writer. A first
-// run finds when each phase runs: reading (the reader), measuring (the filter's start to its
-// ParametersChosenEvent), octree (to its first progress past 0), kernel (to its last progress
-// event), output (to its end), writing (the writer). Then each algorithm runs again K times per
-// phase (default 3), and another thread sets its AbortExecute flag, as ParaView's Abort button
-// does, at 1/(K+1), 2/(K+1)... of the phase; the latency is the time from that moment to the
-// algorithm's return. Prints one row per phase: its length, the largest and the mean latency,
-// and whether the aborted writes left no file at OUTPUT.
+// run times each algorithm. Then each runs again K times (default 3; the filter 4K times) while
+// another thread sets its AbortExecute flag, as ParaView's Abort button does, at evenly spread
+// moments of its run; the latency is the time from that moment to the algorithm's return. Each
+// abort is counted in the phase that was running at its moment, followed by the filter's events:
+// measuring (from its start to its ParametersChosenEvent), octree (to its first progress past 0),
+// kernel (to its progress of 1), output (to its end); reading and writing are the reader's and
+// the writer's runs. Prints a Markdown table: per phase, the aborts that landed in it, the
+// largest and the mean latency, and whether an aborted write left a file at OUTPUT.
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -57,10 +58,19 @@ void Observe(vtkAlgorithm* algorithm, unsigned long event, std::function<void()>
 struct Phase
 {
   const char* Name;
-  double Begin = 0.0; // seconds after the algorithm's StartEvent
-  double End = 0.0;
   std::vector<double> Latencies;
+  int EndedFirst = 0; // runs that ended before the abort's moment
   int LeftFiles = 0;
+};
+
+enum PhaseIndex
+{
+  Reading,
+  Measuring,
+  Octree,
+  Kernel,
+  Output,
+  Writing
 };
 
 /**
@@ -68,7 +78,11 @@ struct Phase
  * StartEvent; returns the seconds from that moment to the return of `update` (or from the
  * return to the moment, negative, when the run ended first).
  */
-double AbortAfter(vtkAlgorithm* algorithm, double delay, const std::function<void()>& update)
+double AbortAfter(vtkAlgorithm* algorithm,
+  double delay,
+  const std::function<void()>& update,
+  const std::atomic<int>& phaseNow,
+  int& phaseAtAbort)
 {
   std::atomic<bool> started{ false };
   std::atomic<bool> done{ false };
@@ -102,6 +116,7 @@ double AbortAfter(vtkAlgorithm* algorithm, double delay, const std::function<voi
         std::this_thread::sleep_for(std::chrono::microseconds(200));
       }
       aborted = Clock::now();
+      phaseAtAbort = phaseNow;
       algorithm->SetAbortExecute(1);
     });
   update();
@@ -157,110 +172,110 @@ int main(int argc, char* argv[])
   writer->SetInputConnection(filter->GetOutputPort());
   writer->SetFileName(output.c_str());
 
-  // The reference run: when each phase runs.
-  Clock::time_point filterStart, chosen, kernelStart, lastProgress, filterEnd;
-  std::function<void()> onFilterStart = [&]() { filterStart = Clock::now(); };
-  std::function<void()> onChosen = [&]() { chosen = Clock::now(); };
+  // The filter's phase as it runs (read by the aborting thread).
+  std::atomic<int> phaseNow{ Measuring };
+  std::function<void()> onFilterStart = [&]() { phaseNow = Measuring; };
+  std::function<void()> onChosen = [&]() { phaseNow = Octree; };
   std::function<void()> onProgress = [&]()
   {
-    const Clock::time_point now = Clock::now();
-    if (chosen != Clock::time_point() && kernelStart == Clock::time_point() &&
-        filter->GetProgress() > 0.0)
+    const double progress = filter->GetProgress();
+    if (phaseNow == Octree && progress > 0.0)
     {
-      kernelStart = now;
+      phaseNow = Kernel;
     }
-    if (filter->GetProgress() < 1.0)
+    else if (phaseNow == Kernel && progress >= 1.0)
     {
-      lastProgress = now;
+      phaseNow = Output;
     }
   };
-  std::function<void()> onFilterEnd = [&]() { filterEnd = Clock::now(); };
   Observe(filter, vtkCommand::StartEvent, &onFilterStart);
   Observe(filter, vtkPointCloudBilateralFilter::ParametersChosenEvent, &onChosen);
   Observe(filter, vtkCommand::ProgressEvent, &onProgress);
-  Observe(filter, vtkCommand::EndEvent, &onFilterEnd);
-  // Twice: the second run's times (the first one's include one-time set-up).
-  double readSeconds = 0.0, writeSeconds = 0.0;
+
+  // The reference runs, twice (the first one's times include one-time set-up).
+  double seconds[3] = { 0.0, 0.0, 0.0 };
   for (int run = 0; run < 2; ++run)
   {
     reader->Modified();
-    kernelStart = Clock::time_point();
-    chosen = Clock::time_point();
     Clock::time_point t0 = Clock::now();
     reader->Update();
-    readSeconds = SecondsBetween(t0, Clock::now());
+    seconds[0] = SecondsBetween(t0, Clock::now());
+    t0 = Clock::now();
     filter->Update();
+    seconds[1] = SecondsBetween(t0, Clock::now());
     t0 = Clock::now();
     writer->Write();
-    writeSeconds = SecondsBetween(t0, Clock::now());
+    seconds[2] = SecondsBetween(t0, Clock::now());
   }
-  const auto offset = [&](Clock::time_point t) { return SecondsBetween(filterStart, t); };
-  std::vector<Phase> phases = { { "reading", 0.0, readSeconds },
-    { "measuring", 0.0, offset(chosen) },
-    { "octree", offset(chosen), offset(kernelStart) },
-    { "kernel", offset(kernelStart), offset(lastProgress) },
-    { "output", offset(lastProgress), offset(filterEnd) },
-    { "writing", 0.0, writeSeconds } };
-  std::printf("%s: %lld points, %d iteration(s), radius %g\n",
+  std::printf("%s: %lld points, %d iteration(s), radius %g; reading %.3f s, filter %.3f s, "
+              "writing %.3f s\n\n",
     input,
     static_cast<long long>(vtkDataSet::SafeDownCast(filter->GetOutput())->GetNumberOfPoints()),
     filter->GetNumberOfIterationsUsed(),
-    filter->GetRadiusUsed());
+    filter->GetRadiusUsed(),
+    seconds[0],
+    seconds[1],
+    seconds[2]);
 
-  for (Phase& phase : phases)
+  std::vector<Phase> phases = {
+    { "reading" }, { "measuring" }, { "octree" }, { "kernel" }, { "output" }, { "writing" }
+  };
+  const std::atomic<int> readingNow{ Reading }, writingNow{ Writing };
+  const auto record = [&](double latency, int phase)
   {
-    for (int k = 1; k <= samples; ++k)
-    {
-      const double delay = phase.Begin + (phase.End - phase.Begin) * k / (samples + 1);
-      if (std::strcmp(phase.Name, "reading") == 0)
-      {
-        reader->Modified();
-        phase.Latencies.push_back(AbortAfter(reader, delay, [&]() { reader->Update(); }));
-      }
-      else if (std::strcmp(phase.Name, "writing") == 0)
-      {
-        unlink(output.c_str());
-        const double latency = AbortAfter(writer, delay, [&]() { writer->Write(); });
-        phase.Latencies.push_back(latency);
-        phase.LeftFiles += latency >= 0.0 && access(output.c_str(), F_OK) == 0;
-      }
-      else
-      {
-        filter->Modified();
-        phase.Latencies.push_back(AbortAfter(filter, delay, [&]() { filter->Update(); }));
-      }
-    }
+    if (latency < 0.0)
+      ++phases[phase].EndedFirst;
+    else
+      phases[phase].Latencies.push_back(latency);
+  };
+  for (int k = 1; k <= samples; ++k)
+  {
+    int phase = Reading;
+    reader->Modified();
+    record(
+      AbortAfter(
+        reader, seconds[0] * k / (samples + 1), [&]() { reader->Update(); }, readingNow, phase),
+      Reading);
+    unlink(output.c_str());
+    phase = Writing;
+    const double latency = AbortAfter(
+      writer, seconds[2] * k / (samples + 1), [&]() { writer->Write(); }, writingNow, phase);
+    record(latency, Writing);
+    phases[Writing].LeftFiles += latency >= 0.0 && access(output.c_str(), F_OK) == 0;
   }
-  std::printf("| phase | length (s) | largest latency (s) | mean latency (s) | notes |\n"
+  reader->Update();
+  for (int k = 1; k <= 4 * samples; ++k)
+  {
+    int phase = Measuring;
+    filter->Modified();
+    const double latency = AbortAfter(
+      filter, seconds[1] * k / (4 * samples + 1), [&]() { filter->Update(); }, phaseNow, phase);
+    record(latency, latency < 0.0 ? Output : phase);
+  }
+  std::printf("| phase | aborts in it | largest latency (s) | mean latency (s) | notes |\n"
               "| --- | ---: | ---: | ---: | --- |\n");
   for (const Phase& phase : phases)
   {
     double largest = 0.0, sum = 0.0;
-    int measured = 0;
     for (double latency : phase.Latencies)
     {
-      if (latency >= 0.0) // else the run had ended before the abort
-      {
-        largest = std::max(largest, latency);
-        sum += latency;
-        ++measured;
-      }
+      largest = std::max(largest, latency);
+      sum += latency;
     }
-    std::string notes =
-      measured < static_cast<int>(phase.Latencies.size())
-        ? std::to_string(phase.Latencies.size() - measured) + " run(s) ended before the abort. "
-        : std::string();
-    if (std::strcmp(phase.Name, "writing") == 0)
+    std::string notes = phase.EndedFirst > 0 ? std::to_string(phase.EndedFirst) +
+                                                 " run(s) ended before the abort's moment. "
+                                             : std::string();
+    if (&phase == &phases[Writing])
     {
       notes += phase.LeftFiles == 0
                  ? "no file after an aborted write"
                  : std::to_string(phase.LeftFiles) + " aborted write(s) left the file";
     }
-    std::printf("| %s | %.3f | %.3f | %.3f | %s |\n",
+    std::printf("| %s | %zu | %.3f | %.3f | %s |\n",
       phase.Name,
-      phase.End - phase.Begin,
+      phase.Latencies.size(),
       largest,
-      measured ? sum / measured : 0.0,
+      phase.Latencies.empty() ? 0.0 : sum / phase.Latencies.size(),
       notes.c_str());
   }
   return 0;
