@@ -1,6 +1,6 @@
 """The LAS reader and writer in ParaView: OpenDataFile picks the plugin's reader for .las and
-.laz (no reader choice) without GDAL's "ERROR 4" line, the points are there with one vertex each, a damaged file gives one error and
-no points, and SaveData writes .las with the plugin's writer. A COPC file's level of detail
+.laz (no reader choice) without GDAL's "ERROR 4" line, the points are there with one vertex
+each, a damaged file gives one error and no points, and SaveData writes .las with the plugin's writer. A COPC file's level of detail
 and box (the reader's advanced properties) give the points IO.TestCOPC and CommandLine.copc
 count.
 
