@@ -78,6 +78,11 @@ enum PhaseIndex
  * StartEvent; returns the seconds from that moment to the return of `update` (or from the
  * return to the moment, negative, when the run ended first).
  */
+/// When the filter's core last returned: its progress of 1, reported after RunOnChosen.
+Clock::time_point CoreReturned;
+/// When the last abort was asked.
+Clock::time_point LastAbort;
+
 double AbortAfter(vtkAlgorithm* algorithm,
   double delay,
   const std::function<void()>& update,
@@ -116,6 +121,7 @@ double AbortAfter(vtkAlgorithm* algorithm,
         std::this_thread::sleep_for(std::chrono::microseconds(200));
       }
       aborted = Clock::now();
+      LastAbort = aborted;
       phaseAtAbort = phaseNow;
       algorithm->SetAbortExecute(1);
     });
@@ -187,6 +193,10 @@ int main(int argc, char* argv[])
     {
       phaseNow = Output;
     }
+    if (progress >= 1.0)
+    {
+      CoreReturned = Clock::now();
+    }
   };
   Observe(filter, vtkCommand::StartEvent, &onFilterStart);
   Observe(filter, vtkPointCloudBilateralFilter::ParametersChosenEvent, &onChosen);
@@ -244,6 +254,7 @@ int main(int argc, char* argv[])
     phases[Writing].LeftFiles += latency >= 0.0 && access(output.c_str(), F_OK) == 0;
   }
   reader->Update();
+  double largestCleanUp = 0.0; // from the core's return to the filter's
   for (int k = 1; k <= 4 * samples; ++k)
   {
     int phase = Measuring;
@@ -251,7 +262,17 @@ int main(int argc, char* argv[])
     const double latency = AbortAfter(
       filter, seconds[1] * k / (4 * samples + 1), [&]() { filter->Update(); }, phaseNow, phase);
     record(latency, latency < 0.0 ? Output : phase);
+    if (latency >= 0.0)
+    {
+      const double core = SecondsBetween(LastAbort, CoreReturned);
+      std::printf("abort in %s: the core returned %.3f s after it, the filter %.3f s\n",
+        phases[phase].Name,
+        core,
+        latency);
+      largestCleanUp = std::max(largestCleanUp, latency - core);
+    }
   }
+  std::printf("(the filter's clean-up once its core returned: %.3f s at most)\n\n", largestCleanUp);
   std::printf("| phase | aborts in it | largest latency (s) | mean latency (s) | notes |\n"
               "| --- | ---: | ---: | ---: | --- |\n");
   for (const Phase& phase : phases)
