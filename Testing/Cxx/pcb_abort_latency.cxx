@@ -2,17 +2,19 @@
 // project, run by hand (docs/speed.md); a shared machine is too noisy for a timed test.
 //
 //   pcb_abort_latency INPUT OUTPUT.las [--samples K] [--iterations N] [--radius R]
+//                     [--filter-until T]
 //
 // The pipeline is the GUI's: the plugin's reader for INPUT (vtkPointCloudFileIO::NewReader), the
 // filter (automatic parameters unless --radius, N iterations, default 1), the LAS writer. A first
 // run times each algorithm. Then each runs again K times (default 3; the filter 4K times) while
 // another thread sets its AbortExecute flag, as ParaView's Abort button does, at evenly spread
-// moments of its run; the latency is the time from that moment to the algorithm's return. Each
-// abort is counted in the phase that was running at its moment, followed by the filter's events:
-// measuring (from its start to its ParametersChosenEvent), octree (to its first progress past 0),
-// kernel (to its progress of 1), output (to its end); reading and writing are the reader's and
-// the writer's runs. Prints a Markdown table: per phase, the aborts that landed in it, the
-// largest and the mean latency, and whether an aborted write left a file at OUTPUT.
+// moments of its run (the filter's first T seconds only with --filter-until); the latency is the
+// time from that moment to the algorithm's return. Each abort is counted in the phase that was
+// running at its moment, followed by the filter's events: measuring (from its start to its
+// ParametersChosenEvent), octree (to its first progress past 0), kernel (to its progress of 1),
+// output (to its end); reading and writing are the reader's and the writer's runs. Prints a
+// Markdown table: per phase, the aborts that landed in it, the largest and the mean latency, and
+// whether an aborted write left a file at OUTPUT.
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -146,19 +148,22 @@ int main(int argc, char* argv[])
   if (argc < 3)
   {
     return Fail("usage: pcb_abort_latency INPUT OUTPUT.las [--samples K] [--iterations N] "
-                "[--radius R]");
+                "[--radius R] [--filter-until T]");
   }
   const char* input = argv[1];
   const std::string output = argv[2];
   int samples = 3;
   int iterations = 1;
   double radius = 0.0;
+  double filterUntil = 0.0; // the filter's aborts spread over its first seconds only
   for (int i = 3; i + 1 < argc; i += 2)
   {
     if (std::strcmp(argv[i], "--samples") == 0)
       samples = std::atoi(argv[i + 1]);
     else if (std::strcmp(argv[i], "--iterations") == 0)
       iterations = std::atoi(argv[i + 1]);
+    else if (std::strcmp(argv[i], "--filter-until") == 0)
+      filterUntil = std::atof(argv[i + 1]);
     else if (std::strcmp(argv[i], "--radius") == 0)
       radius = std::atof(argv[i + 1]);
     else
@@ -260,7 +265,11 @@ int main(int argc, char* argv[])
     int phase = Measuring;
     filter->Modified();
     const double latency = AbortAfter(
-      filter, seconds[1] * k / (4 * samples + 1), [&]() { filter->Update(); }, phaseNow, phase);
+      filter,
+      (filterUntil > 0.0 ? filterUntil : seconds[1]) * k / (4 * samples + 1),
+      [&]() { filter->Update(); },
+      phaseNow,
+      phase);
     record(latency, latency < 0.0 ? Output : phase);
     if (latency >= 0.0)
     {

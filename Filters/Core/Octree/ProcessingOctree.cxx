@@ -303,6 +303,11 @@ bool ProcessingOctree::Load(const double* positions,
   this->Reset(count);
   for (std::size_t id = 0; id < count; ++id)
   {
+    // (This pass is serial: asked every million points too, 0.1 s or so.)
+    if ((id & 0xFFFFF) == 0xFFFFF && stopped())
+    {
+      return false;
+    }
     if (IsFinitePoint(positions + 3 * id))
     {
       this->Ids.push_back(static_cast<std::uint32_t>(id));
