@@ -141,172 +141,232 @@ int Fail(const char* message)
   std::fprintf(stderr, "pcb_abort_latency: %s\n", message);
   return 1;
 }
+
+struct Options
+{
+  const char* Input = nullptr;
+  std::string Output;
+  int Samples = 3;
+  int Iterations = 1;
+  double Radius = 0.0;
+  double FilterUntil = 0.0; // the filter's aborts spread over its first seconds only
+};
+
+bool ParseOptions(int argc, char* argv[], Options& options)
+{
+  if (argc < 3)
+  {
+    return false;
+  }
+  options.Input = argv[1];
+  options.Output = argv[2];
+  for (int i = 3; i + 1 < argc; i += 2)
+  {
+    if (std::strcmp(argv[i], "--samples") == 0)
+      options.Samples = std::atoi(argv[i + 1]);
+    else if (std::strcmp(argv[i], "--iterations") == 0)
+      options.Iterations = std::atoi(argv[i + 1]);
+    else if (std::strcmp(argv[i], "--filter-until") == 0)
+      options.FilterUntil = std::atof(argv[i + 1]);
+    else if (std::strcmp(argv[i], "--radius") == 0)
+      options.Radius = std::atof(argv[i + 1]);
+    else
+      return false;
+  }
+  return true;
+}
+
+/// The GUI's pipeline, the filter's phase as it runs, and the aborts' latencies by phase.
+struct Bench
+{
+  Options Settings;
+  vtkSmartPointer<vtkAlgorithm> Reader;
+  vtkNew<vtkPointCloudBilateralFilter> Filter;
+  vtkNew<vtkLASPointCloudWriter> Writer;
+  std::atomic<int> PhaseNow{ Measuring }; // read by the aborting thread
+  std::function<void()> OnStart, OnChosen, OnProgress;
+  double Seconds[3] = { 0.0, 0.0, 0.0 }; // reading, filter, writing
+  std::vector<Phase> Phases = { { "reading" },
+    { "measuring" },
+    { "octree" },
+    { "kernel" },
+    { "output" },
+    { "writing" } };
+
+  bool SetUp()
+  {
+    this->Reader.TakeReference(vtkPointCloudFileIO::NewReader(this->Settings.Input));
+    if (!this->Reader)
+    {
+      return false;
+    }
+    this->Filter->SetInputConnection(this->Reader->GetOutputPort());
+    this->Filter->SetNumberOfIterations(this->Settings.Iterations);
+    this->Filter->SetRadius(this->Settings.Radius);
+    this->Writer->SetInputConnection(this->Filter->GetOutputPort());
+    this->Writer->SetFileName(this->Settings.Output.c_str());
+    this->OnStart = [this]() { this->PhaseNow = Measuring; };
+    this->OnChosen = [this]() { this->PhaseNow = Octree; };
+    this->OnProgress = [this]()
+    {
+      const double progress = this->Filter->GetProgress();
+      if (this->PhaseNow == Octree && progress > 0.0)
+        this->PhaseNow = Kernel;
+      else if (this->PhaseNow == Kernel && progress >= 1.0)
+        this->PhaseNow = Output;
+      if (progress >= 1.0)
+        CoreReturned = Clock::now();
+    };
+    Observe(this->Filter, vtkCommand::StartEvent, &this->OnStart);
+    Observe(this->Filter, vtkPointCloudBilateralFilter::ParametersChosenEvent, &this->OnChosen);
+    Observe(this->Filter, vtkCommand::ProgressEvent, &this->OnProgress);
+    return true;
+  }
+
+  /// Twice: the first run's times include one-time set-up.
+  void TimeRuns()
+  {
+    for (int run = 0; run < 2; ++run)
+    {
+      this->Reader->Modified();
+      Clock::time_point t0 = Clock::now();
+      this->Reader->Update();
+      this->Seconds[0] = SecondsBetween(t0, Clock::now());
+      t0 = Clock::now();
+      this->Filter->Update();
+      this->Seconds[1] = SecondsBetween(t0, Clock::now());
+      t0 = Clock::now();
+      this->Writer->Write();
+      this->Seconds[2] = SecondsBetween(t0, Clock::now());
+    }
+    std::printf("%s: %lld points, %d iteration(s), radius %g; reading %.3f s, filter %.3f s, "
+                "writing %.3f s\n\n",
+      this->Settings.Input,
+      static_cast<long long>(
+        vtkDataSet::SafeDownCast(this->Filter->GetOutput())->GetNumberOfPoints()),
+      this->Filter->GetNumberOfIterationsUsed(),
+      this->Filter->GetRadiusUsed(),
+      this->Seconds[0],
+      this->Seconds[1],
+      this->Seconds[2]);
+  }
+
+  void Record(double latency, int phase)
+  {
+    if (latency < 0.0)
+      ++this->Phases[phase].EndedFirst;
+    else
+      this->Phases[phase].Latencies.push_back(latency);
+  }
+
+  void AbortReadsAndWrites()
+  {
+    const std::atomic<int> readingNow{ Reading }, writingNow{ Writing };
+    const int samples = this->Settings.Samples;
+    for (int k = 1; k <= samples; ++k)
+    {
+      int phase = Reading;
+      this->Reader->Modified();
+      this->Record(AbortAfter(
+                     this->Reader,
+                     this->Seconds[0] * k / (samples + 1),
+                     [this]() { this->Reader->Update(); },
+                     readingNow,
+                     phase),
+        Reading);
+      unlink(this->Settings.Output.c_str());
+      phase = Writing;
+      const double latency = AbortAfter(
+        this->Writer,
+        this->Seconds[2] * k / (samples + 1),
+        [this]() { this->Writer->Write(); },
+        writingNow,
+        phase);
+      this->Record(latency, Writing);
+      this->Phases[Writing].LeftFiles +=
+        latency >= 0.0 && access(this->Settings.Output.c_str(), F_OK) == 0;
+    }
+  }
+
+  void AbortFilterRuns()
+  {
+    this->Reader->Update();
+    const int runs = 4 * this->Settings.Samples;
+    const double span =
+      this->Settings.FilterUntil > 0.0 ? this->Settings.FilterUntil : this->Seconds[1];
+    double largestCleanUp = 0.0; // from the core's return to the filter's
+    for (int k = 1; k <= runs; ++k)
+    {
+      int phase = Measuring;
+      this->Filter->Modified();
+      const double latency = AbortAfter(
+        this->Filter,
+        span * k / (runs + 1),
+        [this]() { this->Filter->Update(); },
+        this->PhaseNow,
+        phase);
+      this->Record(latency, latency < 0.0 ? Output : phase);
+      if (latency >= 0.0)
+      {
+        const double core = SecondsBetween(LastAbort, CoreReturned);
+        std::printf("abort in %s: the core returned %.3f s after it, the filter %.3f s\n",
+          this->Phases[phase].Name,
+          core,
+          latency);
+        largestCleanUp = std::max(largestCleanUp, latency - core);
+      }
+    }
+    std::printf(
+      "(the filter's clean-up once its core returned: %.3f s at most)\n\n", largestCleanUp);
+  }
+
+  void PrintTable() const
+  {
+    std::printf("| phase | aborts in it | largest latency (s) | mean latency (s) | notes |\n"
+                "| --- | ---: | ---: | ---: | --- |\n");
+    for (const Phase& phase : this->Phases)
+    {
+      double largest = 0.0, sum = 0.0;
+      for (double latency : phase.Latencies)
+      {
+        largest = std::max(largest, latency);
+        sum += latency;
+      }
+      std::string notes = phase.EndedFirst > 0 ? std::to_string(phase.EndedFirst) +
+                                                   " run(s) ended before the abort's moment. "
+                                               : std::string();
+      if (&phase == &this->Phases[Writing])
+      {
+        notes += phase.LeftFiles == 0
+                   ? "no file after an aborted write"
+                   : std::to_string(phase.LeftFiles) + " aborted write(s) left the file";
+      }
+      std::printf("| %s | %zu | %.3f | %.3f | %s |\n",
+        phase.Name,
+        phase.Latencies.size(),
+        largest,
+        phase.Latencies.empty() ? 0.0 : sum / phase.Latencies.size(),
+        notes.c_str());
+    }
+  }
+};
 }
 
 int main(int argc, char* argv[])
 {
-  if (argc < 3)
+  Bench bench;
+  if (!ParseOptions(argc, argv, bench.Settings))
   {
     return Fail("usage: pcb_abort_latency INPUT OUTPUT.las [--samples K] [--iterations N] "
                 "[--radius R] [--filter-until T]");
   }
-  const char* input = argv[1];
-  const std::string output = argv[2];
-  int samples = 3;
-  int iterations = 1;
-  double radius = 0.0;
-  double filterUntil = 0.0; // the filter's aborts spread over its first seconds only
-  for (int i = 3; i + 1 < argc; i += 2)
-  {
-    if (std::strcmp(argv[i], "--samples") == 0)
-      samples = std::atoi(argv[i + 1]);
-    else if (std::strcmp(argv[i], "--iterations") == 0)
-      iterations = std::atoi(argv[i + 1]);
-    else if (std::strcmp(argv[i], "--filter-until") == 0)
-      filterUntil = std::atof(argv[i + 1]);
-    else if (std::strcmp(argv[i], "--radius") == 0)
-      radius = std::atof(argv[i + 1]);
-    else
-      return Fail("unknown option");
-  }
-  vtkSmartPointer<vtkAlgorithm> reader;
-  reader.TakeReference(vtkPointCloudFileIO::NewReader(input));
-  if (!reader)
+  if (!bench.SetUp())
   {
     return Fail("no reader for the input's extension");
   }
-  vtkNew<vtkPointCloudBilateralFilter> filter;
-  filter->SetInputConnection(reader->GetOutputPort());
-  filter->SetNumberOfIterations(iterations);
-  filter->SetRadius(radius);
-  vtkNew<vtkLASPointCloudWriter> writer;
-  writer->SetInputConnection(filter->GetOutputPort());
-  writer->SetFileName(output.c_str());
-
-  // The filter's phase as it runs (read by the aborting thread).
-  std::atomic<int> phaseNow{ Measuring };
-  std::function<void()> onFilterStart = [&]() { phaseNow = Measuring; };
-  std::function<void()> onChosen = [&]() { phaseNow = Octree; };
-  std::function<void()> onProgress = [&]()
-  {
-    const double progress = filter->GetProgress();
-    if (phaseNow == Octree && progress > 0.0)
-    {
-      phaseNow = Kernel;
-    }
-    else if (phaseNow == Kernel && progress >= 1.0)
-    {
-      phaseNow = Output;
-    }
-    if (progress >= 1.0)
-    {
-      CoreReturned = Clock::now();
-    }
-  };
-  Observe(filter, vtkCommand::StartEvent, &onFilterStart);
-  Observe(filter, vtkPointCloudBilateralFilter::ParametersChosenEvent, &onChosen);
-  Observe(filter, vtkCommand::ProgressEvent, &onProgress);
-
-  // The reference runs, twice (the first one's times include one-time set-up).
-  double seconds[3] = { 0.0, 0.0, 0.0 };
-  for (int run = 0; run < 2; ++run)
-  {
-    reader->Modified();
-    Clock::time_point t0 = Clock::now();
-    reader->Update();
-    seconds[0] = SecondsBetween(t0, Clock::now());
-    t0 = Clock::now();
-    filter->Update();
-    seconds[1] = SecondsBetween(t0, Clock::now());
-    t0 = Clock::now();
-    writer->Write();
-    seconds[2] = SecondsBetween(t0, Clock::now());
-  }
-  std::printf("%s: %lld points, %d iteration(s), radius %g; reading %.3f s, filter %.3f s, "
-              "writing %.3f s\n\n",
-    input,
-    static_cast<long long>(vtkDataSet::SafeDownCast(filter->GetOutput())->GetNumberOfPoints()),
-    filter->GetNumberOfIterationsUsed(),
-    filter->GetRadiusUsed(),
-    seconds[0],
-    seconds[1],
-    seconds[2]);
-
-  std::vector<Phase> phases = {
-    { "reading" }, { "measuring" }, { "octree" }, { "kernel" }, { "output" }, { "writing" }
-  };
-  const std::atomic<int> readingNow{ Reading }, writingNow{ Writing };
-  const auto record = [&](double latency, int phase)
-  {
-    if (latency < 0.0)
-      ++phases[phase].EndedFirst;
-    else
-      phases[phase].Latencies.push_back(latency);
-  };
-  for (int k = 1; k <= samples; ++k)
-  {
-    int phase = Reading;
-    reader->Modified();
-    record(
-      AbortAfter(
-        reader, seconds[0] * k / (samples + 1), [&]() { reader->Update(); }, readingNow, phase),
-      Reading);
-    unlink(output.c_str());
-    phase = Writing;
-    const double latency = AbortAfter(
-      writer, seconds[2] * k / (samples + 1), [&]() { writer->Write(); }, writingNow, phase);
-    record(latency, Writing);
-    phases[Writing].LeftFiles += latency >= 0.0 && access(output.c_str(), F_OK) == 0;
-  }
-  reader->Update();
-  double largestCleanUp = 0.0; // from the core's return to the filter's
-  for (int k = 1; k <= 4 * samples; ++k)
-  {
-    int phase = Measuring;
-    filter->Modified();
-    const double latency = AbortAfter(
-      filter,
-      (filterUntil > 0.0 ? filterUntil : seconds[1]) * k / (4 * samples + 1),
-      [&]() { filter->Update(); },
-      phaseNow,
-      phase);
-    record(latency, latency < 0.0 ? Output : phase);
-    if (latency >= 0.0)
-    {
-      const double core = SecondsBetween(LastAbort, CoreReturned);
-      std::printf("abort in %s: the core returned %.3f s after it, the filter %.3f s\n",
-        phases[phase].Name,
-        core,
-        latency);
-      largestCleanUp = std::max(largestCleanUp, latency - core);
-    }
-  }
-  std::printf("(the filter's clean-up once its core returned: %.3f s at most)\n\n", largestCleanUp);
-  std::printf("| phase | aborts in it | largest latency (s) | mean latency (s) | notes |\n"
-              "| --- | ---: | ---: | ---: | --- |\n");
-  for (const Phase& phase : phases)
-  {
-    double largest = 0.0, sum = 0.0;
-    for (double latency : phase.Latencies)
-    {
-      largest = std::max(largest, latency);
-      sum += latency;
-    }
-    std::string notes = phase.EndedFirst > 0 ? std::to_string(phase.EndedFirst) +
-                                                 " run(s) ended before the abort's moment. "
-                                             : std::string();
-    if (&phase == &phases[Writing])
-    {
-      notes += phase.LeftFiles == 0
-                 ? "no file after an aborted write"
-                 : std::to_string(phase.LeftFiles) + " aborted write(s) left the file";
-    }
-    std::printf("| %s | %zu | %.3f | %.3f | %s |\n",
-      phase.Name,
-      phase.Latencies.size(),
-      largest,
-      phase.Latencies.empty() ? 0.0 : sum / phase.Latencies.size(),
-      notes.c_str());
-  }
+  bench.TimeRuns();
+  bench.AbortReadsAndWrites();
+  bench.AbortFilterRuns();
+  bench.PrintTable();
   return 0;
 }
