@@ -6,6 +6,7 @@
 #include "PointArray.h"
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -291,6 +292,19 @@ private:
     bits = (bits + (bits >> 4)) & 0x0F0F0F0F0F0F0F0FULL;
     return static_cast<int>((bits * 0x0101010101010101ULL) >> 56);
   }
+
+  /// Load's stop: its shouldStop, asked by the calling thread only (thread 0 of a parallel
+  /// pass), and whether it said stop, seen by every thread, which then skip their remaining
+  /// chunks (the octree is emptied after).
+  struct LoadStop
+  {
+    const std::function<bool()>* Ask = nullptr;
+    std::atomic<bool> Stopped{ false };
+  };
+  LoadStop* Stop = nullptr;
+  bool StopAsked() const;
+  /// Whether the load was asked to stop; if so, the octree is emptied.
+  bool EndIfStopped();
 
   /// Load's steps: empty tables with room for `count` points; each finite point's (Ids) cell
   /// in NextLink and leaf in NextLeaf.
