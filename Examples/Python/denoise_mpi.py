@@ -1,6 +1,7 @@
 """Denoise a point cloud on several processes (or machines) with ParaView's MPI engine.
 
     mpirun -np 2 pvbatch Examples/Python/denoise_mpi.py IN OUT.pvtp [--radius R] [--threads 1]
+    mpirun -np 2 pvbatch Examples/Python/denoise_mpi.py IN.las OUT.las [--threads 1]
 
 The cloud is read (by one process, for files that are not split in pieces), spread over the
 processes with ParaView's Distribute Points (equal point counts in compact regions), filtered by
@@ -9,9 +10,12 @@ one radius from them before each iteration, so the result is, bit for bit, what 
 filtering the whole cloud gives (Distribute Points stores points as float: compare with a
 single-process run on float points).
 
-IN: .ply, .vtp, .pvtp, or the authors' text format (.xyz, .txt). OUT: .pvtp (every process
-writes its own piece, OUT names the file that lists them) or .ply (gathered to the first
-process). Under pvbatch alone (one process) the same script filters the whole cloud. With
+IN: .ply, .vtp, .pvtp, or the authors' text format (.xyz, .txt), or .las/.laz: a LAS or LAZ
+file is not spread but read in pieces, each process its share of the file's points in file
+order, in double precision (Distribute Points would round georeferenced coordinates to float).
+OUT: .pvtp (every process writes its own piece, OUT names the file that lists them), .ply
+(gathered to the first process), or .las/.laz (one file written by every process, in the order
+of the processes' points: a LAS or LAZ input's file order). Under pvbatch alone (one process) the same script filters the whole cloud. With
 several processes per machine, give each one thread (--threads 1) or start mpirun with
 --bind-to none: OpenMPI pins each process to one core. The script loads the PointCloudBilateral
 plugin itself: from --plugin, from PV_PLUGIN_PATH (auto-loaded), or from the build or install
@@ -34,17 +38,20 @@ def main():
     parser = argparse.ArgumentParser(
         description="Denoise a point cloud with the bilateral filter on several MPI processes.")
     parser.add_argument("input")
-    parser.add_argument("output", help=".pvtp (one piece per process) or .ply")
+    parser.add_argument("output", help=".pvtp (one piece per process), .ply or .las/.laz")
     add_filter_arguments(
         parser, threads_help="threads per process; 0 (default): all the cores it may use")
     args = parser.parse_args()
-    if not args.output.endswith((".pvtp", ".ply")):
-        sys.exit("error: the output must be a .pvtp file (one piece per process) or a .ply file")
+    if not args.output.lower().endswith((".pvtp", ".ply", ".las", ".laz")):
+        sys.exit("error: the output must be a .pvtp file (one piece per process), a .ply file or "
+                 "a .las/.laz file")
 
     processes = vtkMultiProcessController.GetGlobalController().GetNumberOfProcesses()
     where = load_plugin(args.plugin)
     reader = open_cloud(args.input, args.oriented_normals)
-    parts = simple.DistributePoints(Input=reader)
+    # LAS and LAZ files are read in pieces, in double precision; others are spread.
+    in_pieces = args.input.lower().endswith((".las", ".laz"))
+    parts = reader if in_pieces else simple.DistributePoints(Input=reader)
     start = time.perf_counter()
     parts.UpdatePipeline()
     read = time.perf_counter()
@@ -55,7 +62,8 @@ def main():
     print(f"plugin: {where}")
     print(f"{describe_run(bilateral)} on {processes} process(es): {points} points written "
           f"to {args.output}")
-    print(f"seconds: reading and distributing {read - start:.2f}, filtering "
+    reading = "reading" if in_pieces else "reading and distributing"
+    print(f"seconds: {reading} {read - start:.2f}, filtering "
           f"{filtered - read:.2f}, writing {written - filtered:.2f}")
 
 

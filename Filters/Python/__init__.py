@@ -6,7 +6,8 @@ Classes: vtkPointCloudBilateralFilter, vtkPointCloudTextReader, vtkPointCloudTex
 vtkLASPointCloudReader, vtkLASPointCloudWriter (LAS files), vtkPCDPointCloudReader,
 vtkPCDPointCloudWriter (PCL's PCD files), vtkPointCloudFileIO, which picks a
 reader or writer by extension and checks files before reading them, and
-vtkPPointCloudBilateralFilter (distributed runs under MPI) when the package was built with MPI::
+vtkPPointCloudBilateralFilter and vtkPLASPointCloudWriter (distributed runs under MPI: the
+filter, and one LAS/LAZ file written by every process) when the package was built with MPI::
 
     io = vtkPointCloudFileIO()
     cloud = vtkPolyData()
@@ -37,6 +38,12 @@ try:
     # Distributed runs, built when VTK has MPI.
     import vtkmodules.vtkParallelCore  # noqa: F401
     from .vtkFiltersParallelPointCloudBilateral import vtkPPointCloudBilateralFilter  # noqa: F401
+    from .vtkIOParallelPointCloudBilateral import (  # noqa: F401
+        vtkPLASPointCloudReader,
+        vtkPLASPointCloudWriter,
+        vtkPPCDPointCloudReader,
+        vtkPPointCloudTextReader,
+    )
 except ImportError:
     pass
 
@@ -49,4 +56,7 @@ __all__ = [
     "vtkPointCloudFileIO",
     "vtkPointCloudTextReader",
     "vtkPointCloudTextWriter",
-] + (["vtkPPointCloudBilateralFilter"] if "vtkPPointCloudBilateralFilter" in globals() else [])
+] + [name for name in ("vtkPPointCloudBilateralFilter", "vtkPLASPointCloudWriter",
+                                 "vtkPLASPointCloudReader", "vtkPPCDPointCloudReader",
+                                 "vtkPPointCloudTextReader")
+     if name in globals()]

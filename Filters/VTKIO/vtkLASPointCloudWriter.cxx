@@ -101,42 +101,13 @@ const void* Column(vtkDataArray* array,
   return buffer.data();
 }
 
-/// The header of a cloud without one in its field data: its point count and bounds, and the
-/// point format its arrays ask for (GPS time, RGB).
-pcbilateral::LASFileInfo DefaultFileInfo(vtkPointSet* input)
-{
-  const vtkIdType count = input->GetNumberOfPoints();
-  double bounds[6] = { 0, 0, 0, 0, 0, 0 };
-  if (count > 0)
-  {
-    double vtkBounds[6];
-    input->GetBounds(vtkBounds);
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      bounds[axis] = vtkBounds[2 * axis];
-      bounds[3 + axis] = vtkBounds[2 * axis + 1];
-    }
-  }
-  vtkPointData* pointData = input->GetPointData();
-  vtkDataArray* rgb = pointData->GetArray("RGB");
-  return pcbilateral::DefaultLASFileInfo(static_cast<std::size_t>(count),
-    bounds,
-    pointData->GetArray("GpsTime") != nullptr,
-    rgb && rgb->GetNumberOfComponents() == 3);
-}
-
 /// The header to write: the one a LAS reader kept in the input's field data, else a default
 /// one. Returns an empty string or one line naming the file.
-std::string LoadFileInfo(const char* fileName, vtkPointSet* input, pcbilateral::LASFileInfo& info)
+std::string LoadFileInfo(const char* fileName,
+  vtkPointSet* input,
+  const vtkLASPointCloudWriter::CloudSummary& cloud,
+  pcbilateral::LASFileInfo& info)
 {
-  if (!fileName || !*fileName)
-  {
-    return "no file name was given";
-  }
-  if (!input)
-  {
-    return std::string(fileName) + ": the input is not a point set";
-  }
   std::string problem;
   if (vtkLASLoadFileInfo(input->GetFieldData(), info, problem))
   {
@@ -146,7 +117,8 @@ std::string LoadFileInfo(const char* fileName, vtkPointSet* input, pcbilateral::
   {
     return std::string(fileName) + ": " + problem;
   }
-  info = DefaultFileInfo(input);
+  info = pcbilateral::DefaultLASFileInfo(
+    static_cast<std::size_t>(cloud.NumberOfPoints), cloud.Bounds, cloud.HasGpsTime, cloud.HasRGB);
   return std::string();
 }
 
@@ -225,27 +197,82 @@ int vtkLASPointCloudWriter::FillInputPortInformation(int, vtkInformation* info)
   return 1;
 }
 
+vtkLASPointCloudWriter::CloudSummary vtkLASPointCloudWriter::MeasureCloud(vtkPointSet* input)
+{
+  CloudSummary cloud;
+  if (!input)
+  {
+    return cloud;
+  }
+  cloud.NumberOfPoints = input->GetNumberOfPoints();
+  if (cloud.NumberOfPoints > 0)
+  {
+    double vtkBounds[6];
+    input->GetBounds(vtkBounds);
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      cloud.Bounds[axis] = vtkBounds[2 * axis];
+      cloud.Bounds[3 + axis] = vtkBounds[2 * axis + 1];
+    }
+  }
+  vtkPointData* pointData = input->GetPointData();
+  vtkDataArray* rgb = pointData->GetArray("RGB");
+  cloud.HasGpsTime = pointData->GetArray("GpsTime") != nullptr;
+  cloud.HasRGB = rgb && rgb->GetNumberOfComponents() == 3;
+  return cloud;
+}
+
+std::string vtkLASPointCloudWriter::WritePoints(const std::string& problem,
+  const std::string& fileName,
+  const pcbilateral::LASFileInfo& info,
+  std::size_t count,
+  const double* positions,
+  const void* const* columns,
+  bool compressed)
+{
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  return (compressed ? pcbilateral::WriteLAZ : pcbilateral::WriteLAS)(
+    fileName, info, count, positions, columns);
+}
+
 void vtkLASPointCloudWriter::WriteData()
 {
   vtkPointSet* input = vtkPointSet::SafeDownCast(this->GetInput());
-  pcbilateral::LASFileInfo info;
-  this->ErrorMessage = LoadFileInfo(this->FileName, input, info);
-  if (!this->ErrorMessage.empty())
+  std::string problem;
+  if (!this->FileName || !*this->FileName)
   {
-    vtkErrorMacro(<< this->ErrorMessage);
-    this->SetErrorCode(vtkErrorCode::UnknownError);
-    return;
+    problem = "no file name was given";
   }
-  const vtkIdType count = input->GetNumberOfPoints();
-  const vtkSmartPointer<vtkDataArray> positions = DoublePositions(input);
-  std::vector<std::vector<std::uint8_t>> buffers(info.Dimensions.size());
-  const std::vector<const void*> columns = Columns(info, input->GetPointData(), count, buffers);
-  const std::string unwritten = UnwrittenArrays(info, input->GetPointData(), columns);
-  if (!unwritten.empty())
+  else if (!input)
   {
-    vtkWarningMacro(<< this->FileName << ": point format " << int(info.Header.PointFormat)
-                    << " has no field for the point arrays " << unwritten
-                    << ", which are not written");
+    problem = std::string(this->FileName) + ": the input is not a point set";
+  }
+  // Measured even when the input is wrong: the parallel writer measures the whole cloud with
+  // the other processes.
+  const CloudSummary cloud = this->MeasureCloud(problem.empty() ? input : nullptr);
+  pcbilateral::LASFileInfo info;
+  if (problem.empty())
+  {
+    problem = LoadFileInfo(this->FileName, input, cloud, info);
+  }
+  const vtkIdType count = problem.empty() ? input->GetNumberOfPoints() : 0;
+  const vtkSmartPointer<vtkDataArray> positions =
+    problem.empty() ? DoublePositions(input) : nullptr;
+  std::vector<std::vector<std::uint8_t>> buffers(info.Dimensions.size());
+  std::vector<const void*> columns(info.Dimensions.size(), nullptr);
+  if (problem.empty())
+  {
+    columns = Columns(info, input->GetPointData(), count, buffers);
+    const std::string unwritten = UnwrittenArrays(info, input->GetPointData(), columns);
+    if (!unwritten.empty())
+    {
+      vtkWarningMacro(<< this->FileName << ": point format " << int(info.Header.PointFormat)
+                      << " has no field for the point arrays " << unwritten
+                      << ", which are not written");
+    }
   }
   const double none[3] = { 0, 0, 0 };
   // A name ending in .laz (any case) is written compressed.
@@ -256,15 +283,18 @@ void vtkLASPointCloudWriter::WriteData()
       name.end(),
       ".laz",
       [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
-  this->ErrorMessage = (compressed ? pcbilateral::WriteLAZ : pcbilateral::WriteLAS)(name,
+  this->ErrorMessage = this->WritePoints(problem,
+    name,
     info,
     static_cast<std::size_t>(count),
     positions ? static_cast<const double*>(positions->GetVoidPointer(0)) : none,
-    columns.data());
+    columns.data(),
+    compressed);
   if (!this->ErrorMessage.empty())
   {
     vtkErrorMacro(<< this->ErrorMessage);
-    this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
+    this->SetErrorCode(
+      problem.empty() ? vtkErrorCode::CannotOpenFileError : vtkErrorCode::UnknownError);
   }
 }
 

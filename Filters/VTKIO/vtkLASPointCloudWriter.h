@@ -32,7 +32,15 @@
 #include "vtkIOPointCloudBilateralModule.h" // For export macro
 #include "vtkWriter.h"
 
-#include <string> // For the error message
+class vtkPointSet;
+
+#include <cstddef> // For std::size_t
+#include <string>  // For the error message
+
+namespace pcbilateral
+{
+struct LASFileInfo;
+}
 
 class VTKIOPOINTCLOUDBILATERAL_EXPORT vtkLASPointCloudWriter : public vtkWriter
 {
@@ -50,12 +58,39 @@ public:
   /// Why the last write failed; empty after a successful write.
   const char* GetErrorMessage() const { return this->ErrorMessage.c_str(); }
 
+  /// What the header of a cloud without a LAS file's field data is made from.
+  struct CloudSummary
+  {
+    vtkIdType NumberOfPoints = 0;
+    /// min x, min y, min z, max x, max y, max z; zeros without points
+    double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+    bool HasGpsTime = false;
+    bool HasRGB = false;
+  };
+
 protected:
   vtkLASPointCloudWriter();
   ~vtkLASPointCloudWriter() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   void WriteData() override;
+
+  /// The cloud to write, for a default header (`input` null when it cannot be written): here
+  /// the input's; vtkPLASPointCloudWriter's is the whole cloud over the processes.
+  virtual CloudSummary MeasureCloud(vtkPointSet* input);
+
+  /**
+   * Writes the points prepared by WriteData, or fails with `problem` when it is not empty:
+   * here with WriteLAS or WriteLAZ; vtkPLASPointCloudWriter writes this process's part of one
+   * file. Returns an empty string or one line.
+   */
+  virtual std::string WritePoints(const std::string& problem,
+    const std::string& fileName,
+    const pcbilateral::LASFileInfo& info,
+    std::size_t count,
+    const double* positions,
+    const void* const* columns,
+    bool compressed);
 
   char* FileName = nullptr;
   std::string ErrorMessage;

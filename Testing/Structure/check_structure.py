@@ -31,6 +31,8 @@ LAYERS = {
     "VTKFilter": ["VTK", "VTKCommon", "Core", "Core/Common"],
     "VTKIO": ["VTK", "VTKCommon", "Formats", "Core/Common"],
     "Parallel": ["VTK", "VTKFilter", "Core", "Core/Common", "Core/Measurement"],
+    # One file written by every process: the LAS writer of VTKIO over the pieces of Formats.
+    "ParallelIO": ["VTK", "VTKIO", "Formats", "Core/Common"],
 }
 # Layers that must know nothing of VTK (nor of ParaView's Qt side).
 PLAIN = [layer for layer in LAYERS if layer.startswith("Core") or layer == "Formats"]

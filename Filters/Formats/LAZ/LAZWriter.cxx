@@ -15,8 +15,9 @@ namespace
 {
 using las::Store;
 
-/// One chunk: its first point raw, then the others coded item by item.
-std::vector<std::uint8_t> CompressChunk(const std::uint8_t* records,
+/// One chunk of the pointwise compressor: its first point raw, then the others coded item by
+/// item.
+std::vector<std::uint8_t> CompressPointwiseChunk(const std::uint8_t* records,
   std::size_t count,
   std::size_t recordLength,
   const LAZParameters& parameters)
@@ -49,25 +50,6 @@ std::vector<std::uint8_t> CompressChunk(const std::uint8_t* records,
   return out;
 }
 
-/// The chunk table: its version and count, then each chunk's byte count coded as a difference
-/// with the previous chunk's.
-std::vector<std::uint8_t> EncodeChunkTable(const std::vector<std::vector<std::uint8_t>>& chunks)
-{
-  std::vector<std::uint8_t> table(8, 0);
-  Store<std::uint32_t>(table.data() + 4, static_cast<std::uint32_t>(chunks.size()));
-  laz::ArithmeticEncoder encoder;
-  laz::IntegerEncoder entries(32, 2);
-  std::int32_t previous = 0;
-  for (const std::vector<std::uint8_t>& chunk : chunks)
-  {
-    const auto bytes = static_cast<std::int32_t>(chunk.size());
-    entries.Encode(encoder, previous, bytes, 1);
-    previous = bytes;
-  }
-  encoder.Finish();
-  table.insert(table.end(), encoder.Bytes().begin(), encoder.Bytes().end());
-  return table;
-}
 } // namespace
 
 std::string LAZParametersFor(int pointFormat, std::size_t recordLength, LAZParameters& parameters)
@@ -144,6 +126,45 @@ std::vector<std::uint8_t> EncodeLAZParameters(const LAZParameters& parameters)
   return data;
 }
 
+std::vector<std::uint8_t> CompressLAZChunk(const std::uint8_t* records,
+  std::size_t count,
+  std::size_t recordLength,
+  const LAZParameters& parameters)
+{
+  return parameters.Compressor == static_cast<std::uint16_t>(LAZCompressor::LayeredChunked)
+           ? laz::CompressLayeredChunk(records, count, recordLength, parameters)
+           : CompressPointwiseChunk(records, count, recordLength, parameters);
+}
+
+std::vector<std::uint8_t> EncodeLAZChunkTable(const std::vector<std::uint64_t>& points,
+  const std::vector<std::uint64_t>& bytes,
+  bool variable)
+{
+  std::vector<std::uint8_t> table(8, 0);
+  Store<std::uint32_t>(table.data() + 4, static_cast<std::uint32_t>(bytes.size()));
+  laz::ArithmeticEncoder encoder;
+  laz::IntegerEncoder entries(32, 2);
+  // Each entry is coded as a difference with the previous chunk's: its points (only when the
+  // chunks' sizes vary), then its bytes.
+  std::int32_t previousPoints = 0;
+  std::int32_t previousBytes = 0;
+  for (std::size_t c = 0; c < bytes.size(); ++c)
+  {
+    if (variable)
+    {
+      const auto count = static_cast<std::int32_t>(points[c]);
+      entries.Encode(encoder, previousPoints, count, 0);
+      previousPoints = count;
+    }
+    const auto size = static_cast<std::int32_t>(bytes[c]);
+    entries.Encode(encoder, previousBytes, size, 1);
+    previousBytes = size;
+  }
+  encoder.Finish();
+  table.insert(table.end(), encoder.Bytes().begin(), encoder.Bytes().end());
+  return table;
+}
+
 std::vector<std::uint8_t> CompressLAZPoints(const std::uint8_t* records,
   std::size_t count,
   std::size_t recordLength,
@@ -159,17 +180,18 @@ std::vector<std::uint8_t> CompressLAZPoints(const std::uint8_t* records,
     const std::size_t first = static_cast<std::size_t>(c) * chunkSize;
     const std::uint8_t* chunk = records + first * recordLength;
     const std::size_t points = std::min(chunkSize, count - first);
-    chunks[static_cast<std::size_t>(c)] =
-      parameters.Compressor == static_cast<std::uint16_t>(LAZCompressor::LayeredChunked)
-        ? laz::CompressLayeredChunk(chunk, points, recordLength, parameters)
-        : CompressChunk(chunk, points, recordLength, parameters);
+    chunks[static_cast<std::size_t>(c)] = CompressLAZChunk(chunk, points, recordLength, parameters);
   }
   std::size_t total = 8;
+  std::vector<std::uint64_t> chunkPoints, chunkBytes;
   for (const std::vector<std::uint8_t>& chunk : chunks)
   {
     total += chunk.size();
+    chunkPoints.push_back(std::min(chunkSize, count - chunkPoints.size() * chunkSize));
+    chunkBytes.push_back(chunk.size());
   }
-  const std::vector<std::uint8_t> table = EncodeChunkTable(chunks);
+  const std::vector<std::uint8_t> table =
+    EncodeLAZChunkTable(chunkPoints, chunkBytes, parameters.ChunkSize == VariableChunkSize);
   std::vector<std::uint8_t> out;
   out.reserve(total + table.size());
   out.resize(8);

@@ -28,6 +28,21 @@ std::string LAZParametersFor(int pointFormat, std::size_t recordLength, LAZParam
 /// The LASzip record's data (the VLR "laszip encoded" 22204) for `parameters`.
 std::vector<std::uint8_t> EncodeLAZParameters(const LAZParameters& parameters);
 
+/// One chunk of `count` records compressed: the bytes CompressLAZPoints gives for each chunk.
+std::vector<std::uint8_t> CompressLAZChunk(const std::uint8_t* records,
+  std::size_t count,
+  std::size_t recordLength,
+  const LAZParameters& parameters);
+
+/**
+ * The chunk table of chunks of `points[c]` points and `bytes[c]` bytes: its version, its count,
+ * then the entries, arithmetic-coded; each chunk's point count only when `variable` (the
+ * LASzip record's chunk size is VariableChunkSize).
+ */
+std::vector<std::uint8_t> EncodeLAZChunkTable(const std::vector<std::uint64_t>& points,
+  const std::vector<std::uint64_t>& bytes,
+  bool variable);
+
 /**
  * Compresses `count` records of `recordLength` bytes into the bytes of a LAZ file from its point
  * data on (which starts at byte `pointDataOffset` of the file): the chunk table's offset, the
