@@ -56,16 +56,21 @@ params="-r 3.6 -n 0.5 -N 2"
 bytes_per_point=153 # pcbilateral's peak in memory (docs/streaming.md)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
-# The command in its own session with priority when asked, its peak memory into $1.
+# The command in its own session with priority when asked, its peak memory (KB) into $1; without
+# GNU time (Debian's package time), the peak is not measured.
 measured() {
   local peak=$1
   shift
+  local timed=(/usr/bin/time -f %M -o "$peak")
+  [ -x /usr/bin/time ] || { : > "$peak"; timed=(); }
   if [ "$priority" = 1 ]; then
-    setsid /tmp/prio.sh /usr/bin/time -f %M -o "$peak" "$@"
+    setsid /tmp/prio.sh "${timed[@]}" "$@"
   else
-    /usr/bin/time -f %M -o "$peak" "$@"
+    "${timed[@]}" "$@"
   fi
 }
+
+seconds_since() { awk -v start="$1" -v end="$(date +%s.%N)" 'BEGIN { printf "%.1f", end - start }'; }
 
 available_kb() { awk '/MemAvailable/ { print $2 }' /proc/meminfo; }
 
@@ -82,7 +87,7 @@ compare() { # the output against the in-memory one, when there is one
   if [ -f "$2" ]; then cmp -s "$1" "$2" && echo same || echo DIFFERENT; else echo "-"; fi
 }
 
-peak_mb() { awk '{ printf "%.0f MB", $1 / 1024 }' "$1"; }
+peak_mb() { awk '{ printf "%.0f MB", $1 / 1024; found = 1 } END { if (!found) print "-" }' "$1"; }
 
 run_memory() {
   local points=$1 format=$2 input=$3 reference=$4
@@ -91,31 +96,30 @@ run_memory() {
     echo "| $points | $format | in memory | needs ~$((need / 1024)) MB, more than is available: not run | | | |"
     return
   fi
-  local start end
+  local start
   start=$(date +%s.%N)
   measured "$work/peak" "$cli" "$input" "$reference" $params -t 2 > "$work/log" 2>&1 ||
     { echo "| $points | $format | in memory | failed: $(tail -1 "$work/log") | | | |"; return; }
-  end=$(date +%s.%N)
-  report "$points" "$format" "in memory" "$(echo "$end - $start" | bc | xargs printf %.1f)" \
+  report "$points" "$format" "in memory" "$(seconds_since "$start")" \
     "$(peak_mb "$work/peak")" 2 "-"
 }
 
 run_stream() {
   local points=$1 format=$2 input=$3 reference=$4 limit=$5 out=$work/streamed.las
-  local start end
+  local start
   start=$(date +%s.%N)
   measured "$work/peak" "$cli" "$input" "$out" $params -t 2 --memory-limit "$limit" \
     > "$work/log" 2>&1 ||
     { echo "| $points | $format | --memory-limit $limit | failed: $(tail -1 "$work/log") | | | |"; return; }
-  end=$(date +%s.%N)
+  local elapsed
+  elapsed=$(seconds_since "$start")
   # Without an in-memory run, the streamed runs are compared with the first of them.
   local against=$reference
   [ -f "$reference" ] || against=$work/first-streamed.las
   local same
   same=$(compare "$out" "$against")
   [ -f "$reference" ] || [ "$same" = "-" ] || same="$same as the first limit's"
-  report "$points" "$format" "--memory-limit $limit" \
-    "$(echo "$end - $start" | bc | xargs printf %.1f)" "$(peak_mb "$work/peak")" 2 "$same"
+  report "$points" "$format" "--memory-limit $limit" "$elapsed" "$(peak_mb "$work/peak")" 2 "$same"
   if [ ! -f "$reference" ] && [ ! -f "$against" ]; then mv "$out" "$against"; else rm -f "$out"; fi
 }
 
@@ -129,7 +133,7 @@ run_mpi() {
     return
   fi
   rm -f "$work"/peak.rank*
-  local start end
+  local start
   start=$(date +%s.%N)
   local rank_cmd="exec /usr/bin/time -f %M -o $work/peak.rank\$OMPI_COMM_WORLD_RANK pvbatch \
     $source_dir/Examples/Python/denoise_mpi.py $input $out --radius 3.6 --normal-radius 0.5 \
@@ -142,8 +146,7 @@ run_mpi() {
   else
     "${mpi[@]}" > "$work/log" 2>&1
   fi || { echo "| $points | $format | mpirun -np 2 | failed: $(tail -1 "$work/log") | | | |"; return; }
-  end=$(date +%s.%N)
-  report "$points" "$format" "mpirun -np 2" "$(echo "$end - $start" | bc | xargs printf %.1f)" \
+  report "$points" "$format" "mpirun -np 2" "$(seconds_since "$start")" \
     "$(peak_mb "$work/peak.rank0"), $(peak_mb "$work/peak.rank1")" 2 \
     "$(compare "$out" "$reference")"
   rm -f "$out"
@@ -165,8 +168,7 @@ for points in $sizes; do
     start=$(date +%s.%N)
     measured "$work/peak" "$bench" --write-lidar "$points" "$input" > "$work/log" 2>&1 ||
       { echo "error: $(cat "$work/log")" >&2; exit 1; }
-    end=$(date +%s.%N)
-    echo "| $points | $format | generated ($(du -m "$input" | cut -f1) MB) | $(echo "$end - $start" | bc | xargs printf %.1f) s | $(peak_mb "$work/peak") | | |"
+    echo "| $points | $format | generated ($(du -m "$input" | cut -f1) MB) | $(seconds_since "$start") s | $(peak_mb "$work/peak") | | |"
     rm -f "$reference"
     for mode in $modes; do
       case "$mode" in
