@@ -92,9 +92,9 @@ const char* const UsageTail =
   "                     xmin,xmax,ymin,ymax,zmin,zmax (the file's coordinates)\n"
   "  --memory-limit SIZE  filter the file in slabs within SIZE of memory (e.g. 512M, 2G),\n"
   "                     temporary files in TMPDIR or beside the output; the same output\n"
-  "                     file as in memory. LAS or LAZ into LAS, text into text. Default:\n"
-  "                     in memory, or streamed within 80% of the available memory when\n"
-  "                     the cloud needs more (said)\n"
+  "                     file as in memory. LAS or LAZ into LAS or LAZ, text into text.\n"
+  "                     Default: in memory, or streamed within 80% of the available\n"
+  "                     memory when the cloud needs more (said)\n"
   "  -q, --quiet        print nothing but warnings and errors (default: what was read,\n"
   "                     measured, chosen and written, each line as soon as it is known, and\n"
   "                     on a terminal a progress bar with the time left)\n"
@@ -813,8 +813,10 @@ std::string RunStreamed(const Options& options, std::uint64_t limit)
   }
   Say("filtering:     %.3f s\n",
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  problem = input.WriteFiltered(
-    run, options.Output, 1u << 18, [](double fraction) { StreamProgress("writing", fraction); });
+  problem = input.WriteFiltered(run,
+    options.Output,
+    pcbilateral::StreamedRangePoints(),
+    [](double fraction) { StreamProgress("writing", fraction); });
   if (problem.empty())
   {
     Say("output:        %s, %llu points\n",

@@ -30,8 +30,12 @@ public:
 };
 
 /// Why `input` cannot be streamed into `output` (by their extensions), or empty: LAS or LAZ into
-/// LAS, text (.txt, .xyz) into text.
+/// LAS or LAZ, text (.txt, .xyz) into text.
 std::string StreamingFormatsProblem(const std::string& input, const std::string& output);
+
+/// The points of a range read and written at a time: 2^18, or PCB_STREAMING_RANGE_POINTS from
+/// the environment (tests).
+std::size_t StreamedRangePoints();
 
 /// The input opened for streaming into `output`'s format, or null with `problem` set.
 std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,

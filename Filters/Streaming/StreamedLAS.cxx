@@ -10,12 +10,27 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <memory>
+#include <vector>
 
 namespace pcbilateral
 {
+
+namespace
+{
+bool IsLAZName(const std::string& path)
+{
+  return path.size() >= 4 &&
+         std::equal(path.end() - 4,
+           path.end(),
+           ".laz",
+           [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
+}
+} // namespace
 
 LASPointSource::~LASPointSource()
 {
@@ -121,17 +136,20 @@ LASFileInfo LASInfoAsWritten(const LASFileInfo& info)
   return written;
 }
 
-std::string WriteStreamedLAS(LASPointSource& input,
+namespace
+{
+/// The records of `input`, a range at a time, at their filtered positions, into `writer` (a
+/// LASStreamWriter or a LAZStreamWriter).
+template<typename Writer>
+std::string WriteRanges(LASPointSource& input,
   OutOfCoreRun& run,
-  const std::string& path,
+  Writer& writer,
   std::size_t pointsPerRange,
   const std::function<void(double)>& progress)
 {
   const LASFileInfo& info = input.GetInfo();
-  const LASFileInfo written = LASInfoAsWritten(info);
   const std::uint64_t total = input.GetNumberOfPoints();
-  LASStreamWriter writer;
-  std::string problem = writer.Open(path, written, total);
+  std::string problem;
   std::vector<double> positions;
   std::vector<std::vector<std::uint8_t>> columns(info.Dimensions.size());
   std::vector<void*> pointers(info.Dimensions.size());
@@ -160,6 +178,26 @@ std::string WriteStreamedLAS(LASPointSource& input,
     }
   }
   return problem.empty() ? writer.Close() : problem;
+}
+} // namespace
+
+std::string WriteStreamedLAS(LASPointSource& input,
+  OutOfCoreRun& run,
+  const std::string& path,
+  std::size_t pointsPerRange,
+  const std::function<void(double)>& progress)
+{
+  const LASFileInfo written = LASInfoAsWritten(input.GetInfo());
+  const std::uint64_t total = input.GetNumberOfPoints();
+  if (IsLAZName(path))
+  {
+    LAZStreamWriter writer;
+    const std::string problem = writer.Open(path, written, total);
+    return problem.empty() ? WriteRanges(input, run, writer, pointsPerRange, progress) : problem;
+  }
+  LASStreamWriter writer;
+  const std::string problem = writer.Open(path, written, total);
+  return problem.empty() ? WriteRanges(input, run, writer, pointsPerRange, progress) : problem;
 }
 
 } // namespace pcbilateral

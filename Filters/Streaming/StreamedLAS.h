@@ -58,8 +58,9 @@ private:
 LASFileInfo LASInfoAsWritten(const LASFileInfo& info);
 
 /**
- * Writes the filtered cloud of `run` as an uncompressed LAS file: the input's records, a range
- * at a time, with the filtered positions. Progress from 0 to 1. Returns an empty string or a
+ * Writes the filtered cloud of `run` as a LAS file, or a LAZ file when `path` ends in .laz: the
+ * input's records, a range at a time, with the filtered positions (LASStreamWriter,
+ * LAZStreamWriter). Progress from 0 to 1. Returns an empty string or a
  * one-line message (no file is left then).
  */
 std::string WriteStreamedLAS(LASPointSource& input,

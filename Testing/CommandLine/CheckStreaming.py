@@ -78,10 +78,12 @@ class Checks:
         if not condition:
             self.failures.append(message)
 
-    def run(self, arguments, slab_points=None):
+    def run(self, arguments, slab_points=None, range_points=None):
         env = dict(os.environ, TMPDIR=self.tmp)
         if slab_points is not None:
             env["PCB_STREAMING_SLAB_POINTS"] = str(slab_points)
+        if range_points is not None:
+            env["PCB_STREAMING_RANGE_POINTS"] = str(range_points)
         return subprocess.run([self.program] + arguments, capture_output=True, text=True, env=env)
 
     def read(self, path):
@@ -91,8 +93,11 @@ class Checks:
     def temporary_left(self):
         return os.listdir(self.tmp)
 
-    def same_as_in_memory(self, name, source, parameters, slab_sizes, expect=None):
-        extension = os.path.splitext(source)[1].replace(".laz", ".las")
+    def same_as_in_memory(self, name, source, parameters, slab_sizes, expect=None,
+                          extension=None, range_points=None):
+        """The streamed outputs (into `extension`, by default the input's, LAZ into LAS) against
+        the output in memory; `range_points` points read and written at a time."""
+        extension = extension or os.path.splitext(source)[1].replace(".laz", ".las")
         in_memory = os.path.join(self.scratch, name + "-memory" + extension)
         result = self.run([source, in_memory] + parameters)
         self.check(result.returncode == 0, f"{name}: the run in memory ({result.stderr.strip()})")
@@ -100,7 +105,8 @@ class Checks:
             self.check(expect in result.stdout, f"{name}: the run in memory says '{expect}'")
         for slab_points in slab_sizes:
             streamed = os.path.join(self.scratch, f"{name}-{slab_points}{extension}")
-            result = self.run([source, streamed, "--memory-limit", "1G"] + parameters, slab_points)
+            result = self.run([source, streamed, "--memory-limit", "1G"] + parameters, slab_points,
+                              range_points)
             slabs = [line for line in result.stdout.splitlines() if "along" in line]
             self.check(result.returncode == 0 and os.path.exists(streamed) and
                        self.read(streamed) == self.read(in_memory),
@@ -124,7 +130,7 @@ def check_refusals(c, source):
             f"a slab that cannot fit: one line, non-zero exit, no output ({result.stderr.strip()})")
     c.check(not c.temporary_left(), "the refusal leaves no temporary file")
     for arguments, words in (([source, os.path.join(c.scratch, "o.txt")], "into .las"),
-                             ([source, os.path.join(c.scratch, "o.laz")], "not yet"),
+                             ([source, os.path.join(c.scratch, "o.pcd")], "not yet"),
                              ([source, output, "--edge-aware"], "does not take"),
                              ([source, output, "-r", "3"], None)):
         size = "2X" if words is None else "1G"
@@ -208,6 +214,15 @@ def main(program, scratch, las_dir=None):
         c.same_as_in_memory("autzen-1.4", os.path.join(las_dir, "autzen_trim_7.las"),
                             ["-r", "5"], [30000])
         c.same_as_in_memory("extra-bytes", os.path.join(las_dir, "extrabytes.las"), [], [0])
+        # LAZ output: the pointwise (formats 0 to 3) and the layered (6 to 8) compressors, the
+        # ranges written cutting the chunks of 50,000 points.
+        c.same_as_in_memory("autzen-into-laz", autzen, ["-r", "5", "-N", "2"], [40000],
+                            extension=".laz", range_points=37000)
+        c.same_as_in_memory("autzen-laz-into-laz",
+                            os.path.join(las_dir, "..", "laz", "autzen_trim.laz"),
+                            ["-r", "5", "-N", "2"], [30000], extension=".laz")
+        c.same_as_in_memory("autzen-1.4-into-laz", os.path.join(las_dir, "autzen_trim_7.las"),
+                            ["-r", "5"], [30000], extension=".laz", range_points=23456)
         return 1 if c.failures else 0
     points = survey(60000, 7)
     ordered = os.path.join(scratch, "survey.las")
@@ -225,6 +240,12 @@ def main(program, scratch, las_dir=None):
                             [0, 30000, 20000])
         c.same_as_in_memory(name + "-automatic", source, [], [0, 40000, 35000],
                             expect="following the density")
+    # LAZ output: 60,000 points make a chunk of 50,000 and one of 10,000; ranges of 7,000 and
+    # 50,000 points read and written at a time cut the chunks or fall on their boundary.
+    for range_points in (7000, 50000, None):
+        c.same_as_in_memory(f"into-laz-{range_points}", shuffled,
+                            ["-r", "1.2", "-n", "0.1", "-N", "2"], [20000], extension=".laz",
+                            range_points=range_points)
     check_bad_text(c, text)
     check_not_finite_text(c, text)
     # One thread in the slabs, two in memory (the default on this machine's two cores).
