@@ -23,7 +23,7 @@ import time
 import numpy as np
 
 
-def write_las(path, points):
+def write_las(path, points, classes=2):
     """A LAS 1.2 file of point format 0 (scale 0.001), records in the order given."""
     scale = 0.001
     low, high = points.min(axis=0), points.max(axis=0)
@@ -38,7 +38,7 @@ def write_las(path, points):
     records["xyz"] = np.round((points - offset) / scale).astype(np.int32)
     records["intensity"] = np.arange(len(points)) % 65536
     records["flags"] = 9
-    records["class"] = 2
+    records["class"] = classes
     with open(path, "wb") as stream:
         stream.write(header)
         stream.write(records.tobytes())
@@ -147,6 +147,25 @@ def check_refusals(c, source):
             f"an error while writing leaves no temporary file ({result.stderr.strip()})")
 
 
+def check_classes(c, name, source, parameters, extension, slab_points):
+    """--classes: the same bytes and the same warnings or error as in memory, and the same count
+    of points filtered; no output after an error."""
+    in_memory = os.path.join(c.scratch, name + "-memory" + extension)
+    streamed = os.path.join(c.scratch, name + "-streamed" + extension)
+    memory_run = c.run([source, in_memory] + parameters)
+    streamed_run = c.run([source, streamed, "--memory-limit", "1G"] + parameters, slab_points,
+                         23456)
+    said = [re.findall(r"^classes: .*$", run.stdout, re.MULTILINE)
+            for run in (memory_run, streamed_run)]
+    failed = memory_run.returncode != 0
+    c.check(streamed_run.returncode == memory_run.returncode and
+            streamed_run.stderr == memory_run.stderr and said[0] == said[1] and
+            (c.read(streamed) == c.read(in_memory) if not failed else
+             not os.path.exists(streamed)) and not c.temporary_left(),
+            f"{name}: the same {'error' if failed else 'bytes'}, warnings and count as in memory "
+            f"({said[1]} {streamed_run.stderr.strip()})")
+
+
 def check_bad_text(c, text):
     """A malformed line near the end: the same one-line error as in memory, no output, no
     temporary file."""
@@ -223,6 +242,21 @@ def main(program, scratch, las_dir=None):
                             ["-r", "5", "-N", "2"], [30000], extension=".laz")
         c.same_as_in_memory("autzen-1.4-into-laz", os.path.join(las_dir, "autzen_trim_7.las"),
                             ["-r", "5"], [30000], extension=".laz", range_points=23456)
+        # --classes (Autzen: classes 1 and 2): only the chosen classes filtered, the others
+        # passed through; the in-memory errors and warning.
+        laz = os.path.join(las_dir, "..", "laz", "autzen_trim.laz")
+        for name, source, parameters, extension in (
+                ("classes-automatic", autzen, ["--classes", "2"], ".las"),
+                ("classes-laz", laz, ["--classes", "1,2", "-r", "5", "-N", "2"], ".laz"),
+                ("classes-1.4", os.path.join(las_dir, "autzen_trim_7.las"),
+                 ["--classes", "2", "-r", "5"], ".las"),
+                ("classes-intensity", autzen, ["--classes", ",".join(map(str, range(30))),
+                                               "--class-array", "Intensity", "-r", "5"], ".las"),
+                ("classes-none", autzen, ["--classes", "17", "-r", "5"], ".las"),
+                ("classes-missing", autzen, ["--classes", "2", "--class-array", "Nope"], ".las"),
+                ("classes-float", autzen, ["--classes", "2", "--class-array", "GpsTime"], ".las"),
+                ("classes-rgb", autzen, ["--classes", "2", "--class-array", "RGB"], ".las")):
+            check_classes(c, name, source, parameters, extension, 8000)
         return 1 if c.failures else 0
     points = survey(60000, 7)
     ordered = os.path.join(scratch, "survey.las")
@@ -246,6 +280,17 @@ def main(program, scratch, las_dir=None):
         c.same_as_in_memory(f"into-laz-{range_points}", shuffled,
                             ["-r", "1.2", "-n", "0.1", "-N", "2"], [20000], extension=".laz",
                             range_points=range_points)
+    # --classes on a shuffled file: class 2 on the terrain's ridges, 6 elsewhere.
+    classified = os.path.join(scratch, "survey-classes.las")
+    order = np.random.default_rng(11).permutation(len(points))
+    write_las(classified, points[order], np.where(points[order, 2] > 0.5, 2, 6))
+    check_classes(c, "classes-explicit", classified,
+                  ["--classes", "2", "-r", "1.2", "-n", "0.1", "-N", "2"], ".las", 15000)
+    check_classes(c, "classes-automatic-laz", classified, ["--classes", "6"], ".laz", 30000)
+    refused = c.run([text, os.path.join(scratch, "o.xyz"), "--classes", "2", "--memory-limit",
+                     "1G"])
+    c.check(refused.returncode != 0 and "--classes with text input" in refused.stderr,
+            f"--classes with text input is refused: {refused.stderr.strip()}")
     check_bad_text(c, text)
     check_not_finite_text(c, text)
     # One thread in the slabs, two in memory (the default on this machine's two cores).
