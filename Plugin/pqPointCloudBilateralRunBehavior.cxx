@@ -9,7 +9,9 @@
 #include "pqServer.h"
 #include "pqServerManagerModel.h"
 #include "vtkAlgorithm.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkNew.h"
 #include "vtkOutputWindow.h"
 #include "vtkPVDataInformation.h"
 #include "vtkPVRepresentedArrayListSettings.h"
@@ -29,7 +31,9 @@
 #include <QWidget>
 #include <QWindow>
 
+#include <algorithm>
 #include <cstring>
+#include <string>
 
 namespace
 {
@@ -96,6 +100,72 @@ public:
 private:
   const QList<QPointer<QObject>>& Allowed;
 };
+
+/// A message longer than this is given a shorter first line (about what the Output Messages
+/// window shows of a row at its default size).
+constexpr std::size_t LongestFirstLine = 80;
+
+/**
+ * The filter's error or warning as the Output Messages window should show it. That window sums a
+ * message up in one row, cut at the window's width: VTK's "ERROR: In file, line n\nclass (address):
+ * text" by the whole text, any other message by its first line. So a long text is split where its
+ * explanation begins, at its first ": " or " (" ("the radius 1e-09 is too small for a cloud 1.45
+ * wide" / "(it may be at most 1e+08 times smaller): give a larger radius"): the row shows the
+ * first clause whole, and the rest, then the filter's name and the source line, open under it.
+ */
+std::string FormatForOutputMessages(const std::string& vtkText)
+{
+  // VTK 9.2: "ERROR: In file, line n\nclass (address): text\n\n".
+  std::string text = vtkText;
+  std::string location;
+  const std::size_t in = text.find(": In ");
+  const std::size_t lineEnd = text.find('\n');
+  if (in != std::string::npos && lineEnd != std::string::npos && in < lineEnd)
+  {
+    location = ", " + text.substr(in + 5, lineEnd - in - 5);
+    text.erase(0, lineEnd + 1);
+  }
+  const std::size_t object = text.find("): ");
+  if (object != std::string::npos && text.find(" (0x") < object)
+  {
+    text.erase(0, object + 3);
+  }
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
+  {
+    text.pop_back();
+  }
+  if (text.size() > LongestFirstLine)
+  {
+    const std::size_t split = std::min(text.find(": ", 20), text.find(" (", 20));
+    if (split != std::string::npos)
+    {
+      // "A: B" becomes "A:" and "B"; "A (B): C", "A" and "(B): C".
+      const std::size_t rest = text[split] == ':' ? split + 2 : split + 1;
+      text = text.substr(0, text[split] == ':' ? split + 1 : split) + "\n" + text.substr(rest);
+    }
+  }
+  return text + "\n(Point Cloud Bilateral Filter" + location + ")";
+}
+
+/// Observes the filter's errors and warnings (an observed one is not printed by VTK) and prints
+/// them in the form above.
+void ShowFilterMessage(vtkObject*, unsigned long event, void*, void* callData)
+{
+  const char* text = static_cast<const char*>(callData);
+  if (!text)
+  {
+    return;
+  }
+  const std::string shown = FormatForOutputMessages(text);
+  if (event == vtkCommand::ErrorEvent)
+  {
+    vtkOutputWindow::GetInstance()->DisplayErrorText(shown.c_str());
+  }
+  else
+  {
+    vtkOutputWindow::GetInstance()->DisplayWarningText(shown.c_str());
+  }
+}
 }
 
 pqPointCloudBilateralRunBehavior::pqPointCloudBilateralRunBehavior(QObject* parent)
@@ -133,11 +203,14 @@ void pqPointCloudBilateralRunBehavior::startup()
   colourArrays->SetFilterExpression(count + 1, "^(LAS|PCD) [A-Z]");
   // A .xyz file opens with the Point Cloud Text Reader: ParaView 5.11's open dialog offers the
   // PLOT3D reader first (it claims .xyz too, and gives an empty multiblock for a point file).
+  // A .las or .laz file opens with the LAS reader without asking the other readers that claim
+  // the extension: GDAL's raster reader, asked, printed "ERROR 4: ... not recognized".
   // This is ParaView's "default reader" setting, at a priority below the user's own settings
   // (which then win) and never saved to them.
   vtkSMSettings::GetInstance()->AddCollectionFromString(
     R"json({ "settings": { "RepresentedArrayListSettings": { "ReaderDetails": [
-      "*.xyz", "Point Cloud Text Files", "PointCloudTextReader" ] } } })json",
+      "*.xyz", "Point Cloud Text Files", "PointCloudTextReader",
+      "*.las *.laz", "LAS and LAZ point cloud", "ASPRSLASPointCloudReader" ] } } })json",
     0.1);
   QObject::connect(core->getProgressManager(),
     &pqProgressManager::abort,
@@ -178,6 +251,10 @@ void pqPointCloudBilateralRunBehavior::onSourceAdded(pqPipelineSource* source)
     return;
   }
   this->Sources[algorithm] = source;
+  vtkNew<vtkCallbackCommand> showMessage;
+  showMessage->SetCallback(&ShowFilterMessage);
+  algorithm->AddObserver(vtkCommand::ErrorEvent, showMessage);
+  algorithm->AddObserver(vtkCommand::WarningEvent, showMessage);
   // The connections end with either object.
   pqCoreUtilities::connect(algorithm, vtkCommand::StartEvent, this, SLOT(onRunStarted(vtkObject*)));
   pqCoreUtilities::connect(
@@ -273,7 +350,7 @@ void pqPointCloudBilateralRunBehavior::onRunEnded(vtkObject* algorithm)
     {
       // The pipeline takes the aborted run as up to date: Apply alone would not run it again.
       vtkOutputWindow::GetInstance()->DisplayWarningText(
-        "Point Cloud Bilateral Filter: aborted, the output is empty. Change a property and "
+        "Point Cloud Bilateral Filter: aborted, the output is empty.\nChange a property and "
         "Apply to run it again.");
     }
   }

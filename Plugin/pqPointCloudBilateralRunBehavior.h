@@ -28,9 +28,14 @@
  * Used): the Properties panel reads them when Apply pushes the properties, before the run, so
  * they showed the previous run's values.
  *
+ * It gives the filter's long errors and warnings a short first line: the Output Messages window
+ * sums a VTK message up by its whole text in one row, cut at the window's width, and any other
+ * message by its first line (see FormatForOutputMessages in the .cxx).
+ *
  * And it keeps the filter's field arrays BilateralRadius and BilateralNormalRadius (one value
  * each) out of the colour-by lists, and makes the Point Cloud Text Reader the default reader of
- * .xyz files (ParaView's "default reader" setting, below the user's settings).
+ * .xyz files, and the LAS reader that of .las and .laz files, so that GDAL's raster reader is not
+ * asked and prints nothing (ParaView's "default reader" setting, below the user's settings).
  */
 #ifndef pqPointCloudBilateralRunBehavior_h
 #define pqPointCloudBilateralRunBehavior_h

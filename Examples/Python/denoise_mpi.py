@@ -2,6 +2,7 @@
 
     mpirun -np 2 pvbatch Examples/Python/denoise_mpi.py IN OUT.pvtp [--radius R] [--threads 1]
     mpirun -np 2 pvbatch Examples/Python/denoise_mpi.py IN.las OUT.las [--threads 1]
+    mpirun -np 2 pvbatch --symmetric Examples/Python/denoise_mpi.py ...   (the same; one report)
 
 The cloud is read (by one process, for files that are not split in pieces), spread over the
 processes with ParaView's Distribute Points (equal point counts in compact regions), filtered by
@@ -34,6 +35,23 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from denoise import add_filter_arguments, describe_run, load_plugin, open_cloud, run_filter  # noqa: E402
 
 
+def whole_count(points):
+    """The whole cloud's count, and whether this process reports it. Under `pvbatch --symmetric`
+    every process runs this script and its proxies see its own points only: the counts are
+    summed and the first process reports. Otherwise the first process alone runs it and its
+    data information already covers every process."""
+    from paraview.servermanager import vtkProcessModule
+    if not vtkProcessModule.GetProcessModule().GetSymmetricMPIMode():
+        return points, True
+    from vtkmodules.vtkCommonCore import vtkIdTypeArray
+    from vtkmodules.vtkParallelCore import vtkCommunicator
+    controller = vtkMultiProcessController.GetGlobalController()
+    mine, total = vtkIdTypeArray(), vtkIdTypeArray()
+    mine.InsertNextValue(points)
+    controller.AllReduce(mine, total, vtkCommunicator.SUM_OP)
+    return total.GetValue(0), controller.GetLocalProcessId() == 0
+
+
 def main():
     parser = argparse.ArgumentParser(
         description="Denoise a point cloud with the bilateral filter on several MPI processes.")
@@ -59,6 +77,9 @@ def main():
     filtered = time.perf_counter()
     simple.SaveData(args.output, proxy=bilateral)
     written = time.perf_counter()
+    points, speaking = whole_count(points)
+    if not speaking:
+        return
     print(f"plugin: {where}")
     print(f"{describe_run(bilateral)} on {processes} process(es): {points} points written "
           f"to {args.output}")

@@ -106,7 +106,8 @@ public:
     const CloudExtent& extent,
     const RadiiUsed& radii,
     bool removeIsolatedPoints,
-    int threads)
+    int threads,
+    const std::function<bool()>& shouldAbort)
     : Octree(extent.Min, extent.Max, radii.Radius)
     , Scheduler(this->Octree,
         KernelConstants(radii.Radius, radii.NormalRadius),
@@ -116,8 +117,10 @@ public:
     , State(std::move(state))
     , Threads(threads)
   {
-    this->Octree.Load(
-      positions ? positions : this->State.Positions.data(), this->State.Removed.size(), threads);
+    this->Loaded = this->Octree.Load(positions ? positions : this->State.Positions.data(),
+      this->State.Removed.size(),
+      threads,
+      shouldAbort);
   }
 
   ProcessingOctree Octree;
@@ -127,6 +130,8 @@ public:
   /// Whether an iteration has placed the points since the octree's last layout (Load makes the
   /// first one).
   bool PointsPlaced = false;
+  /// False when the run was aborted while the octree was built: the engine cannot iterate.
+  bool Loaded = false;
 
   /// Writes the points' last moves from the octree's layout back to their ids.
   void ScatterMoves()
@@ -227,7 +232,8 @@ struct BilateralRun::Internals
       this->WholeExtent,
       radii,
       this->Parameters.RemoveIsolatedPoints,
-      this->Threads);
+      this->Threads,
+      this->Observer.ShouldAbort);
     this->Result.ProcessingDepth = engine->Octree.GetProcessingDepth();
     CellColoringScheduler& scheduler = engine->Scheduler;
     scheduler.ShouldAbort = this->Observer.ShouldAbort;
@@ -249,6 +255,10 @@ struct BilateralRun::Internals
   /// One iteration of an engine at `radius`; false if aborted.
   bool Iterate(IterationEngine& engine, double radius)
   {
+    if (!engine.Loaded)
+    {
+      return false; // aborted while the octree was built
+    }
     if (engine.PointsPlaced)
     {
       engine.Octree.Compact(this->Threads);
@@ -602,6 +612,13 @@ bool BilateralRun::Start(const CloudExtent& wholeCloud, const CloudScales* whole
   {
     run.ChooseAutomaticParameters(
       wholeCloudScales != nullptr ? *wholeCloudScales : MeasureWholeCloud(run.Cloud, run.Threads));
+    // An abort asked during the run's own measurement (a distributed run is given the scales,
+    // and every part must decide alike here: its parts see an abort in Step, together).
+    if (wholeCloudScales == nullptr && run.Observer.ShouldAbort && run.Observer.ShouldAbort())
+    {
+      this->Stop(BilateralStatus::Aborted);
+      return false;
+    }
   }
   if (run.Parameters.NumberOfIterations == 0)
   {

@@ -385,10 +385,27 @@ std::string OutOfCoreRun::Internals::PlanSlabs()
     std::uint64_t points = this->PointsOfSlab(first, last, halo);
     if (points > slabPoints)
     {
+      // A limit that holds this slab, in whole megabytes, so that the user knows what to give
+      // rather than guess: 5% over the need, since the program's own memory, measured when the
+      // run starts, varies a little from run to run.
+      const std::uint64_t needed =
+        (this->Settings.ReservedBytes + points * BytesPerSlabPoint) / 20 * 21;
+      const std::uint64_t megabyte = 1024 * 1024;
       std::ostringstream problem;
-      problem << "a slab and its halo (" << points << " points, a halo of " << halo
-              << ") cannot fit the memory limit (room for " << slabPoints
-              << " points): give a larger --memory-limit";
+      if (budget / BytesPerSlabPoint == 0)
+      {
+        problem << "the memory limit (" << this->Settings.MemoryLimit / megabyte
+                << " MB) does not cover what the program holds besides the slabs ("
+                << (this->Settings.ReservedBytes + megabyte - 1) / megabyte << " MB)";
+      }
+      else
+      {
+        problem << "a slab and its halo (" << points << " points, a halo of " << halo
+                << ") cannot fit the memory limit (room for " << slabPoints << " points"
+                << (slabPoints == this->Settings.MaximumSlabPoints ? ", as the slab cap asks" : "")
+                << ")";
+      }
+      problem << ": give --memory-limit " << (needed + megabyte - 1) / megabyte << "M or more";
       return problem.str();
     }
     while (last + 1 < NumberOfBins)

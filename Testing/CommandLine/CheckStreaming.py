@@ -166,6 +166,21 @@ def check_classes(c, name, source, parameters, extension, slab_points):
             f"({said[1]} {streamed_run.stderr.strip()})")
 
 
+def check_limit_too_small(c, source):
+    """A limit below what the program holds besides its slabs says so and names a limit that
+    does."""
+    output = os.path.join(c.scratch, "too-small.las")
+    result = c.run([source, output, "--memory-limit", "16M", "-r", "3", "-N", "3"])
+    hint = re.search(r"give --memory-limit (\d+)M or more$", result.stderr.strip())
+    c.check(result.returncode != 0 and "does not cover what the program holds" in result.stderr
+            and hint is not None and not os.path.exists(output),
+            f"--memory-limit 16M: says why and the limit to give ({result.stderr.strip()})")
+    if hint:
+        enough = c.run([source, output, "--memory-limit", hint.group(1) + "M", "-r", "3", "-N", "3"])
+        c.check(enough.returncode == 0, f"the limit it names is enough ({hint.group(1)}M): "
+                f"{enough.stderr.strip()}")
+
+
 def check_bad_text(c, text):
     """A malformed line near the end: the same one-line error as in memory, no output, no
     temporary file."""
@@ -301,6 +316,7 @@ def main(program, scratch, las_dir=None):
             c.read(one_thread) == c.read(os.path.join(scratch, "shuffled-explicit-memory.las")),
             "one thread in the slabs: the same bytes as in memory")
     check_refusals(c, ordered)
+    check_limit_too_small(c, ordered)
     check_interrupt(c, ordered)
     return 1 if c.failures else 0
 

@@ -54,6 +54,15 @@ with open(os.environ["PCB_LOG"], "w") as log:
           and not any(name.startswith("LAS ") for name in las_offered),
           f"a LAS file's colour-by offers {las_offered}, not its header ({las_field})")
 
+    # Class Array: Classification on a LAS file, "(none)" on a cloud without integer point arrays
+    # (the PLY sample), never a name the input lacks (the panel showed "Classification (?)").
+    las_filter = simple.PointCloudBilateralFilter(Input=las)
+    for proxy, expected in ((bilateral, "(none)"), (las_filter, "Classification")):
+        class_domain = proxy.GetProperty("ClassArray").SMProperty.FindDomain("vtkSMArrayListDomain")
+        choices = [class_domain.GetString(i) for i in range(class_domain.GetNumberOfStrings())]
+        check(proxy.ClassArray == expected and expected in choices and "GpsTime" not in choices,
+              f"Class Array is {proxy.ClassArray!r} among the integer point arrays {choices}")
+
     # ParaView's open dialog (pqLoadDataReaction) reads this setting: pattern, description,
     # reader name, three strings per entry, the last matching entry first.
     settings = servermanager.vtkSMSettings.GetInstance()

@@ -2,6 +2,7 @@
 
 #include "BilateralKernel.h"
 #include "HugePages.h"
+#include "Threads.h"
 
 #include <algorithm>
 #include <cmath>
@@ -286,17 +287,36 @@ ProcessingOctree::ProcessingOctree(const double boundsMin[3],
   this->LeafSize = this->CellSize / LeavesPerAxis;
 }
 
-void ProcessingOctree::Load(const double* positions, std::size_t count, int numberOfThreads)
+bool ProcessingOctree::Load(const double* positions,
+  std::size_t count,
+  int numberOfThreads,
+  const std::function<bool()>& shouldStop)
 {
+  LoadStop stop;
+  stop.Ask = shouldStop ? &shouldStop : nullptr;
+  this->Stop = &stop;
   this->Reset(count);
   for (std::size_t id = 0; id < count; ++id)
   {
+    // (This pass is serial: asked every million points too, 0.1 s or so.)
+    if ((id & 0xFFFFF) == 0xFFFFF && this->EndIfStopped())
+    {
+      return false;
+    }
     if (IsFinitePoint(positions + 3 * id))
     {
       this->Ids.push_back(static_cast<std::uint32_t>(id));
     }
   }
+  if (this->EndIfStopped())
+  {
+    return false;
+  }
   this->AssignCellsAndLeaves(positions, numberOfThreads);
+  if (this->EndIfStopped())
+  {
+    return false;
+  }
 
   // The first layout, built here rather than by Compact (which would copy every position and
   // id a second time, beside the input: that copy was the peak memory of sparse clouds): the
@@ -317,6 +337,10 @@ void ProcessingOctree::Load(const double* positions, std::size_t count, int numb
   this->SetUpCells(kept, cellCounts, cellMasks);
   cellCounts = std::vector<std::uint32_t>();
   cellMasks = std::vector<std::uint64_t>();
+  if (this->EndIfStopped())
+  {
+    return false;
+  }
 
   // The points reach their places in two passes, each writing to few places at a time. A cloud
   // whose points are not in spatial order (random, or shuffled by a previous tool) made a single
@@ -327,8 +351,47 @@ void ProcessingOctree::Load(const double* positions, std::size_t count, int numb
   const LoadBuckets buckets = this->PlanBuckets(kept);
   PointArray<std::uint32_t> codes(n);
   this->ScatterToBuckets(positions, buckets, codes, numberOfThreads);
+  if (this->EndIfStopped())
+  {
+    return false;
+  }
   this->OrderBuckets(buckets, codes, numberOfThreads);
+  if (this->EndIfStopped())
+  {
+    return false;
+  }
   this->FinishCells(kept, n, numberOfThreads);
+  this->Stop = nullptr;
+  return true;
+}
+
+bool ProcessingOctree::EndIfStopped()
+{
+  if (!this->StopAsked())
+  {
+    return false;
+  }
+  this->Stop = nullptr;
+  this->Reset(0);
+  return true;
+}
+
+bool ProcessingOctree::StopAsked() const
+{
+  if (!this->Stop)
+  {
+    return false;
+  }
+  if (this->Stop->Stopped.load(std::memory_order_relaxed))
+  {
+    return true;
+  }
+  if (this->Stop->Ask && CurrentThreadIndex() == 0 && (*this->Stop->Ask)())
+  {
+    this->Stop->Stopped.store(true, std::memory_order_relaxed);
+    return true;
+  }
+  return false;
 }
 
 void ProcessingOctree::Reset(std::size_t count)
@@ -366,13 +429,27 @@ void ProcessingOctree::AssignCellsAndLeaves(const double* positions, int numberO
   {
     this->FindOrCreateCell(CellOfLeaf(this->LeafOf(positionOf(i))));
   }
-  const auto signedCount = static_cast<std::int64_t>(n);
+  // In blocks, so that a stop asked of the load is seen within one.
+  constexpr std::size_t Block = std::size_t(1) << 16;
+  const auto blocks = static_cast<std::int64_t>((n + Block - 1) / Block);
 #pragma omp parallel for schedule(static) num_threads(numberOfThreads)
-  for (std::int64_t i = 0; i < signedCount; ++i)
+  for (std::int64_t block = 0; block < blocks; ++block)
   {
-    const LatticeCoord leaf = this->LeafOf(positionOf(static_cast<std::size_t>(i)));
-    this->NextLink[i] = this->FindCell(CellOfLeaf(leaf));
-    this->NextLeaf[i] = static_cast<std::uint8_t>(LocalLeafIndex(leaf));
+    if (this->StopAsked())
+    {
+      continue;
+    }
+    const std::size_t end = std::min(n, static_cast<std::size_t>(block + 1) * Block);
+    for (std::size_t i = static_cast<std::size_t>(block) * Block; i < end; ++i)
+    {
+      const LatticeCoord leaf = this->LeafOf(positionOf(i));
+      this->NextLink[i] = this->FindCell(CellOfLeaf(leaf));
+      this->NextLeaf[i] = static_cast<std::uint8_t>(LocalLeafIndex(leaf));
+    }
+  }
+  if (this->StopAsked())
+  {
+    return; // Load sees it
   }
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -427,11 +504,19 @@ void ProcessingOctree::ScatterToBuckets(const double* positions,
 #pragma omp parallel for schedule(static) num_threads(numberOfThreads)
   for (std::int64_t chunk = 0; chunk < static_cast<std::int64_t>(Chunks); ++chunk)
   {
+    if (this->StopAsked())
+    {
+      continue;
+    }
     std::uint32_t* counts = cursors.data() + static_cast<std::size_t>(chunk) * buckets.Count;
     for (std::size_t i = chunkBegin(chunk); i < chunkBegin(chunk + 1); ++i)
     {
       ++counts[buckets.BucketOfCell[static_cast<std::size_t>(this->NextLink[i])]];
     }
+  }
+  if (this->StopAsked())
+  {
+    return; // Load sees it
   }
   for (std::size_t bucket = 0, at = 0; bucket < buckets.Count; ++bucket)
   {
@@ -450,6 +535,10 @@ void ProcessingOctree::ScatterToBuckets(const double* positions,
 #pragma omp parallel for schedule(static) num_threads(numberOfThreads)
   for (std::int64_t chunk = 0; chunk < static_cast<std::int64_t>(Chunks); ++chunk)
   {
+    if (this->StopAsked())
+    {
+      continue;
+    }
     std::uint32_t* cursor = cursors.data() + static_cast<std::size_t>(chunk) * buckets.Count;
     for (std::size_t i = chunkBegin(chunk); i < chunkBegin(chunk + 1); ++i)
     {
@@ -480,7 +569,10 @@ void ProcessingOctree::OrderBuckets(const LoadBuckets& buckets,
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t bucket = 0; bucket < signedBuckets; ++bucket)
     {
-      this->OrderBucket(buckets.FirstCell[bucket], buckets.FirstCell[bucket + 1], codes, scratch);
+      if (!this->StopAsked())
+      {
+        this->OrderBucket(buckets.FirstCell[bucket], buckets.FirstCell[bucket + 1], codes, scratch);
+      }
     }
   }
 }

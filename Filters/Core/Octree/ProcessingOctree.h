@@ -6,8 +6,10 @@
 #include "PointArray.h"
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <new>
 #include <type_traits>
@@ -157,9 +159,14 @@ public:
   /**
    * Takes the points to filter: the finite ones among `count` interleaved xyz positions, which
    * keep their index as id, and lays them out for the first iteration with numberOfThreads
-   * threads (as Compact lays out placed points).
+   * threads (as Compact lays out placed points). `shouldStop`, when given, is asked between
+   * the passes over the points (each well under a second for 20 million points): when it says
+   * stop, the octree is left empty and Load returns false (an aborted run).
    */
-  void Load(const double* positions, std::size_t count, int numberOfThreads = 1);
+  bool Load(const double* positions,
+    std::size_t count,
+    int numberOfThreads = 1,
+    const std::function<bool()>& shouldStop = nullptr);
 
   ///@{
   /// Placement of points into the next iteration's leaf lists. A point is named by its index
@@ -285,6 +292,19 @@ private:
     bits = (bits + (bits >> 4)) & 0x0F0F0F0F0F0F0F0FULL;
     return static_cast<int>((bits * 0x0101010101010101ULL) >> 56);
   }
+
+  /// Load's stop: its shouldStop, asked by the calling thread only (thread 0 of a parallel
+  /// pass), and whether it said stop, seen by every thread, which then skip their remaining
+  /// chunks (the octree is emptied after).
+  struct LoadStop
+  {
+    const std::function<bool()>* Ask = nullptr;
+    std::atomic<bool> Stopped{ false };
+  };
+  LoadStop* Stop = nullptr;
+  bool StopAsked() const;
+  /// Whether the load was asked to stop; if so, the octree is emptied.
+  bool EndIfStopped();
 
   /// Load's steps: empty tables with room for `count` points; each finite point's (Ids) cell
   /// in NextLink and leaf in NextLeaf.
