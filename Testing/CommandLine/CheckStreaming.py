@@ -235,43 +235,70 @@ def check_interrupt(c, source):
             f"(seen before: {seen}), no output")
 
 
+def check_samples(c, las_dir):
+    """The shared samples: Autzen as LAS, LAZ and LAS 1.4, extra bytes, into LAS and LAZ, and
+    with --classes."""
+    autzen = os.path.join(las_dir, "autzen_trim.las")
+    c.same_as_in_memory("autzen", autzen, [], [40000, 20000])
+    c.same_as_in_memory("autzen-laz", os.path.join(las_dir, "..", "laz", "autzen_trim.laz"),
+                        ["-r", "5", "-N", "2"], [30000])
+    c.same_as_in_memory("autzen-1.4", os.path.join(las_dir, "autzen_trim_7.las"),
+                        ["-r", "5"], [30000])
+    c.same_as_in_memory("extra-bytes", os.path.join(las_dir, "extrabytes.las"), [], [0])
+    # LAZ output: the pointwise (formats 0 to 3) and the layered (6 to 8) compressors, the
+    # ranges written cutting the chunks of 50,000 points.
+    c.same_as_in_memory("autzen-into-laz", autzen, ["-r", "5", "-N", "2"], [40000],
+                        extension=".laz", range_points=37000)
+    c.same_as_in_memory("autzen-laz-into-laz",
+                        os.path.join(las_dir, "..", "laz", "autzen_trim.laz"),
+                        ["-r", "5", "-N", "2"], [30000], extension=".laz")
+    c.same_as_in_memory("autzen-1.4-into-laz", os.path.join(las_dir, "autzen_trim_7.las"),
+                        ["-r", "5"], [30000], extension=".laz", range_points=23456)
+    # --classes (Autzen: classes 1 and 2): only the chosen classes filtered, the others
+    # passed through; the in-memory errors and warning.
+    laz = os.path.join(las_dir, "..", "laz", "autzen_trim.laz")
+    for name, source, parameters, extension in (
+            ("classes-automatic", autzen, ["--classes", "2"], ".las"),
+            ("classes-laz", laz, ["--classes", "1,2", "-r", "5", "-N", "2"], ".laz"),
+            ("classes-1.4", os.path.join(las_dir, "autzen_trim_7.las"),
+             ["--classes", "2", "-r", "5"], ".las"),
+            ("classes-intensity", autzen, ["--classes", ",".join(map(str, range(30))),
+                                           "--class-array", "Intensity", "-r", "5"], ".las"),
+            ("classes-none", autzen, ["--classes", "17", "-r", "5"], ".las"),
+            ("classes-missing", autzen, ["--classes", "2", "--class-array", "Nope"], ".las"),
+            ("classes-float", autzen, ["--classes", "2", "--class-array", "GpsTime"], ".las"),
+            ("classes-rgb", autzen, ["--classes", "2", "--class-array", "RGB"], ".las")):
+        check_classes(c, name, source, parameters, extension, 8000)
+
+
+def check_laz_and_classes(c, points, shuffled, text):
+    """LAZ output with ranges that cut its chunks, --classes, and --classes refused for text."""
+    # LAZ output: 60,000 points make a chunk of 50,000 and one of 10,000; ranges of 7,000 and
+    # 50,000 points read and written at a time cut the chunks or fall on their boundary.
+    for range_points in (7000, 50000, None):
+        c.same_as_in_memory(f"into-laz-{range_points}", shuffled,
+                            ["-r", "1.2", "-n", "0.1", "-N", "2"], [20000], extension=".laz",
+                            range_points=range_points)
+    # --classes on a shuffled file: class 2 on the terrain's ridges, 6 elsewhere.
+    classified = os.path.join(c.scratch, "survey-classes.las")
+    order = np.random.default_rng(11).permutation(len(points))
+    write_las(classified, points[order], np.where(points[order, 2] > 0.5, 2, 6))
+    check_classes(c, "classes-explicit", classified,
+                  ["--classes", "2", "-r", "1.2", "-n", "0.1", "-N", "2"], ".las", 15000)
+    check_classes(c, "classes-automatic-laz", classified, ["--classes", "6"], ".laz", 30000)
+    refused = c.run([text, os.path.join(c.scratch, "o.xyz"), "--classes", "2", "--memory-limit",
+                     "1G"])
+    c.check(refused.returncode != 0 and "--classes with text input" in refused.stderr,
+            f"--classes with text input is refused: {refused.stderr.strip()}")
+
+
 def main(program, scratch, las_dir=None):
     """The generated surveys, the refusals and the clean-up; with LAS_DATA_DIR, the shared
     samples instead."""
     os.makedirs(scratch, exist_ok=True)
     c = Checks(program, scratch)
     if las_dir:
-        autzen = os.path.join(las_dir, "autzen_trim.las")
-        c.same_as_in_memory("autzen", autzen, [], [40000, 20000])
-        c.same_as_in_memory("autzen-laz", os.path.join(las_dir, "..", "laz", "autzen_trim.laz"),
-                            ["-r", "5", "-N", "2"], [30000])
-        c.same_as_in_memory("autzen-1.4", os.path.join(las_dir, "autzen_trim_7.las"),
-                            ["-r", "5"], [30000])
-        c.same_as_in_memory("extra-bytes", os.path.join(las_dir, "extrabytes.las"), [], [0])
-        # LAZ output: the pointwise (formats 0 to 3) and the layered (6 to 8) compressors, the
-        # ranges written cutting the chunks of 50,000 points.
-        c.same_as_in_memory("autzen-into-laz", autzen, ["-r", "5", "-N", "2"], [40000],
-                            extension=".laz", range_points=37000)
-        c.same_as_in_memory("autzen-laz-into-laz",
-                            os.path.join(las_dir, "..", "laz", "autzen_trim.laz"),
-                            ["-r", "5", "-N", "2"], [30000], extension=".laz")
-        c.same_as_in_memory("autzen-1.4-into-laz", os.path.join(las_dir, "autzen_trim_7.las"),
-                            ["-r", "5"], [30000], extension=".laz", range_points=23456)
-        # --classes (Autzen: classes 1 and 2): only the chosen classes filtered, the others
-        # passed through; the in-memory errors and warning.
-        laz = os.path.join(las_dir, "..", "laz", "autzen_trim.laz")
-        for name, source, parameters, extension in (
-                ("classes-automatic", autzen, ["--classes", "2"], ".las"),
-                ("classes-laz", laz, ["--classes", "1,2", "-r", "5", "-N", "2"], ".laz"),
-                ("classes-1.4", os.path.join(las_dir, "autzen_trim_7.las"),
-                 ["--classes", "2", "-r", "5"], ".las"),
-                ("classes-intensity", autzen, ["--classes", ",".join(map(str, range(30))),
-                                               "--class-array", "Intensity", "-r", "5"], ".las"),
-                ("classes-none", autzen, ["--classes", "17", "-r", "5"], ".las"),
-                ("classes-missing", autzen, ["--classes", "2", "--class-array", "Nope"], ".las"),
-                ("classes-float", autzen, ["--classes", "2", "--class-array", "GpsTime"], ".las"),
-                ("classes-rgb", autzen, ["--classes", "2", "--class-array", "RGB"], ".las")):
-            check_classes(c, name, source, parameters, extension, 8000)
+        check_samples(c, las_dir)
         return 1 if c.failures else 0
     points = survey(60000, 7)
     ordered = os.path.join(scratch, "survey.las")
@@ -289,23 +316,7 @@ def main(program, scratch, las_dir=None):
                             [0, 30000, 20000])
         c.same_as_in_memory(name + "-automatic", source, [], [0, 40000, 35000],
                             expect="following the density")
-    # LAZ output: 60,000 points make a chunk of 50,000 and one of 10,000; ranges of 7,000 and
-    # 50,000 points read and written at a time cut the chunks or fall on their boundary.
-    for range_points in (7000, 50000, None):
-        c.same_as_in_memory(f"into-laz-{range_points}", shuffled,
-                            ["-r", "1.2", "-n", "0.1", "-N", "2"], [20000], extension=".laz",
-                            range_points=range_points)
-    # --classes on a shuffled file: class 2 on the terrain's ridges, 6 elsewhere.
-    classified = os.path.join(scratch, "survey-classes.las")
-    order = np.random.default_rng(11).permutation(len(points))
-    write_las(classified, points[order], np.where(points[order, 2] > 0.5, 2, 6))
-    check_classes(c, "classes-explicit", classified,
-                  ["--classes", "2", "-r", "1.2", "-n", "0.1", "-N", "2"], ".las", 15000)
-    check_classes(c, "classes-automatic-laz", classified, ["--classes", "6"], ".laz", 30000)
-    refused = c.run([text, os.path.join(scratch, "o.xyz"), "--classes", "2", "--memory-limit",
-                     "1G"])
-    c.check(refused.returncode != 0 and "--classes with text input" in refused.stderr,
-            f"--classes with text input is refused: {refused.stderr.strip()}")
+    check_laz_and_classes(c, points, shuffled, text)
     check_bad_text(c, text)
     check_not_finite_text(c, text)
     # One thread in the slabs, two in memory (the default on this machine's two cores).
