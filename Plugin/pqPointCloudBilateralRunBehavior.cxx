@@ -209,7 +209,7 @@ void pqPointCloudBilateralRunBehavior::startup()
   // (which then win) and never saved to them.
   vtkSMSettings::GetInstance()->AddCollectionFromString(
     R"json({ "settings": { "RepresentedArrayListSettings": { "ReaderDetails": [
-      "*.xyz", "Point Cloud Text Files", "PointCloudTextReader",
+      "*.xyz", "Point Cloud Text Files", "ASCIIPointCloudTextReader",
       "*.las *.laz", "LAS and LAZ point cloud", "ASPRSLASPointCloudReader" ] } } })json",
     0.1);
   QObject::connect(core->getProgressManager(),

@@ -170,8 +170,8 @@ def check_limit_too_small(c, source):
     """A limit below what the program holds besides its slabs says so and names a limit that
     does."""
     output = os.path.join(c.scratch, "too-small.las")
-    if os.path.exists(output):
-        os.remove(output)  # (written by the run with the named limit, when run before)
+    if os.path.exists(output):  # the run that the hint allows wrote it last time
+        os.remove(output)
     result = c.run([source, output, "--memory-limit", "16M", "-r", "3", "-N", "3"])
     hint = re.search(r"give --memory-limit (\d+)M or more$", result.stderr.strip())
     c.check(result.returncode != 0 and "does not cover what the program holds" in result.stderr

@@ -70,5 +70,5 @@ with open(os.environ["PCB_LOG"], "w") as log:
     entries = [settings.GetSettingAsString(key, i, "")
                for i in range(settings.GetSettingNumberOfElements(key))]
     readers = {entries[i]: entries[i + 2] for i in range(0, len(entries) - 2, 3)}
-    check(readers.get("*.xyz") == "PointCloudTextReader",
+    check(readers.get("*.xyz") == "ASCIIPointCloudTextReader",
           f"the default reader of *.xyz is the Point Cloud Text Reader ({readers})")

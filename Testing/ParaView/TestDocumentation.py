@@ -25,7 +25,7 @@ failures = 0
 for page, expected in [
         ("filters.PointCloudBilateralFilter.html",
          ["Digne and C. de Franchis", "Neighbourhood radius r", "Number of iterations N"] + rules),
-        ("sources.PointCloudTextReader.html", ["Has Normals", "lines starting with #"]),
+        ("sources.ASCIIPointCloudTextReader.html", ["Has Normals", "lines starting with #"]),
         ("writers.PointCloudTextWriter.html", ["one line per point"])]:
     text = " ".join(pages.get(page, "").split())
     missing = [phrase for phrase in expected if phrase not in text]

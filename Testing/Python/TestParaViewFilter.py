@@ -107,8 +107,18 @@ with open(text_path, "w") as text:
 factory = servermanager.vtkSMProxyManager.GetProxyManager().GetReaderFactory()
 possible = factory.GetPossibleReaders(text_path, servermanager.ActiveConnection.Session)
 names = [possible.GetString(i) for i in range(possible.GetNumberOfStrings())]
-check("PointCloudTextReader" in names,
+check("ASCIIPointCloudTextReader" in names,
       f".xyz files can be opened with the Point Cloud Text Reader ({len(names) // 3} offered)")
+# Asked for no reader by name, as OpenDataFile is, the factory chooses the plugin's (it chose
+# PLOT3D's, which read 0 points, while the proxy's name sorted after P3DReader's).
+opened = simple.OpenDataFile(text_path)
+check(opened is not None and opened.GetXMLName() == "ASCIIPointCloudTextReader",
+      f"OpenDataFile opens .xyz with the Point Cloud Text Reader "
+      f"({opened.GetXMLName() if opened else None})")
+opened.UpdatePipeline()
+check(opened.GetDataInformation().GetNumberOfPoints() == 200,
+      f"... and reads its 200 points ({opened.GetDataInformation().GetNumberOfPoints()})")
+simple.Delete(opened)
 text_reader = simple.PointCloudTextReader(FileName=text_path, HasNormals=1)
 text_reader.UpdatePipeline()
 text_cloud = servermanager.Fetch(text_reader)
