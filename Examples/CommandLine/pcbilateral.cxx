@@ -92,9 +92,9 @@ const char* const UsageTail =
   "                     xmin,xmax,ymin,ymax,zmin,zmax (the file's coordinates)\n"
   "  --memory-limit SIZE  filter the file in slabs within SIZE of memory (e.g. 512M, 2G),\n"
   "                     temporary files in TMPDIR or beside the output; the same output\n"
-  "                     file as in memory. LAS or LAZ into LAS, text into text. Default:\n"
-  "                     in memory, or streamed within 80% of the available memory when\n"
-  "                     the cloud needs more (said)\n"
+  "                     file as in memory. LAS or LAZ into LAS or LAZ, text into text.\n"
+  "                     Default: in memory, or streamed within 80% of the available\n"
+  "                     memory when the cloud needs more (said)\n"
   "  -q, --quiet        print nothing but warnings and errors (default: what was read,\n"
   "                     measured, chosen and written, each line as soon as it is known, and\n"
   "                     on a terminal a progress bar with the time left)\n"
@@ -578,7 +578,7 @@ std::string Range(double low, double high)
 }
 
 /// With --classes: which points were filtered.
-void PrintClasses(vtkPointCloudBilateralFilter* filter, const Options& options)
+void PrintClasses(long long filtered, const Options& options)
 {
   if (options.Classes.empty())
   {
@@ -592,7 +592,7 @@ void PrintClasses(vtkPointCloudBilateralFilter* filter, const Options& options)
   Say("classes:       %s in '%s': %lld points filtered, the others unchanged\n",
     list.c_str(),
     options.ClassArray.c_str(),
-    static_cast<long long>(filter->GetNumberOfFilteredPoints()));
+    filtered);
 }
 
 /// The parameters the filter used (`used`: as the core reports them), and for those the user
@@ -640,7 +640,7 @@ void PrintParameters(const pcbilateral::BilateralResult& used, const Options& op
 /// PrintParameters for the VTK filter's run.
 void PrintParametersUsed(vtkPointCloudBilateralFilter* filter, const Options& options)
 {
-  PrintClasses(filter, options);
+  PrintClasses(static_cast<long long>(filter->GetNumberOfFilteredPoints()), options);
   if (filter->GetNumberOfFilteredPoints() == 0)
   {
     return; // (no parameter was used)
@@ -682,11 +682,12 @@ void WriteOutput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData
 /// Why the streamed run (--memory-limit) cannot run with these files and options, or empty.
 std::string StreamingUnsupported(const Options& options)
 {
-  if (options.EdgeAware || options.RemoveIsolated || !options.Classes.empty() ||
-      options.OrientedNormals || options.COPCLevel != -1 || options.COPCUseBounds)
+  if (options.EdgeAware || options.RemoveIsolated || options.OrientedNormals ||
+      options.COPCLevel != -1 || options.COPCUseBounds ||
+      (!options.Classes.empty() && vtkPointCloudFileIO::IsTextFormat(options.Input.c_str())))
   {
-    return "streaming does not take --edge-aware, --remove-isolated, --classes, -R or the "
-           "--copc options yet";
+    return "streaming does not take --edge-aware, --remove-isolated, -R, the --copc options "
+           "or --classes with text input yet";
   }
   return pcbilateral::StreamingFormatsProblem(options.Input, options.Output);
 }
@@ -765,6 +766,10 @@ std::string RunStreamed(const Options& options, std::uint64_t limit)
   {
     problem = options.Input + ": contains no points";
   }
+  if (problem.empty() && !options.Classes.empty())
+  {
+    problem = file->ChooseClasses(options.ClassArray, options.Classes);
+  }
   if (!problem.empty())
   {
     return problem;
@@ -797,6 +802,9 @@ std::string RunStreamed(const Options& options, std::uint64_t limit)
   {
     return problem;
   }
+  PrintClasses(
+    static_cast<long long>(input.GetNumberOfPoints() - input.GetNumberOfPointsLeftAlone()),
+    options);
   PrintParameters(run.GetSummary(), options);
   const pcbilateral::OutOfCorePlan& plan = run.GetPlan();
   Say("slabs:         %zu along %c, a halo of %.6g, at most %llu points with it\n",
@@ -813,8 +821,10 @@ std::string RunStreamed(const Options& options, std::uint64_t limit)
   }
   Say("filtering:     %.3f s\n",
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  problem = input.WriteFiltered(
-    run, options.Output, 1u << 18, [](double fraction) { StreamProgress("writing", fraction); });
+  problem = input.WriteFiltered(run,
+    options.Output,
+    pcbilateral::StreamedRangePoints(),
+    [](double fraction) { StreamProgress("writing", fraction); });
   if (problem.empty())
   {
     Say("output:        %s, %llu points\n",

@@ -556,7 +556,13 @@ std::string OutOfCoreRun::Measure()
     run.Scales = MeasureSelection(selection, fraction, run.Threads);
     run.HasScales = true;
   }
-  const std::uint64_t nonFinite = run.Points.GetNumberOfPoints() - run.Whole.NumberOfFinitePoints;
+  const std::uint64_t nonFinite = run.Points.GetNumberOfPoints() - run.Whole.NumberOfFinitePoints -
+                                  run.Points.GetNumberOfPointsLeftAlone();
+  if (run.Whole.NumberOfFinitePoints == 0 && run.Points.GetNumberOfPointsLeftAlone() > 0)
+  {
+    run.Warn("no point has one of the chosen classes in '" + run.Points.GetClassArrayName() +
+             "': every point is passed through unchanged");
+  }
   if (nonFinite > 0)
   {
     // (The run in memory's warning: the slabs' runs never see these points.)

@@ -40,6 +40,13 @@ public:
   /// Positions (x y z interleaved) of points [first, first + count); an empty string or a
   /// one-line message.
   virtual std::string ReadPositions(std::uint64_t first, std::size_t count, double* positions) = 0;
+  /// The points left alone (--classes: not of the chosen classes), which ReadPositions gives
+  /// NaN coordinates so that the run passes them through and never uses them as neighbours, as
+  /// the run in memory does; unlike points without coordinates, no warning is said for them.
+  /// Known after the first pass over the file.
+  virtual std::uint64_t GetNumberOfPointsLeftAlone() const { return 0; }
+  /// The point array (the file's dimension) whose classes were chosen, or empty.
+  virtual std::string GetClassArrayName() const { return std::string(); }
 };
 
 struct OutOfCoreSettings

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <cstring>
 
 namespace pcbilateral
@@ -86,7 +87,7 @@ std::string TextPointSource::WriteFiltered(OutOfCoreRun& run,
 
 std::string StreamingFormatsProblem(const std::string& input, const std::string& output)
 {
-  if (IsLAS(input) && EndsWith(output, ".las"))
+  if (IsLAS(input) && IsLAS(output))
   {
     return std::string();
   }
@@ -94,8 +95,16 @@ std::string StreamingFormatsProblem(const std::string& input, const std::string&
   {
     return std::string();
   }
-  return "streaming reads .las or .laz into .las, and .txt or .xyz into .txt or .xyz (not yet "
-         "PCD, PLY, VTP or LAZ output, nor one format into another)";
+  return "streaming reads .las or .laz into .las or .laz, and .txt or .xyz into .txt or .xyz "
+         "(not yet PCD, PLY or VTP, nor one format into another)";
+}
+
+std::size_t StreamedRangePoints()
+{
+  // (For tests: ranges that cut a LAZ file's chunks on a small file.)
+  const char* text = std::getenv("PCB_STREAMING_RANGE_POINTS");
+  const unsigned long long points = text ? std::strtoull(text, nullptr, 10) : 0;
+  return points > 0 ? static_cast<std::size_t>(points) : std::size_t(1) << 18;
 }
 
 std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,

@@ -9,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace pcbilateral
 {
@@ -27,11 +28,25 @@ public:
     const std::string& path,
     std::size_t pointsPerRange,
     const std::function<void(double)>& progress) = 0;
+
+  /// --classes: filter only the points whose integer dimension `name` holds one of `classes`,
+  /// the others left alone (GetNumberOfPointsLeftAlone). An empty string, or the run in
+  /// memory's one-line error; a file that has no such dimensions says it is not streamed.
+  virtual std::string ChooseClasses(const std::string& name, const std::vector<long long>& classes)
+  {
+    (void)name;
+    (void)classes;
+    return "--memory-limit: --classes is streamed for LAS and LAZ input only";
+  }
 };
 
 /// Why `input` cannot be streamed into `output` (by their extensions), or empty: LAS or LAZ into
-/// LAS, text (.txt, .xyz) into text.
+/// LAS or LAZ, text (.txt, .xyz) into text.
 std::string StreamingFormatsProblem(const std::string& input, const std::string& output);
+
+/// The points of a range read and written at a time: 2^18, or PCB_STREAMING_RANGE_POINTS from
+/// the environment (tests).
+std::size_t StreamedRangePoints();
 
 /// The input opened for streaming into `output`'s format, or null with `problem` set.
 std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,

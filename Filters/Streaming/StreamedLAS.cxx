@@ -10,12 +10,63 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
+#include <limits>
 #include <memory>
+#include <vector>
 
 namespace pcbilateral
 {
+
+namespace
+{
+/// Value `i` of a column of `type`, as a double.
+double ColumnValue(LASValueType type, const std::uint8_t* column, std::size_t i)
+{
+  auto at = [&](auto kind)
+  {
+    decltype(kind) value;
+    std::memcpy(&value, column + i * sizeof value, sizeof value);
+    return static_cast<double>(value);
+  };
+  switch (type)
+  {
+    case LASValueType::UInt8:
+      return at(std::uint8_t());
+    case LASValueType::Int8:
+      return at(std::int8_t());
+    case LASValueType::UInt16:
+      return at(std::uint16_t());
+    case LASValueType::Int16:
+      return at(std::int16_t());
+    case LASValueType::UInt32:
+      return at(std::uint32_t());
+    case LASValueType::Int32:
+      return at(std::int32_t());
+    case LASValueType::UInt64:
+      return at(std::uint64_t());
+    case LASValueType::Int64:
+      return at(std::int64_t());
+    case LASValueType::Float32:
+      return at(float());
+    case LASValueType::Float64:
+      return at(double());
+  }
+  return 0.0;
+}
+
+bool IsLAZName(const std::string& path)
+{
+  return path.size() >= 4 &&
+         std::equal(path.end() - 4,
+           path.end(),
+           ".laz",
+           [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
+}
+} // namespace
 
 LASPointSource::~LASPointSource()
 {
@@ -66,8 +117,70 @@ void LASPointSource::Release()
 
 std::string LASPointSource::ReadPositions(std::uint64_t first, std::size_t count, double* positions)
 {
-  const std::vector<void*> none(this->Info.Dimensions.size(), nullptr);
-  return this->ReadPoints(first, count, positions, none.data());
+  std::vector<void*> columns(this->Info.Dimensions.size(), nullptr);
+  if (this->Classes.empty())
+  {
+    return this->ReadPoints(first, count, positions, columns.data());
+  }
+  const LASDimension& dimension = this->Info.Dimensions[this->ClassDimension];
+  std::vector<std::uint8_t> values(count * LASColumnBytes(dimension));
+  columns[this->ClassDimension] = values.data();
+  const std::string problem = this->ReadPoints(first, count, positions, columns.data());
+  std::uint64_t leftAlone = 0;
+  for (std::size_t i = 0; i < count && problem.empty(); ++i)
+  {
+    // (As the filter in memory: integers compared as doubles, exact below 2^53.)
+    const double value = ColumnValue(dimension.ColumnType, values.data(), i);
+    if (std::find_if(this->Classes.begin(),
+          this->Classes.end(),
+          [&](long long c) { return static_cast<double>(c) == value; }) == this->Classes.end())
+    {
+      std::fill_n(positions + 3 * i, 3, std::numeric_limits<double>::quiet_NaN());
+      ++leftAlone;
+    }
+  }
+  if (first >= this->CountedUpTo)
+  {
+    this->LeftAlone += leftAlone;
+    this->CountedUpTo = first + count;
+  }
+  return problem;
+}
+
+std::string LASPointSource::ChooseClasses(const std::string& name,
+  const std::vector<long long>& classes)
+{
+  for (std::size_t d = 0; d < this->Info.Dimensions.size(); ++d)
+  {
+    const LASDimension& dimension = this->Info.Dimensions[d];
+    if (dimension.Name != name)
+    {
+      continue;
+    }
+    const LASValueType type = dimension.ColumnType;
+    if (dimension.Components != 1 || type == LASValueType::Float32 || type == LASValueType::Float64)
+    {
+      // (The run in memory's words, with the names VTK gives the reader's arrays' types.)
+      static const char* const typeNames[] = { "unsigned char",
+        "signed char",
+        "unsigned short",
+        "short",
+        "unsigned int",
+        "int",
+        "unsigned long",
+        "long",
+        "float",
+        "double" };
+      return "the class array '" + name + "' must hold one integer per point (it has " +
+             std::to_string(dimension.Components) + " component(s) of type " +
+             typeNames[static_cast<int>(type)] + ")";
+    }
+    this->ClassDimension = d;
+    this->ClassName = name;
+    this->Classes = classes;
+    return std::string();
+  }
+  return "classes were chosen, but the input has no point array '" + name + "'";
 }
 
 std::string LASPointSource::ReadPoints(std::uint64_t first,
@@ -121,17 +234,20 @@ LASFileInfo LASInfoAsWritten(const LASFileInfo& info)
   return written;
 }
 
-std::string WriteStreamedLAS(LASPointSource& input,
+namespace
+{
+/// The records of `input`, a range at a time, at their filtered positions, into `writer` (a
+/// LASStreamWriter or a LAZStreamWriter).
+template<typename Writer>
+std::string WriteRanges(LASPointSource& input,
   OutOfCoreRun& run,
-  const std::string& path,
+  Writer& writer,
   std::size_t pointsPerRange,
   const std::function<void(double)>& progress)
 {
   const LASFileInfo& info = input.GetInfo();
-  const LASFileInfo written = LASInfoAsWritten(info);
   const std::uint64_t total = input.GetNumberOfPoints();
-  LASStreamWriter writer;
-  std::string problem = writer.Open(path, written, total);
+  std::string problem;
   std::vector<double> positions;
   std::vector<std::vector<std::uint8_t>> columns(info.Dimensions.size());
   std::vector<void*> pointers(info.Dimensions.size());
@@ -160,6 +276,26 @@ std::string WriteStreamedLAS(LASPointSource& input,
     }
   }
   return problem.empty() ? writer.Close() : problem;
+}
+} // namespace
+
+std::string WriteStreamedLAS(LASPointSource& input,
+  OutOfCoreRun& run,
+  const std::string& path,
+  std::size_t pointsPerRange,
+  const std::function<void(double)>& progress)
+{
+  const LASFileInfo written = LASInfoAsWritten(input.GetInfo());
+  const std::uint64_t total = input.GetNumberOfPoints();
+  if (IsLAZName(path))
+  {
+    LAZStreamWriter writer;
+    const std::string problem = writer.Open(path, written, total);
+    return problem.empty() ? WriteRanges(input, run, writer, pointsPerRange, progress) : problem;
+  }
+  LASStreamWriter writer;
+  const std::string problem = writer.Open(path, written, total);
+  return problem.empty() ? WriteRanges(input, run, writer, pointsPerRange, progress) : problem;
 }
 
 } // namespace pcbilateral

@@ -42,6 +42,10 @@ public:
     const std::string& path,
     std::size_t pointsPerRange,
     const std::function<void(double)>& progress) override;
+  std::string ChooseClasses(const std::string& name,
+    const std::vector<long long>& classes) override;
+  std::uint64_t GetNumberOfPointsLeftAlone() const override { return this->LeftAlone; }
+  std::string GetClassArrayName() const override { return this->ClassName; }
 
 private:
   void Release();
@@ -50,6 +54,13 @@ private:
   const std::uint8_t* Data = nullptr;
   std::size_t Size = 0;
   std::vector<std::uint8_t> Decompressed;
+  /// --classes: the class dimension's index (or none), the classes, and the points left alone
+  /// so far (counted on the first pass: ranges before CountedUpTo were counted).
+  std::size_t ClassDimension = static_cast<std::size_t>(-1);
+  std::vector<long long> Classes;
+  std::string ClassName;
+  std::uint64_t LeftAlone = 0;
+  std::uint64_t CountedUpTo = 0;
 };
 
 /// The header a LAS file written from `info` has after pcbilateral's in-memory run (the
@@ -58,8 +69,9 @@ private:
 LASFileInfo LASInfoAsWritten(const LASFileInfo& info);
 
 /**
- * Writes the filtered cloud of `run` as an uncompressed LAS file: the input's records, a range
- * at a time, with the filtered positions. Progress from 0 to 1. Returns an empty string or a
+ * Writes the filtered cloud of `run` as a LAS file, or a LAZ file when `path` ends in .laz: the
+ * input's records, a range at a time, with the filtered positions (LASStreamWriter,
+ * LAZStreamWriter). Progress from 0 to 1. Returns an empty string or a
  * one-line message (no file is left then).
  */
 std::string WriteStreamedLAS(LASPointSource& input,

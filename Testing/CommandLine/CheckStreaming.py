@@ -23,7 +23,7 @@ import time
 import numpy as np
 
 
-def write_las(path, points):
+def write_las(path, points, classes=2):
     """A LAS 1.2 file of point format 0 (scale 0.001), records in the order given."""
     scale = 0.001
     low, high = points.min(axis=0), points.max(axis=0)
@@ -38,7 +38,7 @@ def write_las(path, points):
     records["xyz"] = np.round((points - offset) / scale).astype(np.int32)
     records["intensity"] = np.arange(len(points)) % 65536
     records["flags"] = 9
-    records["class"] = 2
+    records["class"] = classes
     with open(path, "wb") as stream:
         stream.write(header)
         stream.write(records.tobytes())
@@ -78,10 +78,12 @@ class Checks:
         if not condition:
             self.failures.append(message)
 
-    def run(self, arguments, slab_points=None):
+    def run(self, arguments, slab_points=None, range_points=None):
         env = dict(os.environ, TMPDIR=self.tmp)
         if slab_points is not None:
             env["PCB_STREAMING_SLAB_POINTS"] = str(slab_points)
+        if range_points is not None:
+            env["PCB_STREAMING_RANGE_POINTS"] = str(range_points)
         return subprocess.run([self.program] + arguments, capture_output=True, text=True, env=env)
 
     def read(self, path):
@@ -91,8 +93,11 @@ class Checks:
     def temporary_left(self):
         return os.listdir(self.tmp)
 
-    def same_as_in_memory(self, name, source, parameters, slab_sizes, expect=None):
-        extension = os.path.splitext(source)[1].replace(".laz", ".las")
+    def same_as_in_memory(self, name, source, parameters, slab_sizes, expect=None,
+                          extension=None, range_points=None):
+        """The streamed outputs (into `extension`, by default the input's, LAZ into LAS) against
+        the output in memory; `range_points` points read and written at a time."""
+        extension = extension or os.path.splitext(source)[1].replace(".laz", ".las")
         in_memory = os.path.join(self.scratch, name + "-memory" + extension)
         result = self.run([source, in_memory] + parameters)
         self.check(result.returncode == 0, f"{name}: the run in memory ({result.stderr.strip()})")
@@ -100,7 +105,8 @@ class Checks:
             self.check(expect in result.stdout, f"{name}: the run in memory says '{expect}'")
         for slab_points in slab_sizes:
             streamed = os.path.join(self.scratch, f"{name}-{slab_points}{extension}")
-            result = self.run([source, streamed, "--memory-limit", "1G"] + parameters, slab_points)
+            result = self.run([source, streamed, "--memory-limit", "1G"] + parameters, slab_points,
+                              range_points)
             slabs = [line for line in result.stdout.splitlines() if "along" in line]
             self.check(result.returncode == 0 and os.path.exists(streamed) and
                        self.read(streamed) == self.read(in_memory),
@@ -124,7 +130,7 @@ def check_refusals(c, source):
             f"a slab that cannot fit: one line, non-zero exit, no output ({result.stderr.strip()})")
     c.check(not c.temporary_left(), "the refusal leaves no temporary file")
     for arguments, words in (([source, os.path.join(c.scratch, "o.txt")], "into .las"),
-                             ([source, os.path.join(c.scratch, "o.laz")], "not yet"),
+                             ([source, os.path.join(c.scratch, "o.pcd")], "not yet"),
                              ([source, output, "--edge-aware"], "does not take"),
                              ([source, output, "-r", "3"], None)):
         size = "2X" if words is None else "1G"
@@ -139,6 +145,25 @@ def check_refusals(c, source):
     c.check(result.returncode != 0 and "no-such-folder" in result.stderr and
             not c.temporary_left(),
             f"an error while writing leaves no temporary file ({result.stderr.strip()})")
+
+
+def check_classes(c, name, source, parameters, extension, slab_points):
+    """--classes: the same bytes and the same warnings or error as in memory, and the same count
+    of points filtered; no output after an error."""
+    in_memory = os.path.join(c.scratch, name + "-memory" + extension)
+    streamed = os.path.join(c.scratch, name + "-streamed" + extension)
+    memory_run = c.run([source, in_memory] + parameters)
+    streamed_run = c.run([source, streamed, "--memory-limit", "1G"] + parameters, slab_points,
+                         23456)
+    said = [re.findall(r"^classes: .*$", run.stdout, re.MULTILINE)
+            for run in (memory_run, streamed_run)]
+    failed = memory_run.returncode != 0
+    c.check(streamed_run.returncode == memory_run.returncode and
+            streamed_run.stderr == memory_run.stderr and said[0] == said[1] and
+            (c.read(streamed) == c.read(in_memory) if not failed else
+             not os.path.exists(streamed)) and not c.temporary_left(),
+            f"{name}: the same {'error' if failed else 'bytes'}, warnings and count as in memory "
+            f"({said[1]} {streamed_run.stderr.strip()})")
 
 
 def check_limit_too_small(c, source):
@@ -212,19 +237,70 @@ def check_interrupt(c, source):
             f"(seen before: {seen}), no output")
 
 
+def check_samples(c, las_dir):
+    """The shared samples: Autzen as LAS, LAZ and LAS 1.4, extra bytes, into LAS and LAZ, and
+    with --classes."""
+    autzen = os.path.join(las_dir, "autzen_trim.las")
+    c.same_as_in_memory("autzen", autzen, [], [40000, 20000])
+    c.same_as_in_memory("autzen-laz", os.path.join(las_dir, "..", "laz", "autzen_trim.laz"),
+                        ["-r", "5", "-N", "2"], [30000])
+    c.same_as_in_memory("autzen-1.4", os.path.join(las_dir, "autzen_trim_7.las"),
+                        ["-r", "5"], [30000])
+    c.same_as_in_memory("extra-bytes", os.path.join(las_dir, "extrabytes.las"), [], [0])
+    # LAZ output: the pointwise (formats 0 to 3) and the layered (6 to 8) compressors, the
+    # ranges written cutting the chunks of 50,000 points.
+    c.same_as_in_memory("autzen-into-laz", autzen, ["-r", "5", "-N", "2"], [40000],
+                        extension=".laz", range_points=37000)
+    c.same_as_in_memory("autzen-laz-into-laz",
+                        os.path.join(las_dir, "..", "laz", "autzen_trim.laz"),
+                        ["-r", "5", "-N", "2"], [30000], extension=".laz")
+    c.same_as_in_memory("autzen-1.4-into-laz", os.path.join(las_dir, "autzen_trim_7.las"),
+                        ["-r", "5"], [30000], extension=".laz", range_points=23456)
+    # --classes (Autzen: classes 1 and 2): only the chosen classes filtered, the others
+    # passed through; the in-memory errors and warning.
+    laz = os.path.join(las_dir, "..", "laz", "autzen_trim.laz")
+    for name, source, parameters, extension in (
+            ("classes-automatic", autzen, ["--classes", "2"], ".las"),
+            ("classes-laz", laz, ["--classes", "1,2", "-r", "5", "-N", "2"], ".laz"),
+            ("classes-1.4", os.path.join(las_dir, "autzen_trim_7.las"),
+             ["--classes", "2", "-r", "5"], ".las"),
+            ("classes-intensity", autzen, ["--classes", ",".join(map(str, range(30))),
+                                           "--class-array", "Intensity", "-r", "5"], ".las"),
+            ("classes-none", autzen, ["--classes", "17", "-r", "5"], ".las"),
+            ("classes-missing", autzen, ["--classes", "2", "--class-array", "Nope"], ".las"),
+            ("classes-float", autzen, ["--classes", "2", "--class-array", "GpsTime"], ".las"),
+            ("classes-rgb", autzen, ["--classes", "2", "--class-array", "RGB"], ".las")):
+        check_classes(c, name, source, parameters, extension, 8000)
+
+
+def check_laz_and_classes(c, points, shuffled, text):
+    """LAZ output with ranges that cut its chunks, --classes, and --classes refused for text."""
+    # LAZ output: 60,000 points make a chunk of 50,000 and one of 10,000; ranges of 7,000 and
+    # 50,000 points read and written at a time cut the chunks or fall on their boundary.
+    for range_points in (7000, 50000, None):
+        c.same_as_in_memory(f"into-laz-{range_points}", shuffled,
+                            ["-r", "1.2", "-n", "0.1", "-N", "2"], [20000], extension=".laz",
+                            range_points=range_points)
+    # --classes on a shuffled file: class 2 on the terrain's ridges, 6 elsewhere.
+    classified = os.path.join(c.scratch, "survey-classes.las")
+    order = np.random.default_rng(11).permutation(len(points))
+    write_las(classified, points[order], np.where(points[order, 2] > 0.5, 2, 6))
+    check_classes(c, "classes-explicit", classified,
+                  ["--classes", "2", "-r", "1.2", "-n", "0.1", "-N", "2"], ".las", 15000)
+    check_classes(c, "classes-automatic-laz", classified, ["--classes", "6"], ".laz", 30000)
+    refused = c.run([text, os.path.join(c.scratch, "o.xyz"), "--classes", "2", "--memory-limit",
+                     "1G"])
+    c.check(refused.returncode != 0 and "--classes with text input" in refused.stderr,
+            f"--classes with text input is refused: {refused.stderr.strip()}")
+
+
 def main(program, scratch, las_dir=None):
     """The generated surveys, the refusals and the clean-up; with LAS_DATA_DIR, the shared
     samples instead."""
     os.makedirs(scratch, exist_ok=True)
     c = Checks(program, scratch)
     if las_dir:
-        autzen = os.path.join(las_dir, "autzen_trim.las")
-        c.same_as_in_memory("autzen", autzen, [], [40000, 20000])
-        c.same_as_in_memory("autzen-laz", os.path.join(las_dir, "..", "laz", "autzen_trim.laz"),
-                            ["-r", "5", "-N", "2"], [30000])
-        c.same_as_in_memory("autzen-1.4", os.path.join(las_dir, "autzen_trim_7.las"),
-                            ["-r", "5"], [30000])
-        c.same_as_in_memory("extra-bytes", os.path.join(las_dir, "extrabytes.las"), [], [0])
+        check_samples(c, las_dir)
         return 1 if c.failures else 0
     points = survey(60000, 7)
     ordered = os.path.join(scratch, "survey.las")
@@ -242,6 +318,7 @@ def main(program, scratch, las_dir=None):
                             [0, 30000, 20000])
         c.same_as_in_memory(name + "-automatic", source, [], [0, 40000, 35000],
                             expect="following the density")
+    check_laz_and_classes(c, points, shuffled, text)
     check_bad_text(c, text)
     check_not_finite_text(c, text)
     # One thread in the slabs, two in memory (the default on this machine's two cores).

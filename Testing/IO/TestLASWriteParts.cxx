@@ -2,7 +2,8 @@
 // in one process: each part's records at its offset, the header from the merged summaries, a
 // LAZ file's chunks per part and its chunk table written separately. A LAS file so written is,
 // byte for byte, WriteLAS's; a LAZ file has WriteLAZ's records, in chunks that end where each
-// part ends.
+// part ends. The stream writers (LASStreamWriter, LAZStreamWriter: pcbilateral --memory-limit)
+// appended in runs write the files written at once, byte for byte.
 //   TestLASWriteParts CASE LAS_DATA_DIR
 #include "CoreTesting.h"
 
@@ -199,6 +200,39 @@ void LAZInParts(const std::string& name)
   PCB_CHECK(points.size() > 3, "%s: %zu chunks, one part's at least", name.c_str(), points.size());
 }
 
+/// Appended in uneven runs (a point alone, runs that cut the chunks of 50,000 points, one that
+/// ends on a chunk's boundary, an empty one), the stream writers write WriteLAS's and WriteLAZ's
+/// files, byte for byte.
+template<typename Writer>
+void WrittenInRuns(const std::string& name, const char* extension)
+{
+  const Cloud cloud = Load(name);
+  const bool compressed = std::string(extension) == ".laz";
+  const std::string whole = name + ".whole" + extension;
+  const std::string runs = name + ".runs" + extension;
+  const std::vector<const void*> all = cloud.Columns(0);
+  std::string error = (compressed ? pcbilateral::WriteLAZ : pcbilateral::WriteLAS)(
+    whole, cloud.Info, cloud.Count, cloud.Positions.data(), all.data());
+  PCB_CHECK(error.empty(), "%s", error.c_str());
+  Writer writer;
+  error = writer.Open(runs, cloud.Info, cloud.Count);
+  const std::size_t runLengths[] = { 1, 0, 49999, 37000, 63000, 100000 };
+  std::size_t first = 0;
+  for (std::size_t r = 0; first < cloud.Count && error.empty(); ++r)
+  {
+    const std::size_t length = r < 6 ? runLengths[r] : 41234;
+    const std::size_t count = std::min(length, cloud.Count - first);
+    const std::vector<const void*> columns = cloud.Columns(first);
+    error = writer.Append(count, cloud.Positions.data() + 3 * first, columns.data());
+    first += count;
+  }
+  error = error.empty() ? writer.Close() : error;
+  PCB_CHECK(error.empty(), "%s: %s", runs.c_str(), error.c_str());
+  PCB_CHECK(pcbilateral_testing::FileContents(runs) == pcbilateral_testing::FileContents(whole),
+    "%s: written in runs, not the file written at once",
+    runs.c_str());
+}
+
 /// A point that does not fit the records makes its part fail, and the summary says so.
 void OutOfRange()
 {
@@ -249,5 +283,14 @@ int main(int argc, char* argv[])
           LAZInParts("autzen_trim_7.las");
         } },
       { "out-of-range", OutOfRange },
+      { "stream",
+        []
+        {
+          for (const char* name : { "autzen_trim.las", "autzen_trim_7.las", "extrabytes.las" })
+          {
+            WrittenInRuns<pcbilateral::LASStreamWriter>(name, ".las");
+            WrittenInRuns<pcbilateral::LAZStreamWriter>(name, ".laz");
+          }
+        } },
     });
 }

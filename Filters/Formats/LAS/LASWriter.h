@@ -80,6 +80,31 @@ private:
   std::unique_ptr<Internals> Impl;
 };
 
+/**
+ * Writes a LAZ file a run of points at a time, as LASStreamWriter writes a LAS file: the same
+ * bytes as WriteLAZ given all the points at once. The chunks start at the multiples of
+ * LAZWrittenChunkSize points whatever the runs appended (the records of a chunk not yet full
+ * wait for the next run: at most a chunk's records are held between runs); each full chunk is
+ * compressed and written as soon as it is, the chunk table and the header by Close.
+ */
+class LAZStreamWriter
+{
+public:
+  LAZStreamWriter();
+  ~LAZStreamWriter();
+  LAZStreamWriter(const LAZStreamWriter&) = delete;
+  LAZStreamWriter& operator=(const LAZStreamWriter&) = delete;
+
+  std::string Open(const std::string& path, const LASFileInfo& info, std::uint64_t count);
+  /// The next `count` points, their columns laid out as DecodeLASPoints lays them out.
+  std::string Append(std::size_t count, const double* positions, const void* const* columns);
+  std::string Close();
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
+};
+
 } // namespace pcbilateral
 
 #endif
