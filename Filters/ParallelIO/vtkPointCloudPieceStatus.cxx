@@ -1,8 +1,11 @@
 #include "vtkPointCloudPieceStatus.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCommunicator.h"
 #include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkMultiProcessController.h"
+#include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 bool vtkIsDistributedRead(vtkMultiProcessController* controller, vtkInformation* outInfo)
@@ -30,4 +33,28 @@ bool vtkEveryPieceRead(vtkMultiProcessController* controller,
               ": another process could not read its piece (see its error); no piece is output";
   }
   return failures == 0;
+}
+
+int vtkFinishPieceRead(vtkAlgorithm* reader,
+  vtkMultiProcessController* controller,
+  int read,
+  const char* fileName,
+  std::string& message,
+  vtkInformationVector* outputs)
+{
+  if (!vtkIsDistributedRead(controller, outputs->GetInformationObject(0)))
+  {
+    return read;
+  }
+  const bool readHere = read != 0 && message.empty();
+  if (vtkEveryPieceRead(controller, readHere, fileName, message))
+  {
+    return 1;
+  }
+  vtkPolyData::GetData(outputs)->Initialize();
+  if (readHere)
+  {
+    vtkErrorWithObjectMacro(reader, << message);
+  }
+  return 0;
 }

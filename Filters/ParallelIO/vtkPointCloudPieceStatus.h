@@ -7,7 +7,9 @@
 
 #include <string>
 
+class vtkAlgorithm;
 class vtkInformation;
+class vtkInformationVector;
 class vtkMultiProcessController;
 
 /**
@@ -26,5 +28,19 @@ bool vtkEveryPieceRead(vtkMultiProcessController* controller,
   bool readHere,
   const char* fileName,
   std::string& message);
+
+/**
+ * The end of a parallel reader's RequestData, after its serial reader's (which returned `read`
+ * and left `message` empty on success): for a distributed read, every process learns whether
+ * every piece was read; when one was not, each process's output is emptied, `reader` reports
+ * the error on the processes whose own piece was read (the one that failed reported its
+ * damage already), and 0 is returned everywhere. Other reads return `read` unchanged.
+ */
+int vtkFinishPieceRead(vtkAlgorithm* reader,
+  vtkMultiProcessController* controller,
+  int read,
+  const char* fileName,
+  std::string& message,
+  vtkInformationVector* outputs);
 
 #endif
