@@ -3,6 +3,7 @@
 #include "LASBinary.h"
 #include "LASPointFormat.h"
 #include "LASRecordBytes.h"
+#include "LAZWriter.h"
 
 #include <algorithm>
 #include <cmath>
@@ -62,6 +63,28 @@ RecordsToWrite SortRecords(const LASFileInfo& info)
     records.Extended.push_back(&record);
   }
   return records;
+}
+
+const char* const OutOfRangeMessage = "a point's coordinates do not fit the LAS records' 32-bit "
+                                      "integers with the scale and offset of the header (or are "
+                                      "not finite)";
+
+void DropCOPCRecords(LASFileInfo& info)
+{
+  auto isCOPC = [](const LASRecord& record) { return record.UserId == "copc"; };
+  info.VLRs.erase(std::remove_if(info.VLRs.begin(), info.VLRs.end(), isCOPC), info.VLRs.end());
+  info.EVLRs.erase(std::remove_if(info.EVLRs.begin(), info.EVLRs.end(), isCOPC), info.EVLRs.end());
+}
+
+void AddLASzipRecord(RecordsToWrite& records, const LAZParameters& parameters)
+{
+  LASRecord laszip;
+  laszip.UserId = "laszip encoded";
+  laszip.RecordId = 22204;
+  laszip.Description = "LASzip chunked, by pcbilateral";
+  laszip.Data = EncodeLAZParameters(parameters);
+  AppendRecord(records.VLRBytes, laszip, false);
+  ++records.VLRCount;
 }
 
 /// The header block of a LAS file to write: `h` with this file's sizes, offsets, counts and

@@ -8,6 +8,7 @@
 
 #include "LASHeader.h"
 #include "LASPointEncoder.h"
+#include "LAZFormat.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -33,6 +34,16 @@ struct RecordsToWrite
 };
 
 RecordsToWrite SortRecords(const LASFileInfo& info);
+
+/// What a writer says when a point's coordinates do not fit its records (AnyOutOfRange).
+extern const char* const OutOfRangeMessage;
+
+/// Removes a COPC file's records from the records to write as LAZ: they describe its octree's
+/// chunks, which are not the ones written.
+void DropCOPCRecords(LASFileInfo& info);
+
+/// Adds the LASzip record of `parameters` (the compressor's description) to the VLRs.
+void AddLASzipRecord(RecordsToWrite& records, const LAZParameters& parameters);
 
 /// The header block of a LAS file to write: `h` with this file's sizes, offsets, counts and
 /// bounds, and its numbers of VLRs and EVLRs, which follow `pointBytes` of point data

@@ -19,10 +19,6 @@ namespace
 {
 using namespace las;
 
-const char* const OutOfRangeMessage = "a point's coordinates do not fit the LAS records' 32-bit "
-                                      "integers with the scale and offset of the header (or are "
-                                      "not finite)";
-
 /// The summary of a part from its blocks' summaries.
 LASPartSummary SummarizeBlocks(const std::vector<BlockSummary>& blocks, std::size_t count)
 {
@@ -76,13 +72,9 @@ LASPartsLayout::LASPartsLayout(const LASFileInfo& info, std::uint64_t total, boo
     this->Why = "a LAZ file of no points is not written: write .las";
   }
   // As WriteLAZ: a COPC file's records (its octree) describe chunks that are not the ones written.
-  auto isCOPC = [](const LASRecord& record) { return record.UserId == "copc"; };
   if (compressed)
   {
-    auto& vlrs = this->Info.VLRs;
-    auto& evlrs = this->Info.EVLRs;
-    vlrs.erase(std::remove_if(vlrs.begin(), vlrs.end(), isCOPC), vlrs.end());
-    evlrs.erase(std::remove_if(evlrs.begin(), evlrs.end(), isCOPC), evlrs.end());
+    DropCOPCRecords(this->Info);
   }
   RecordsToWrite records = SortRecords(this->Info);
   if (this->Why.empty() && !records.Extended.empty() && h.VersionMinor < 4)
@@ -91,13 +83,7 @@ LASPartsLayout::LASPartsLayout(const LASFileInfo& info, std::uint64_t total, boo
   }
   if (compressed)
   {
-    LASRecord laszip;
-    laszip.UserId = "laszip encoded";
-    laszip.RecordId = 22204;
-    laszip.Description = "LASzip chunked, by pcbilateral";
-    laszip.Data = EncodeLAZParameters(this->Parameters);
-    AppendRecord(records.VLRBytes, laszip, false);
-    ++records.VLRCount;
+    AddLASzipRecord(records, this->Parameters);
   }
   for (const LASRecord* record : records.Extended)
   {

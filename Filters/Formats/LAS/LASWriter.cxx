@@ -87,8 +87,7 @@ std::string WriteLAS(const std::string& path,
   }
   if (AnyOutOfRange(summaries))
   {
-    return path + ": a point's coordinates do not fit the LAS records' 32-bit integers with "
-                  "the scale and offset of the header (or are not finite)";
+    return path + ": " + OutOfRangeMessage;
   }
 
   std::vector<std::uint8_t> evlrBytes;
@@ -148,9 +147,7 @@ std::string WriteLAZ(const std::string& path,
   }
   // A COPC file's records (its octree) describe its chunks, which are not the ones written.
   LASFileInfo kept = info;
-  auto isCOPC = [](const LASRecord& record) { return record.UserId == "copc"; };
-  kept.VLRs.erase(std::remove_if(kept.VLRs.begin(), kept.VLRs.end(), isCOPC), kept.VLRs.end());
-  kept.EVLRs.erase(std::remove_if(kept.EVLRs.begin(), kept.EVLRs.end(), isCOPC), kept.EVLRs.end());
+  DropCOPCRecords(kept);
   RecordsToWrite records = SortRecords(kept);
   if (problem.empty() && !records.Extended.empty() && h.VersionMinor < 4)
   {
@@ -160,13 +157,7 @@ std::string WriteLAZ(const std::string& path,
   {
     return path + ": " + problem;
   }
-  LASRecord laszip;
-  laszip.UserId = "laszip encoded";
-  laszip.RecordId = 22204;
-  laszip.Description = "LASzip chunked, by pcbilateral";
-  laszip.Data = EncodeLAZParameters(parameters);
-  AppendRecord(records.VLRBytes, laszip, false);
-  ++records.VLRCount;
+  AddLASzipRecord(records, parameters);
   LASHeader written = h;
   written.HeaderSize = static_cast<std::uint16_t>(HeaderSizeOfVersion(h.VersionMinor));
   written.OffsetToPointData =
@@ -178,8 +169,7 @@ std::string WriteLAZ(const std::string& path,
   const std::vector<std::uint8_t> raw = EncodeAllRecords(encoder, count, h.RecordLength, summaries);
   if (AnyOutOfRange(summaries))
   {
-    return path + ": a point's coordinates do not fit the LAS records' 32-bit integers with "
-                  "the scale and offset of the header (or are not finite)";
+    return path + ": " + OutOfRangeMessage;
   }
   const std::vector<std::uint8_t> points =
     CompressLAZPoints(raw.data(), count, h.RecordLength, parameters, written.OffsetToPointData);
@@ -301,8 +291,7 @@ std::string LASStreamWriter::Append(std::size_t count,
   }
   if (AnyOutOfRange(summaries))
   {
-    return w.Fail(w.Path + ": a point's coordinates do not fit the LAS records' 32-bit integers "
-                           "with the scale and offset of the header (or are not finite)");
+    return w.Fail(w.Path + ": " + OutOfRangeMessage);
   }
   w.Summaries.insert(w.Summaries.end(), summaries.begin(), summaries.end());
   if (std::fwrite(w.Buffer.data(), 1, bytes, w.Output->Get()) != bytes)

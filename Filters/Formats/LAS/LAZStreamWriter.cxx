@@ -15,14 +15,7 @@
 namespace pcbilateral
 {
 
-namespace
-{
 using namespace las;
-
-const char* const OutOfRange = ": a point's coordinates do not fit the LAS records' 32-bit "
-                               "integers with the scale and offset of the header (or are not "
-                               "finite)";
-} // namespace
 
 struct LAZStreamWriter::Internals
 {
@@ -115,11 +108,7 @@ std::string LAZStreamWriter::Open(const std::string& path,
   }
   // As WriteLAZ: a COPC file's records describe its chunks, which are not the ones written.
   w.Kept = info;
-  auto isCOPC = [](const LASRecord& record) { return record.UserId == "copc"; };
-  auto& vlrs = w.Kept.VLRs;
-  auto& evlrs = w.Kept.EVLRs;
-  vlrs.erase(std::remove_if(vlrs.begin(), vlrs.end(), isCOPC), vlrs.end());
-  evlrs.erase(std::remove_if(evlrs.begin(), evlrs.end(), isCOPC), evlrs.end());
+  DropCOPCRecords(w.Kept);
   w.Records = SortRecords(w.Kept);
   if (problem.empty() && !w.Records.Extended.empty() && h.VersionMinor < 4)
   {
@@ -129,13 +118,7 @@ std::string LAZStreamWriter::Open(const std::string& path,
   {
     return w.Fail(path + ": " + problem);
   }
-  LASRecord laszip;
-  laszip.UserId = "laszip encoded";
-  laszip.RecordId = 22204;
-  laszip.Description = "LASzip chunked, by pcbilateral";
-  laszip.Data = EncodeLAZParameters(w.Parameters);
-  AppendRecord(w.Records.VLRBytes, laszip, false);
-  ++w.Records.VLRCount;
+  AddLASzipRecord(w.Records, w.Parameters);
   w.Written = h;
   w.Written.HeaderSize = static_cast<std::uint16_t>(HeaderSizeOfVersion(h.VersionMinor));
   w.Written.OffsetToPointData =
@@ -183,7 +166,7 @@ std::string LAZStreamWriter::Append(std::size_t count,
   }
   if (AnyOutOfRange(summaries))
   {
-    return w.Fail(w.Path + OutOfRange);
+    return w.Fail(w.Path + ": " + OutOfRangeMessage);
   }
   w.Summaries.insert(w.Summaries.end(), summaries.begin(), summaries.end());
   w.Appended += count;
