@@ -1,6 +1,6 @@
-// What the LAZ item decoders and encoders share: the contexts derived from a point's return number r and
-// number of returns n, the running median of five differences that predicts x and y, and the
-// coding of colours. Private to the LAZ codec.
+// What the LAZ item decoders and encoders share: the contexts derived from a point's return
+// number r and number of returns n, the running median of five differences that predicts x and
+// y, the point10 item's models and the coding of colours. Private to the LAZ codec.
 #ifndef pcbilateral_LAZPointContexts_h
 #define pcbilateral_LAZPointContexts_h
 
