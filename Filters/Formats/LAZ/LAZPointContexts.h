@@ -203,6 +203,15 @@ struct RGBModels
     SymbolModel(256) };
 };
 
+/// The models of the layered items' colour (rgb14, rgbnir14): the colour's, and the near
+/// infrared's, which bytes changed and each byte's change.
+struct ColourLayerModels
+{
+  RGBModels Colour;
+  SymbolModel NIRBytesUsed{ 4 };
+  SymbolModel NIRDifferences[2] = { SymbolModel(256), SymbolModel(256) };
+};
+
 /**
  * Decodes a colour from the previous one `last` into `rgb` (16-bit values): a symbol says which
  * bytes changed and whether the colour is grey (bit 6 clear: green and blue equal red); the
