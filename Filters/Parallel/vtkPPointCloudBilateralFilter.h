@@ -30,7 +30,13 @@
 #include "vtkFiltersParallelPointCloudBilateralModule.h" // For export macro
 #include "vtkPointCloudBilateralFilter.h"
 
+class vtkMPIController;
 class vtkMultiProcessController;
+namespace pcbilateral
+{
+struct CloudExtent;
+struct CloudScales;
+}
 
 class VTKFILTERSPARALLELPOINTCLOUDBILATERAL_EXPORT vtkPPointCloudBilateralFilter
   : public vtkPointCloudBilateralFilter
@@ -49,6 +55,18 @@ public:
   vtkGetObjectMacro(Controller, vtkMultiProcessController);
   ///@}
 
+  ///@{
+  /**
+   * After an update, the most points this process held at once: those it filtered (its region,
+   * after the redistribution) plus the most ghost points it received for one iteration; and
+   * the most any process held (the same on every process). With one process, its input's
+   * (chosen) points. They show that no process holds the whole cloud: each holds about 1/N of
+   * it plus a layer one radius wide (three in the edge-aware mode) at its region's borders.
+   */
+  vtkGetMacro(NumberOfPointsHeld, vtkIdType);
+  vtkGetMacro(LargestNumberOfPointsHeld, vtkIdType);
+  ///@}
+
 protected:
   vtkPPointCloudBilateralFilter();
   ~vtkPPointCloudBilateralFilter() override;
@@ -59,8 +77,19 @@ protected:
     bool preparedHere) override;
 
   vtkMultiProcessController* Controller = nullptr;
+  vtkIdType NumberOfPointsHeld = 0;
+  vtkIdType LargestNumberOfPointsHeld = 0;
 
 private:
+  /// The run on the points of this process's region of space (SpatialRedistribution.h), its
+  /// result brought back to the processes that hold the points in the input.
+  pcbilateral::BilateralResult RunRedistributed(vtkMPIController* controller,
+    const pcbilateral::PointCloudView& cloud,
+    const pcbilateral::BilateralParameters& parameters,
+    const pcbilateral::BilateralObserver& observer,
+    const pcbilateral::CloudExtent& whole,
+    const pcbilateral::CloudScales& scales);
+
   vtkPPointCloudBilateralFilter(const vtkPPointCloudBilateralFilter&) = delete;
   void operator=(const vtkPPointCloudBilateralFilter&) = delete;
 };

@@ -92,6 +92,11 @@ def make_cloud():
 
 
 total = make_cloud()
+# The most a rank may hold, as a fraction of the cloud: its 1/N and two border layers (0.56 at
+# 2 ranks, 0.44 at 3, 0.69 with the edge-aware mode's layers of 3 radii). Not checked where the
+# radius follows the density: a rank's layer is then as wide as the largest radius anywhere
+# (BilateralRun::GetGhostReach), 10 times the radius of the dense end's thin slab here.
+HELD_BOUND = 1.0 if args.density_ratio > 1.0 else 0.75
 simple.LoadPlugin(args.plugin, remote=True, ns=vars(simple))
 # Before any filter object reaches Python, or VTK wraps it as its base class for good.
 from pointcloudbilateral import vtkPointCloudBilateralFilter  # noqa: E402
@@ -178,6 +183,16 @@ elif args.split in ("slabs", "random"):
     check(per_rank[0] > 2 * per_rank[-1] > 0, "the split is uneven")
 else:
     check(np.min(per_rank) > 0.9 * np.max(per_rank), "Distribute Points split the cloud evenly")
+
+# No rank holds the whole cloud: the filter moves the points into one slab of space per rank,
+# with equal counts, so that each holds about 1/N of them plus a layer at its slab's borders
+# (one radius wide, three in the edge-aware mode). Before, a rank held its share as it was and
+# every other point within reach as ghosts: on the random split, rank 0 its 60% and all the
+# others' points (the whole cloud).
+held = bilateral.GetClientSideObject().GetLargestNumberOfPointsHeld()
+print(f"the most points a rank held: {held} of {total} ({held / total:.2f})")
+check(0 < held <= HELD_BOUND * total,
+      f"the most points a rank held ({held}) is at most {HELD_BOUND} of the cloud ({total})")
 
 # The same filter, serially, on the gathered input: points of the same type, the same arrays.
 
