@@ -3,6 +3,12 @@
 // parts' results is, bit for bit, what one process filtering the whole cloud computes. This file
 // only communicates: the checks, the loop, progress, warnings and counts are the core's.
 //
+// The part a process filters is not its input part but one slab of space (SpatialRedistribution):
+// a reader's share of a file in random spatial order spans the whole cloud, and its ghosts would
+// be every other point. Redistributing always, rather than when the parts overlap, keeps one
+// path: on parts that are compact already it costs one exchange of the points each way (0.1 to
+// 0.3 s for 5M points on 2 processes), small next to filtering them.
+//
 // Ghosts are exchanged again before every iteration rather than fetched once in a halo wide
 // enough for all of them. The core never moves ghost points, so a one-time halo would have to
 // be filtered along with the own points (its outer layers growing stale by one radius per

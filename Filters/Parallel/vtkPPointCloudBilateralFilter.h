@@ -11,13 +11,16 @@
  * outputs is bit for bit the output of vtkPointCloudBilateralFilter on the whole cloud.
  *
  * How: the automatic radius and the octree's geometry come from the whole cloud's point count
- * and bounds (a reduction); before each iteration, the processes exchange the current
- * positions of their points within one radius of each other's (with
- * vtkDistributedPointCloudFilter::GetPointsInsideBounds), which the core uses as neighbours
- * only. Every process must update the filter together, as with VTK's other parallel filters;
- * a failure on one process (bad input, bad parameters) ends the update on all of them with an
- * error. The numbers read after an update (GetRadiusUsed(), GetNumberOfRemovedPoints()...) are
- * the same on every process: totals over the whole cloud.
+ * and bounds (a reduction); the points are then moved, as doubles, into one slab of space per
+ * process with equal counts (so that a process whose input part spans the whole cloud, as a
+ * reader's share of a file in random order does, never needs the whole cloud as neighbours);
+ * before each iteration, the processes exchange the current positions of their points within
+ * one radius of each other's slabs (with vtkDistributedPointCloudFilter::GetPointsInsideBounds),
+ * which the core uses as neighbours only; the filtered positions go back to the processes that
+ * hold the points in the input. Every process must update the filter together, as with VTK's other
+ * parallel filters; a failure on one process (bad input, bad parameters) ends the update on all of
+ * them with an error. The numbers read after an update (GetRadiusUsed(),
+ * GetNumberOfRemovedPoints()...) are the same on every process: totals over the whole cloud.
  *
  * With no controller or a single process, it is vtkPointCloudBilateralFilter.
  *
