@@ -155,7 +155,7 @@ properties = dict(Radius=args.radius, NormalRadius=args.normal_radius,
                   NumberOfIterations=args.iterations, RemoveIsolatedPoints=args.remove_isolated,
                   EdgeAware=int(args.edge_aware),
                   OrientNormalsBy="Normals", OutputEstimatedNormals=1,
-                  OutputDisplacementLength=1, NumberOfThreads=1,
+                  OutputDisplacementLength=1, OutputPointRadius=1, NumberOfThreads=1,
                   Classes=[2] if args.classes else [])
 bilateral = simple.PointCloudBilateralFilter(Input=tagged, **properties)
 # Warnings reach the user during a distributed run too, once: rank 0's filter is this process's.
@@ -208,6 +208,7 @@ serial.SetEdgeAware(args.edge_aware)
 serial.SetOrientationArrayName("Normals")
 serial.GenerateEstimatedNormalsOn()
 serial.GenerateDisplacementLengthOn()
+serial.GeneratePointRadiusOn()  # where the radius follows the density: BilateralPointRadius
 if args.classes:
     serial.AddClass(2)
 serial.Update()
@@ -281,6 +282,8 @@ if len(ids_out) == len(ids_ref) and set(ids_out) == set(ids_ref):
     names = set(reference.PointData.keys()) - {"vtkOriginalPointIds"}
     check(names == set(cloud_out.PointData.keys()) - {"vtkOriginalPointIds"},
           f"the same point arrays as serially: {sorted(names)}")
+    if args.density_ratio > 1.0:  # each point's radius, brought back from the rank that filtered it
+        check("BilateralPointRadius" in names, "the output has each point's radius")
     for name in sorted(names & set(cloud_out.PointData.keys())):
         mine = np.ascontiguousarray(np.asarray(cloud_out.PointData[name]))
         theirs = np.ascontiguousarray(np.asarray(reference.PointData[name])[where])
