@@ -60,10 +60,11 @@ public:
 
   ///@{
   /**
-   * After an update, the most points this process held at once: those it filtered (its region,
-   * after the redistribution) plus the most ghost points it received for one iteration; and
-   * the most any process held (the same on every process). With one process, its input's
-   * (chosen) points. They show that no process holds the whole cloud: each holds about 1/N of
+   * After an update, the most points this process held at once for filtering: those it
+   * filtered (its region, after the redistribution) plus the most ghost points it received for
+   * one iteration (its input part, which it keeps for its output, is not counted); and the most
+   * any process held (the same on every process). With one process, its input's (chosen)
+   * points. They show that no process holds the whole cloud: each holds about 1/N of
    * it plus a layer one radius wide (three in the edge-aware mode) at its region's borders.
    */
   vtkGetMacro(NumberOfPointsHeld, vtkIdType);
