@@ -686,40 +686,63 @@ std::vector<double> BilateralRun::GetPositionsForOthers() const
   return positions;
 }
 
-void BilateralRun::GetGhostReach(double box[6]) const
+std::vector<double> BilateralRun::GetGhostReaches() const
 {
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    box[2 * axis] = std::numeric_limits<double>::max();
-    box[2 * axis + 1] = -std::numeric_limits<double>::max();
-  }
-  const std::vector<double> own = this->GetPositionsForOthers();
-  if (own.empty())
-  {
-    return;
-  }
-  double magnitude = 0.0;
-  for (std::size_t i = 0; i < own.size(); i += 3)
+  const Internals& run = *this->Impl;
+  const BilateralResult& result = run.Result;
+  const double* current = run.PositionsCopied ? result.Positions.data() : run.Cloud.Positions;
+  // One group per band (one for all points when the radius is fixed): a band's points read
+  // neighbours within its own radius only (IterateBands views each band with its own reach), so
+  // the sparse bands' long reach does not spread over the dense bands' points.
+  const bool banded = !run.Bands.Empty();
+  const std::size_t groups = banded ? run.Bands.Radius.size() : 1;
+  std::vector<double> bounds(6 * groups);
+  std::vector<std::uint8_t> used(groups, 0);
+  for (std::size_t g = 0; g < groups; ++g)
   {
     for (int axis = 0; axis < 3; ++axis)
     {
-      box[2 * axis] = std::min(box[2 * axis], own[i + axis]);
-      box[2 * axis + 1] = std::max(box[2 * axis + 1], own[i + axis]);
-      magnitude = std::max(magnitude, std::abs(own[i + axis]));
+      bounds[6 * g + 2 * axis] = std::numeric_limits<double>::max();
+      bounds[6 * g + 2 * axis + 1] = -std::numeric_limits<double>::max();
     }
   }
-  // Points move by less than a radius per iteration, but the box is taken from the current
-  // positions, so one radius of reach is enough.
-  // The edge-aware mode reads its neighbours' normals, which read theirs: it reaches further.
-  const double reach = this->Impl->Parameters.EdgeAware ? EdgeAwareReachInRadii : 1.0;
-  const double radius =
-    this->Impl->Bands.Empty() ? this->Impl->Radii.Radius : this->Impl->Bands.LargestRadius();
-  const double margin = GhostMargin(reach * radius, magnitude);
-  for (int axis = 0; axis < 3; ++axis)
+  double magnitude = 0.0;
+  for (std::size_t i = 0; i < result.Removed.size(); ++i)
   {
-    box[2 * axis] -= margin;
-    box[2 * axis + 1] += margin;
+    const double* p = current + 3 * i;
+    const std::size_t g = banded ? run.Bands.BandOfPoint[i] : 0;
+    if (result.Removed[i] || !IsFinitePoint(p) || g >= groups)
+    {
+      continue;
+    }
+    used[g] = 1;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      bounds[6 * g + 2 * axis] = std::min(bounds[6 * g + 2 * axis], p[axis]);
+      bounds[6 * g + 2 * axis + 1] = std::max(bounds[6 * g + 2 * axis + 1], p[axis]);
+      magnitude = std::max(magnitude, std::abs(p[axis]));
+    }
   }
+  // Points move by less than a radius per iteration, but the boxes are taken from the current
+  // positions, so one radius of reach is enough. The edge-aware mode reads its neighbours'
+  // normals, which read theirs (with the same band's radii): it reaches further.
+  const double reach = run.Parameters.EdgeAware ? EdgeAwareReachInRadii : 1.0;
+  std::vector<double> boxes;
+  for (std::size_t g = 0; g < groups; ++g)
+  {
+    if (!used[g])
+    {
+      continue;
+    }
+    const double radius = banded ? run.Bands.Radius[g] : run.Radii.Radius;
+    const double margin = GhostMargin(reach * radius, magnitude);
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      boxes.push_back(bounds[6 * g + 2 * axis] - margin);
+      boxes.push_back(bounds[6 * g + 2 * axis + 1] + margin);
+    }
+  }
+  return boxes;
 }
 
 BilateralStatus BilateralRun::Step()

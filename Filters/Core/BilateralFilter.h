@@ -98,7 +98,7 @@ struct BilateralResult
  *   run.Start(extent of the whole cloud,             // every part uses the same parameters
  *     scales of the whole cloud if run.NeedsScales()); // and octree
  *   while (run.HasNextIteration())
- *     run.Step(ghosts);   // ghosts: the other parts' points within GetGhostReach() of this one
+ *     run.Step(ghosts);   // ghosts: the other parts' points in GetGhostReaches() of this one
  *   BilateralResult result = run.Finish();
  *
  * With ghosts, each step rebuilds the octree from the part's points and the ghosts, which are
@@ -149,12 +149,16 @@ public:
 
   /**
    * The current positions, interleaved, of this run's points that other parts may need as
-   * neighbours (finite, not removed), and the box within reach of them: the other parts' points
-   * in it are this run's ghosts for the next step (more than needed is harmless, the kernel
-   * ignores candidates beyond the radius). The box is empty (min > max) when there are none.
+   * neighbours (finite, not removed), and the boxes within reach of them (6 doubles each: x
+   * min, x max, y min, ..., none when there are no such points): the other parts' points in any
+   * of them are this run's ghosts for the next step (more than needed is harmless, the kernel
+   * ignores candidates beyond the radius). One box per radius band this run has points in,
+   * each that band's points grown by the band's own reach (one box when the radius is fixed):
+   * where the radius follows the density, one box grown by the largest radius would reach over
+   * most of a dense neighbour's part.
    */
   std::vector<double> GetPositionsForOthers() const;
-  void GetGhostReach(double box[6]) const;
+  std::vector<double> GetGhostReaches() const;
 
   /// Runs the next iteration on this run's points alone. Returns the status after it.
   BilateralStatus Step();
