@@ -113,8 +113,14 @@ public:
   const OutOfCorePlan& GetPlan() const;
   std::string Filter();
   /// Filtered positions of points [first, first + count), read in increasing order of first;
-  /// points that are not finite are left as they are in `positions`.
-  std::string ReadFiltered(std::uint64_t first, std::size_t count, double* positions);
+  /// points that are not finite are left as they are in `positions`. With `removed`, 1 for each
+  /// point --remove-isolated removed (to be left out of the output), else 0.
+  std::string ReadFiltered(std::uint64_t first,
+    std::size_t count,
+    double* positions,
+    std::uint8_t* removed = nullptr);
+  /// The points --remove-isolated removed (known after Filter).
+  std::uint64_t GetNumberOfRemovedPoints() const;
 
   /// Bytes of memory a slab takes per point (the run's arrays, the octree, the bins read).
   static constexpr std::uint64_t BytesPerSlabPoint = 160;
@@ -151,6 +157,16 @@ std::uint64_t ResidentMemory();
 /// Where the temporary files of a run that writes `outputPath` go: TMPDIR when set, else the
 /// output's folder.
 std::string TemporaryDirectoryFor(const std::string& outputPath);
+
+/// The settings of pcbilateral's streamed run within `limit` bytes into `outputPath`: the memory
+/// the program holds now and 96 MB of buffers reserved, the temporary folder, and
+/// PCB_STREAMING_SLAB_POINTS from the environment (tests: many slabs on a small file).
+OutOfCoreSettings StreamingSettings(std::uint64_t limit,
+  const std::string& outputPath,
+  int numberOfThreads);
+
+/// "512 MB": a size in whole megabytes.
+std::string MegabytesText(std::uint64_t bytes);
 
 } // namespace pcbilateral
 

@@ -48,9 +48,11 @@ std::string StreamingFormatsProblem(const std::string& input, const std::string&
 /// the environment (tests).
 std::size_t StreamedRangePoints();
 
-/// The input opened for streaming into `output`'s format, or null with `problem` set.
+/// The input opened for streaming into `output`'s format, or null with `problem` set;
+/// `orientedNormals` (pcbilateral -R): a text file's columns 4-6 are normals, written back.
 std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,
   const std::string& output,
+  bool orientedNormals,
   std::string& problem);
 
 } // namespace pcbilateral

@@ -236,6 +236,35 @@ LASFileInfo LASInfoAsWritten(const LASFileInfo& info)
 
 namespace
 {
+/// Moves the records of the points not `removed` (--remove-isolated) to the front of the
+/// positions and columns, in order; returns how many there are.
+std::size_t LeaveOutRemoved(const LASFileInfo& info,
+  const std::vector<std::uint8_t>& removed,
+  std::vector<double>& positions,
+  std::vector<std::vector<std::uint8_t>>& columns)
+{
+  const std::size_t count = positions.size() / 3;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    if (removed[i])
+    {
+      continue;
+    }
+    if (kept != i)
+    {
+      std::copy_n(&positions[3 * i], 3, &positions[3 * kept]);
+      for (std::size_t d = 0; d < columns.size(); ++d)
+      {
+        const std::size_t bytes = LASColumnBytes(info.Dimensions[d]);
+        std::copy_n(&columns[d][bytes * i], bytes, &columns[d][bytes * kept]);
+      }
+    }
+    ++kept;
+  }
+  return kept;
+}
+
 /// The records of `input`, a range at a time, at their filtered positions, into `writer` (a
 /// LASStreamWriter or a LAZStreamWriter).
 template<typename Writer>
@@ -251,6 +280,7 @@ std::string WriteRanges(LASPointSource& input,
   std::vector<double> positions;
   std::vector<std::vector<std::uint8_t>> columns(info.Dimensions.size());
   std::vector<void*> pointers(info.Dimensions.size());
+  std::vector<std::uint8_t> removed(pointsPerRange);
   for (std::uint64_t first = 0; first < total && problem.empty(); first += pointsPerRange)
   {
     const auto count =
@@ -264,11 +294,12 @@ std::string WriteRanges(LASPointSource& input,
     problem = input.ReadPoints(first, count, positions.data(), pointers.data());
     if (problem.empty())
     {
-      problem = run.ReadFiltered(first, count, positions.data());
+      problem = run.ReadFiltered(first, count, positions.data(), removed.data());
     }
     if (problem.empty())
     {
-      problem = writer.Append(count, positions.data(), pointers.data());
+      const std::size_t kept = LeaveOutRemoved(info, removed, positions, columns);
+      problem = writer.Append(kept, positions.data(), pointers.data());
     }
     if (progress)
     {
@@ -286,7 +317,7 @@ std::string WriteStreamedLAS(LASPointSource& input,
   const std::function<void(double)>& progress)
 {
   const LASFileInfo written = LASInfoAsWritten(input.GetInfo());
-  const std::uint64_t total = input.GetNumberOfPoints();
+  const std::uint64_t total = input.GetNumberOfPoints() - run.GetNumberOfRemovedPoints();
   if (IsLAZName(path))
   {
     LAZStreamWriter writer;
