@@ -92,7 +92,8 @@ const char* const UsageTail =
   "                     xmin,xmax,ymin,ymax,zmin,zmax (the file's coordinates)\n"
   "  --memory-limit SIZE  filter the file in slabs within SIZE of memory (e.g. 512M, 2G),\n"
   "                     temporary files in TMPDIR or beside the output; the same output\n"
-  "                     file as in memory. LAS or LAZ into LAS or LAZ, text into text.\n"
+  "                     file as in memory. LAS or LAZ into LAS, LAZ or text, text into\n"
+  "                     text; --edge-aware, --remove-isolated and -R too.\n"
   "                     Default: in memory, or streamed within 80% of the available\n"
   "                     memory when the cloud needs more (said)\n"
   "  -q, --quiet        print nothing but warnings and errors (default: what was read,\n"
@@ -816,6 +817,10 @@ std::string RunStreamed(const Options& options, std::uint64_t limit)
     options.Output,
     pcbilateral::StreamedRangePoints(),
     [](double fraction) { StreamProgress("writing", fraction); });
+  if (problem.empty() && !input.WriteWarning(options.Output).empty())
+  {
+    std::fprintf(stderr, "pcbilateral: warning: %s\n", input.WriteWarning(options.Output).c_str());
+  }
   if (problem.empty())
   {
     Say("output:        %s, %llu points\n",

@@ -4,6 +4,7 @@
 #include "LASReader.h"
 #include "LASWriter.h"
 #include "LAZReader.h"
+#include "PointCloudText.h"
 
 #include <fcntl.h>
 #include <sys/mman.h>
@@ -58,13 +59,24 @@ double ColumnValue(LASValueType type, const std::uint8_t* column, std::size_t i)
   return 0.0;
 }
 
+bool EndsWith(const std::string& path, const char* suffix)
+{
+  const std::size_t n = std::strlen(suffix);
+  return path.size() >= n &&
+         std::equal(path.end() - static_cast<std::ptrdiff_t>(n),
+           path.end(),
+           suffix,
+           [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
+}
+
 bool IsLAZName(const std::string& path)
 {
-  return path.size() >= 4 &&
-         std::equal(path.end() - 4,
-           path.end(),
-           ".laz",
-           [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
+  return EndsWith(path, ".laz");
+}
+
+bool IsTextName(const std::string& path)
+{
+  return EndsWith(path, ".txt") || EndsWith(path, ".xyz");
 }
 } // namespace
 
@@ -204,7 +216,37 @@ std::string LASPointSource::WriteFiltered(OutOfCoreRun& run,
   std::size_t pointsPerRange,
   const std::function<void(double)>& progress)
 {
-  return WriteStreamedLAS(*this, run, path, pointsPerRange, progress);
+  return IsTextName(path) ? WriteStreamedLASAsText(*this, run, path, pointsPerRange, progress)
+                          : WriteStreamedLAS(*this, run, path, pointsPerRange, progress);
+}
+
+std::string LASPointSource::WriteWarning(const std::string& path) const
+{
+  if (!IsTextName(path))
+  {
+    return std::string();
+  }
+  bool coordinateSystem = false;
+  for (const auto* records : { &this->Info.VLRs, &this->Info.EVLRs })
+  {
+    for (const LASRecord& record : *records)
+    {
+      coordinateSystem = coordinateSystem || record.UserId == "LASF_Projection";
+    }
+  }
+  // (The run in memory's words: vtkPointCloudTextWriter, vtkLASInformationNotHeld.)
+  return path + ": a text file cannot hold " +
+         (coordinateSystem ? "the LAS file's coordinate system (CRS), scale and offset"
+                           : "the LAS file's scale and offset") +
+         ", which are not written (the coordinates are)";
+}
+
+std::string LASPointSource::ColoursFitEightBits(bool& fit)
+{
+  const std::string problem = LASColoursFitEightBits(
+    this->Data, this->Size, this->Info, this->Path, 0, this->GetNumberOfPoints(), fit);
+  this->Release();
+  return problem;
 }
 
 LASFileInfo LASInfoAsWritten(const LASFileInfo& info)
@@ -327,6 +369,117 @@ std::string WriteStreamedLAS(LASPointSource& input,
   LASStreamWriter writer;
   const std::string problem = writer.Open(path, written, total);
   return problem.empty() ? WriteRanges(input, run, writer, pointsPerRange, progress) : problem;
+}
+
+namespace
+{
+/// The text columns the run in memory writes for a LAS file (vtkLASPointCloudReader's arrays
+/// through vtkPointCloudTextWriter): each dimension's components, named "Name" or "Name:k",
+/// then, with RGB, the 8-bit display colours "Colors:0" to "Colors:2".
+PointCloudTable LASTextHeader(const LASFileInfo& info, bool colours)
+{
+  PointCloudTable header;
+  for (const LASDimension& dimension : info.Dimensions)
+  {
+    for (int c = 0; c < dimension.Components; ++c)
+    {
+      header.ExtraColumnNames.push_back(
+        dimension.Components > 1 ? dimension.Name + ":" + std::to_string(c) : dimension.Name);
+    }
+  }
+  for (int c = 0; colours && c < 3; ++c)
+  {
+    header.ExtraColumnNames.push_back("Colors:" + std::to_string(c));
+  }
+  header.ExtraColumns.resize(header.ExtraColumnNames.size());
+  return header;
+}
+
+/// The first `kept` points' columns into `table` (laid out by LASTextHeader), as doubles; the
+/// display colours are the RGB values' high bytes, or the values when `eightBit`.
+void FillTextColumns(const LASFileInfo& info,
+  const std::vector<std::vector<std::uint8_t>>& columns,
+  std::size_t kept,
+  bool eightBit,
+  PointCloudTable& table)
+{
+  std::size_t next = 0;
+  for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+  {
+    const LASDimension& dimension = info.Dimensions[d];
+    const auto components = static_cast<std::size_t>(dimension.Components);
+    for (std::size_t c = 0; c < components; ++c)
+    {
+      std::vector<double>& column = table.ExtraColumns[next++];
+      column.resize(kept);
+      for (std::size_t i = 0; i < kept; ++i)
+      {
+        column[i] = ColumnValue(dimension.ColumnType, columns[d].data(), i * components + c);
+      }
+    }
+    if (dimension.Name == "RGB" && next + 3 <= table.ExtraColumns.size())
+    {
+      for (std::size_t c = 0; c < 3; ++c)
+      {
+        std::vector<double>& colour = table.ExtraColumns[table.ExtraColumns.size() - 3 + c];
+        colour.resize(kept);
+        for (std::size_t i = 0; i < kept; ++i)
+        {
+          const auto value = static_cast<unsigned>(table.ExtraColumns[next - 3 + c][i]);
+          colour[i] = static_cast<unsigned char>(eightBit ? value : value >> 8);
+        }
+      }
+    }
+  }
+}
+} // namespace
+
+std::string WriteStreamedLASAsText(LASPointSource& input,
+  OutOfCoreRun& run,
+  const std::string& path,
+  std::size_t pointsPerRange,
+  const std::function<void(double)>& progress)
+{
+  const LASFileInfo& info = input.GetInfo();
+  const bool colours = std::any_of(info.Dimensions.begin(),
+    info.Dimensions.end(),
+    [](const LASDimension& dimension) { return dimension.Name == "RGB"; });
+  bool eightBit = false;
+  std::string problem = input.ColoursFitEightBits(eightBit);
+  PointCloudTable table = LASTextHeader(info, colours);
+  PointCloudTextStreamWriter writer;
+  problem = problem.empty() ? writer.Open(path, table, false) : problem;
+  const std::uint64_t total = input.GetNumberOfPoints();
+  std::vector<std::vector<std::uint8_t>> columns(info.Dimensions.size());
+  std::vector<void*> pointers(info.Dimensions.size());
+  std::vector<std::uint8_t> removed(pointsPerRange);
+  for (std::uint64_t first = 0; first < total && problem.empty(); first += pointsPerRange)
+  {
+    const auto count =
+      static_cast<std::size_t>(std::min<std::uint64_t>(pointsPerRange, total - first));
+    table.Positions.resize(3 * count);
+    for (std::size_t d = 0; d < columns.size(); ++d)
+    {
+      columns[d].resize(count * LASColumnBytes(info.Dimensions[d]));
+      pointers[d] = columns[d].data();
+    }
+    problem = input.ReadPoints(first, count, table.Positions.data(), pointers.data());
+    problem = problem.empty()
+                ? run.ReadFiltered(first, count, table.Positions.data(), removed.data())
+                : problem;
+    if (problem.empty())
+    {
+      table.NumberOfPoints = LeaveOutRemoved(info, removed, table.Positions, columns);
+      table.Positions.resize(3 * table.NumberOfPoints);
+      FillTextColumns(info, columns, table.NumberOfPoints, eightBit, table);
+      problem = writer.Append(table);
+    }
+    if (progress)
+    {
+      progress(static_cast<double>(first + count) / static_cast<double>(total));
+    }
+  }
+  return problem.empty() ? writer.Close() : problem;
 }
 
 } // namespace pcbilateral

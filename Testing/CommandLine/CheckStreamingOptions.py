@@ -1,4 +1,5 @@
-"""pcbilateral --memory-limit with --edge-aware, --remove-isolated and -R (issue 27, item 3):
+"""pcbilateral --memory-limit with --edge-aware, --remove-isolated and -R, and LAS into text
+(issue 27, item 3):
 the file filtered in slabs gives the same output file, byte for byte, as the run in memory.
 
 Cases: a generated survey whose density varies, with outliers, shuffled, as LAS and as text;
@@ -6,7 +7,8 @@ Cases: a generated survey whose density varies, with outliers, shuffled, as LAS 
 paper's filter takes would be too narrow, and two) and automatic ones (a long strip, so that the
 automatic radius leaves room for several slabs); --remove-isolated (the LAS header's count, LAZ
 output, text), with both; -R (normals in columns 4-6, with and without a header line, and the
-in-memory error for a line without them). PCB_STREAMING_SLAB_POINTS forces several slabs.
+in-memory error for a line without them); LAS into text (the columns, 16-bit and 8-bit RGB, the
+warning). PCB_STREAMING_SLAB_POINTS forces several slabs.
 
     CheckStreamingOptions.py PCBILATERAL SCRATCH
 """
@@ -91,6 +93,43 @@ def check_oriented_normals(c, points):
             f"-R on a file without normals: the in-memory error ({streamed.stderr.strip()})")
 
 
+def write_las_rgb(path, points, colours):
+    """A LAS 1.2 file of point format 2 (format 0 and RGB), records in the order given."""
+    write_las(path, points)
+    with open(path, "rb") as stream:
+        data = bytearray(stream.read())
+    header, records = data[:227], np.frombuffer(bytes(data[227:]), dtype=np.uint8)
+    records = records.reshape(len(points), 20)
+    rgb = np.ascontiguousarray(colours.astype("<u2")).view(np.uint8).reshape(len(points), 6)
+    header[104] = 2  # point format
+    header[105:107] = (26).to_bytes(2, "little")  # record length
+    with open(path, "wb") as stream:
+        stream.write(bytes(header) + np.hstack([records, rgb]).tobytes())
+
+
+def check_las_into_text(c, las, points):
+    """LAS into text: the columns, header and warning of the run in memory; RGB as 16-bit and as
+    8-bit values (the display colours are the high bytes or the values)."""
+    for name, parameters, slabs in (("into-text-explicit", EXPLICIT + ["-N", "2"], [0, 8000]),
+                                    ("into-text-automatic", [], [8000]),
+                                    ("into-text-isolated", EXPLICIT + ["--remove-isolated"],
+                                     [8000])):
+        c.same_as_in_memory(name, las, parameters, slabs, extension=".xyz", range_points=7777)
+    rng = np.random.default_rng(19)
+    order = rng.permutation(len(points))
+    for bits, top in ((16, 65536), (8, 256)):
+        path = os.path.join(c.scratch, f"rgb{bits}.las")
+        write_las_rgb(path, points[order], rng.integers(0, top, (len(points), 3)))
+        c.same_as_in_memory(f"rgb{bits}-into-text", path, EXPLICIT + ["-N", "2"], [8000],
+                            extension=".txt")
+    runs = [c.run([las, os.path.join(c.scratch, f"warned-{k}.txt"), "-r", "1.2"] +
+                  (["--memory-limit", "1G"] if k == "streamed" else []))
+            for k in ("memory", "streamed")]
+    c.check(runs[1].returncode == 0 and "cannot hold the LAS file's scale" in runs[1].stderr and
+            runs[1].stderr.replace("streamed", "memory") == runs[0].stderr,
+            f"LAS into text: the warning of the run in memory ({runs[1].stderr.strip()})")
+
+
 def main(program, scratch):
     os.makedirs(scratch, exist_ok=True)
     c = Checks(program, scratch)
@@ -106,6 +145,7 @@ def main(program, scratch):
     check_edge_aware(c, las, text)
     check_remove_isolated(c, las, text)
     check_oriented_normals(c, points)
+    check_las_into_text(c, las, points)
     return 1 if c.failures else 0
 
 
