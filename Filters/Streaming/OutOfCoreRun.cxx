@@ -383,13 +383,17 @@ struct OutOfCoreRun::Internals
 
 std::string OutOfCoreRun::Internals::PlanSlabs()
 {
-  const std::uint64_t budget = this->Settings.MemoryLimit > this->Settings.ReservedBytes
-                                 ? this->Settings.MemoryLimit - this->Settings.ReservedBytes
-                                 : 0;
-  const std::uint64_t slabPoints =
-    this->Settings.MaximumSlabPoints > 0
-      ? std::min(this->Settings.MaximumSlabPoints, budget / BytesPerSlabPoint)
-      : budget / BytesPerSlabPoint;
+  // The edge-aware mode keeps each point's records, normals and filtered normals besides the
+  // paper's arrays, and the neighbour lists of its first step up to a fixed budget.
+  const std::uint64_t perPoint =
+    this->User.EdgeAware ? EdgeAwareBytesPerSlabPoint : BytesPerSlabPoint;
+  const std::uint64_t reserved =
+    this->Settings.ReservedBytes + (this->User.EdgeAware ? EdgeAwareNeighbourListBytes : 0);
+  const std::uint64_t budget =
+    this->Settings.MemoryLimit > reserved ? this->Settings.MemoryLimit - reserved : 0;
+  const std::uint64_t slabPoints = this->Settings.MaximumSlabPoints > 0
+                                     ? std::min(this->Settings.MaximumSlabPoints, budget / perPoint)
+                                     : budget / perPoint;
   std::size_t first = 0;
   while (first < NumberOfBins)
   {
@@ -401,15 +405,14 @@ std::string OutOfCoreRun::Internals::PlanSlabs()
       // A limit that holds this slab, in whole megabytes, so that the user knows what to give
       // rather than guess: 5% over the need, since the program's own memory, measured when the
       // run starts, varies a little from run to run.
-      const std::uint64_t needed =
-        (this->Settings.ReservedBytes + points * BytesPerSlabPoint) / 20 * 21;
+      const std::uint64_t needed = (reserved + points * perPoint) / 20 * 21;
       const std::uint64_t megabyte = 1024 * 1024;
       std::ostringstream problem;
-      if (budget / BytesPerSlabPoint == 0)
+      if (budget / perPoint == 0)
       {
         problem << "the memory limit (" << this->Settings.MemoryLimit / megabyte
                 << " MB) does not cover what the program holds besides the slabs ("
-                << (this->Settings.ReservedBytes + megabyte - 1) / megabyte << " MB)";
+                << (reserved + megabyte - 1) / megabyte << " MB)";
       }
       else
       {

@@ -124,6 +124,11 @@ public:
 
   /// Bytes of memory a slab takes per point (the run's arrays, the octree, the bins read).
   static constexpr std::uint64_t BytesPerSlabPoint = 160;
+  /// The same for the edge-aware mode, whose run also keeps the neighbour lists of its first
+  /// step up to 2^26 entries (EdgeAwareNormals.cxx, NeighbourCache: 256 MB and the lists' own
+  /// headers, 24 bytes a point): those are counted as a fixed share besides the slab's points.
+  static constexpr std::uint64_t EdgeAwareBytesPerSlabPoint = 240;
+  static constexpr std::uint64_t EdgeAwareNeighbourListBytes = std::uint64_t(272) << 20;
 
 private:
   struct Internals;
