@@ -92,8 +92,8 @@ const char* const UsageTail =
   "                     xmin,xmax,ymin,ymax,zmin,zmax (the file's coordinates)\n"
   "  --memory-limit SIZE  filter the file in slabs within SIZE of memory (e.g. 512M, 2G),\n"
   "                     temporary files in TMPDIR or beside the output; the same output\n"
-  "                     file as in memory. LAS or LAZ into LAS, LAZ or text, text into\n"
-  "                     text; --edge-aware, --remove-isolated and -R too.\n"
+  "                     file as in memory. LAS or LAZ into LAS, LAZ, text or PCD, text\n"
+  "                     into text; --edge-aware, --remove-isolated and -R too.\n"
   "                     Default: in memory, or streamed within 80% of the available\n"
   "                     memory when the cloud needs more (said)\n"
   "  -q, --quiet        print nothing but warnings and errors (default: what was read,\n"
@@ -691,10 +691,14 @@ void WriteOutput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData
 /// Why the streamed run (--memory-limit) cannot run with these files and options, or empty.
 std::string StreamingUnsupported(const Options& options)
 {
+  const std::string& out = options.Output;
+  const bool pcdOutput = out.size() > 4 && out.compare(out.size() - 4, 4, ".pcd") == 0;
   if (options.COPCLevel != -1 || options.COPCUseBounds ||
-      (!options.Classes.empty() && vtkPointCloudFileIO::IsTextFormat(options.Input.c_str())))
+      (!options.Classes.empty() &&
+        (pcdOutput || vtkPointCloudFileIO::IsTextFormat(options.Input.c_str()))))
   {
-    return "streaming does not take the --copc options or --classes with text input yet";
+    return "streaming does not take the --copc options, or --classes with text input or PCD "
+           "output, yet";
   }
   return pcbilateral::StreamingFormatsProblem(options.Input, options.Output);
 }

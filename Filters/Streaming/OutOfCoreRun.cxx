@@ -124,6 +124,8 @@ struct OutOfCoreRun::Internals
   std::vector<std::size_t> SlabFirstBin;
   std::vector<RecordReader> Results;
   std::vector<std::string> WarningsSeen;
+  /// Whether every filtered position kept is exactly a float (a PCD file's x y z are then F4).
+  bool ResultsAreFloats = true;
 
   Internals(StreamedPoints& points,
     const BilateralParameters& parameters,
@@ -533,6 +535,11 @@ std::string OutOfCoreRun::Internals::FilterSlab(std::size_t slab)
     {
       points[i].Index |= RemovedBit;
       ++this->Summary.NumberOfRemovedPoints;
+      continue;
+    }
+    for (const double value : points[i].Position)
+    {
+      this->ResultsAreFloats = this->ResultsAreFloats && static_cast<float>(value) == value;
     }
   }
   std::sort(points.begin(),
@@ -609,6 +616,11 @@ const BilateralResult& OutOfCoreRun::GetSummary() const
 std::uint64_t OutOfCoreRun::GetDiskBytesNeeded() const
 {
   return DiskBytesPerPoint * this->Impl->Whole.NumberOfFinitePoints;
+}
+
+bool OutOfCoreRun::AreFilteredPositionsFloats() const
+{
+  return this->Impl->ResultsAreFloats;
 }
 
 std::uint64_t OutOfCoreRun::GetNumberOfRemovedPoints() const

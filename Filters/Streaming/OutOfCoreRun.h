@@ -121,6 +121,8 @@ public:
     std::uint8_t* removed = nullptr);
   /// The points --remove-isolated removed (known after Filter).
   std::uint64_t GetNumberOfRemovedPoints() const;
+  /// Whether every filtered position of the points kept is exactly a float (after Filter).
+  bool AreFilteredPositionsFloats() const;
 
   /// Bytes of memory a slab takes per point (the run's arrays, the octree, the bins read).
   static constexpr std::uint64_t BytesPerSlabPoint = 160;

@@ -132,7 +132,7 @@ std::string TextPointSource::WriteFiltered(OutOfCoreRun& run,
 
 std::string StreamingFormatsProblem(const std::string& input, const std::string& output)
 {
-  if (IsLAS(input) && (IsLAS(output) || IsText(output)))
+  if (IsLAS(input) && (IsLAS(output) || IsText(output) || EndsWith(output, ".pcd")))
   {
     return std::string();
   }
@@ -140,8 +140,8 @@ std::string StreamingFormatsProblem(const std::string& input, const std::string&
   {
     return std::string();
   }
-  return "streaming reads .las or .laz into .las, .laz, .txt or .xyz, and .txt or .xyz into "
-         ".txt or .xyz (not yet PCD, PLY or VTP, nor text into LAS)";
+  return "streaming reads .las or .laz into .las, .laz, .txt, .xyz or .pcd, and .txt or .xyz "
+         "into .txt or .xyz (not yet PCD input, PLY or VTP, nor text into LAS or PCD)";
 }
 
 std::size_t StreamedRangePoints()

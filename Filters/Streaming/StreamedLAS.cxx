@@ -4,6 +4,7 @@
 #include "LASReader.h"
 #include "LASWriter.h"
 #include "LAZReader.h"
+#include "PCDFile.h"
 #include "PointCloudText.h"
 
 #include <fcntl.h>
@@ -216,13 +217,18 @@ std::string LASPointSource::WriteFiltered(OutOfCoreRun& run,
   std::size_t pointsPerRange,
   const std::function<void(double)>& progress)
 {
+  if (EndsWith(path, ".pcd"))
+  {
+    return WriteStreamedLASAsPCD(*this, run, path, pointsPerRange, progress);
+  }
   return IsTextName(path) ? WriteStreamedLASAsText(*this, run, path, pointsPerRange, progress)
                           : WriteStreamedLAS(*this, run, path, pointsPerRange, progress);
 }
 
 std::string LASPointSource::WriteWarning(const std::string& path) const
 {
-  if (!IsTextName(path))
+  const bool pcd = EndsWith(path, ".pcd");
+  if (!IsTextName(path) && !pcd)
   {
     return std::string();
   }
@@ -234,11 +240,12 @@ std::string LASPointSource::WriteWarning(const std::string& path) const
       coordinateSystem = coordinateSystem || record.UserId == "LASF_Projection";
     }
   }
-  // (The run in memory's words: vtkPointCloudTextWriter, vtkLASInformationNotHeld.)
-  return path + ": a text file cannot hold " +
+  // (The run in memory's words: vtkPointCloudTextWriter and vtkPCDPointCloudWriter,
+  // vtkLASInformationNotHeld.)
+  return path + (pcd ? ": a PCD file cannot hold " : ": a text file cannot hold ") +
          (coordinateSystem ? "the LAS file's coordinate system (CRS), scale and offset"
                            : "the LAS file's scale and offset") +
-         ", which are not written (the coordinates are)";
+         (pcd ? ", which are not written" : ", which are not written (the coordinates are)");
 }
 
 std::string LASPointSource::ColoursFitEightBits(bool& fit)
@@ -473,6 +480,163 @@ std::string WriteStreamedLASAsText(LASPointSource& input,
       table.Positions.resize(3 * table.NumberOfPoints);
       FillTextColumns(info, columns, table.NumberOfPoints, eightBit, table);
       problem = writer.Append(table);
+    }
+    if (progress)
+    {
+      progress(static_cast<double>(first + count) / static_cast<double>(total));
+    }
+  }
+  return problem.empty() ? writer.Close() : problem;
+}
+
+namespace
+{
+/// A LAS column type's PCD type and size (as vtkPCDFieldType gives them for the VTK arrays the
+/// LAS reader makes).
+PCDField PCDFieldOf(const LASDimension& dimension)
+{
+  static const struct
+  {
+    char Type;
+    unsigned Size;
+  } types[] = { { 'U', 1 },
+    { 'I', 1 },
+    { 'U', 2 },
+    { 'I', 2 },
+    { 'U', 4 },
+    { 'I', 4 },
+    { 'U', 8 },
+    { 'I', 8 },
+    { 'F', 4 },
+    { 'F', 8 } };
+  const auto kind = types[static_cast<int>(dimension.ColumnType)];
+  PCDField field{
+    dimension.Name, kind.Type, kind.Size, static_cast<unsigned>(dimension.Components)
+  };
+  std::replace_if(
+    field.Name.begin(), field.Name.end(), [](char c) { return c == ' ' || c == '\t'; }, '_');
+  return field;
+}
+
+/// The fields the run in memory writes for a LAS file (vtkPCDPointCloudWriter of the LAS
+/// reader's arrays, no layout read): x y z (F4 when every position written is a float, else
+/// F8), `rgb` packed from the 8-bit display colours with RGB, then each dimension whose name is
+/// not taken (`written`: which are).
+PCDHeader LASPCDHeader(const LASFileInfo& info,
+  bool floats,
+  bool colours,
+  std::size_t count,
+  std::vector<bool>& written)
+{
+  PCDHeader header;
+  header.Width = count;
+  for (const char* name : { "x", "y", "z" })
+  {
+    header.Fields.push_back(PCDField{ name, 'F', floats ? 4u : 8u, 1 });
+  }
+  if (colours)
+  {
+    header.Fields.push_back(PCDField{ "rgb", 'F', 4, 1 });
+  }
+  written.assign(info.Dimensions.size(), false);
+  for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+  {
+    const PCDField field = PCDFieldOf(info.Dimensions[d]);
+    const bool taken = std::any_of(header.Fields.begin(),
+      header.Fields.end(),
+      [&](const PCDField& other) { return other.Name == field.Name; });
+    if (!taken && !field.IsPadding())
+    {
+      header.Fields.push_back(field);
+      written[d] = true;
+    }
+  }
+  return header;
+}
+
+/// The first `kept` points' values into `range` (fields of LASPCDHeader).
+void FillPCDColumns(const LASFileInfo& info,
+  const std::vector<std::vector<std::uint8_t>>& columns,
+  const std::vector<bool>& written,
+  bool colours,
+  bool eightBit,
+  std::size_t kept,
+  PCDCloud& range)
+{
+  range.Columns.clear();
+  range.NumberOfPoints = kept;
+  for (std::size_t d = 0; d < info.Dimensions.size() && colours; ++d)
+  {
+    if (info.Dimensions[d].Name != "RGB")
+    {
+      continue;
+    }
+    std::vector<std::uint8_t> display(3 * kept);
+    for (std::size_t i = 0; i < 3 * kept; ++i)
+    {
+      const auto value =
+        static_cast<unsigned>(ColumnValue(LASValueType::UInt16, columns[d].data(), i));
+      display[i] = static_cast<std::uint8_t>(eightBit ? value : value >> 8);
+    }
+    range.Columns.push_back(PackPCDColours(PCDField{ "rgb", 'F', 4, 1 }, display.data(), 3, kept));
+  }
+  for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+  {
+    if (written[d])
+    {
+      const std::size_t bytes = kept * LASColumnBytes(info.Dimensions[d]);
+      range.Columns.push_back(PCDColumn{ PCDFieldOf(info.Dimensions[d]),
+        std::vector<std::uint8_t>(columns[d].begin(), columns[d].begin() + bytes) });
+    }
+  }
+}
+} // namespace
+
+std::string WriteStreamedLASAsPCD(LASPointSource& input,
+  OutOfCoreRun& run,
+  const std::string& path,
+  std::size_t pointsPerRange,
+  const std::function<void(double)>& progress)
+{
+  const LASFileInfo& info = input.GetInfo();
+  const bool colours = std::any_of(info.Dimensions.begin(),
+    info.Dimensions.end(),
+    [](const LASDimension& dimension) { return dimension.Name == "RGB"; });
+  bool eightBit = false;
+  std::string problem = input.ColoursFitEightBits(eightBit);
+  const std::uint64_t total = input.GetNumberOfPoints();
+  std::vector<bool> written;
+  PCDCloud range;
+  range.Header = LASPCDHeader(info,
+    run.AreFilteredPositionsFloats(),
+    colours,
+    static_cast<std::size_t>(total - run.GetNumberOfRemovedPoints()),
+    written);
+  PCDBinaryStreamWriter writer;
+  problem = problem.empty() ? writer.Open(path, range.Header, range.Header.Width) : problem;
+  std::vector<std::vector<std::uint8_t>> columns(info.Dimensions.size());
+  std::vector<void*> pointers(info.Dimensions.size());
+  std::vector<std::uint8_t> removed(pointsPerRange);
+  for (std::uint64_t first = 0; first < total && problem.empty(); first += pointsPerRange)
+  {
+    const auto count =
+      static_cast<std::size_t>(std::min<std::uint64_t>(pointsPerRange, total - first));
+    range.Positions.resize(3 * count);
+    for (std::size_t d = 0; d < columns.size(); ++d)
+    {
+      columns[d].resize(count * LASColumnBytes(info.Dimensions[d]));
+      pointers[d] = columns[d].data();
+    }
+    problem = input.ReadPoints(first, count, range.Positions.data(), pointers.data());
+    problem = problem.empty()
+                ? run.ReadFiltered(first, count, range.Positions.data(), removed.data())
+                : problem;
+    if (problem.empty())
+    {
+      const std::size_t kept = LeaveOutRemoved(info, removed, range.Positions, columns);
+      range.Positions.resize(3 * kept);
+      FillPCDColumns(info, columns, written, colours, eightBit, kept, range);
+      problem = writer.Append(range);
     }
     if (progress)
     {

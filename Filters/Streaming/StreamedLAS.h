@@ -96,6 +96,19 @@ std::string WriteStreamedLASAsText(LASPointSource& input,
   std::size_t pointsPerRange,
   const std::function<void(double)>& progress);
 
+/**
+ * Writes the filtered cloud of `run` as a binary PCD file, as pcbilateral's run in memory writes
+ * a LAS or LAZ file's cloud (vtkPCDPointCloudWriter): x y z as F4 when every filtered position is
+ * a float, else F8; with RGB a packed `rgb` of the 8-bit display colours; then every dimension,
+ * its components as the field's COUNT. Progress from 0 to 1; an empty string or a one-line
+ * message.
+ */
+std::string WriteStreamedLASAsPCD(LASPointSource& input,
+  OutOfCoreRun& run,
+  const std::string& path,
+  std::size_t pointsPerRange,
+  const std::function<void(double)>& progress);
+
 } // namespace pcbilateral
 
 #endif

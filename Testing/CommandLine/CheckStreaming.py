@@ -132,7 +132,7 @@ def check_refusals(c, source):
             f"a slab that cannot fit: one line, non-zero exit, no output ({result.stderr.strip()})")
     c.check(not c.temporary_left(), "the refusal leaves no temporary file")
     for arguments, words in (([source, os.path.join(c.scratch, "o.ply")], "into .las"),
-                             ([source, os.path.join(c.scratch, "o.pcd")], "not yet"),
+                             ([source, os.path.join(c.scratch, "o.vtp")], "not yet"),
                              ([source, output, "--copc-level", "0"], "does not take"),
                              ([source, output, "-r", "3"], None)):
         size = "2X" if words is None else "1G"
@@ -262,12 +262,14 @@ def check_samples(c, las_dir):
                         ["-r", "5", "-N", "2"], [30000], extension=".laz")
     c.same_as_in_memory("autzen-1.4-into-laz", os.path.join(las_dir, "autzen_trim_7.las"),
                         ["-r", "5"], [30000], extension=".laz", range_points=23456)
-    # Into text: every dimension as columns, RGB and the display colours, extra bytes.
+    # Into text and PCD: every dimension as columns or fields, RGB and the display colours,
+    # extra bytes.
     for name, source in (("autzen", autzen), ("autzen-laz", laz_path(las_dir)),
                          ("autzen-1.4", os.path.join(las_dir, "autzen_trim_7.las")),
                          ("extra-bytes", os.path.join(las_dir, "extrabytes.las"))):
-        c.same_as_in_memory(name + "-into-text", source, ["-r", "5", "-N", "2"], [30000],
-                            extension=".txt", range_points=23456)
+        for extension in (".txt", ".pcd"):
+            c.same_as_in_memory(name + "-into" + extension, source, ["-r", "5", "-N", "2"],
+                                [30000], extension=extension, range_points=23456)
     # --classes (Autzen: classes 1 and 2): only the chosen classes filtered, the others
     # passed through; the in-memory errors and warning.
     laz = os.path.join(las_dir, "..", "laz", "autzen_trim.laz")

@@ -1,5 +1,5 @@
-"""pcbilateral --memory-limit with --edge-aware, --remove-isolated and -R, and LAS into text
-(issue 27, item 3):
+"""pcbilateral --memory-limit with --edge-aware, --remove-isolated and -R, and LAS into text and
+PCD (issue 27, item 3):
 the file filtered in slabs gives the same output file, byte for byte, as the run in memory.
 
 Cases: a generated survey whose density varies, with outliers, shuffled, as LAS and as text;
@@ -7,13 +7,14 @@ Cases: a generated survey whose density varies, with outliers, shuffled, as LAS 
 paper's filter takes would be too narrow, and two) and automatic ones (a long strip, so that the
 automatic radius leaves room for several slabs); --remove-isolated (the LAS header's count, LAZ
 output, text), with both; -R (normals in columns 4-6, with and without a header line, and the
-in-memory error for a line without them); LAS into text (the columns, 16-bit and 8-bit RGB, the
-warning). PCB_STREAMING_SLAB_POINTS forces several slabs.
+in-memory error for a line without them); LAS into text and into PCD (the columns or fields,
+16-bit and 8-bit RGB, the warning; F4 coordinates). PCB_STREAMING_SLAB_POINTS forces several slabs.
 
     CheckStreamingOptions.py PCBILATERAL SCRATCH
 """
 import os
 import re
+import struct
 import sys
 
 import numpy as np
@@ -107,27 +108,66 @@ def write_las_rgb(path, points, colours):
         stream.write(bytes(header) + np.hstack([records, rgb]).tobytes())
 
 
-def check_las_into_text(c, las, points):
-    """LAS into text: the columns, header and warning of the run in memory; RGB as 16-bit and as
-    8-bit values (the display colours are the high bytes or the values)."""
-    for name, parameters, slabs in (("into-text-explicit", EXPLICIT + ["-N", "2"], [0, 8000]),
-                                    ("into-text-automatic", [], [8000]),
-                                    ("into-text-isolated", EXPLICIT + ["--remove-isolated"],
-                                     [8000])):
-        c.same_as_in_memory(name, las, parameters, slabs, extension=".xyz", range_points=7777)
+def check_las_into(c, las, points, extension):
+    """LAS into text or PCD: the columns or fields, header and warning of the run in memory; RGB
+    as 16-bit and as 8-bit values (the display colours are the high bytes or the values)."""
+    kind = extension[1:]
+    for name, parameters, slabs in (("explicit", EXPLICIT + ["-N", "2"], [0, 8000]),
+                                    ("automatic", [], [8000]),
+                                    ("isolated", EXPLICIT + ["--remove-isolated"], [8000])):
+        c.same_as_in_memory(f"into-{kind}-{name}", las, parameters, slabs, extension=extension,
+                            range_points=7777)
     rng = np.random.default_rng(19)
     order = rng.permutation(len(points))
     for bits, top in ((16, 65536), (8, 256)):
         path = os.path.join(c.scratch, f"rgb{bits}.las")
         write_las_rgb(path, points[order], rng.integers(0, top, (len(points), 3)))
-        c.same_as_in_memory(f"rgb{bits}-into-text", path, EXPLICIT + ["-N", "2"], [8000],
-                            extension=".txt")
-    runs = [c.run([las, os.path.join(c.scratch, f"warned-{k}.txt"), "-r", "1.2"] +
+        c.same_as_in_memory(f"rgb{bits}-into-{kind}", path, EXPLICIT + ["-N", "2"], [8000],
+                            extension=extension)
+    runs = [c.run([las, os.path.join(c.scratch, f"warned-{k}{extension}"), "-r", "1.2"] +
                   (["--memory-limit", "1G"] if k == "streamed" else []))
             for k in ("memory", "streamed")]
     c.check(runs[1].returncode == 0 and "cannot hold the LAS file's scale" in runs[1].stderr and
             runs[1].stderr.replace("streamed", "memory") == runs[0].stderr,
-            f"LAS into text: the warning of the run in memory ({runs[1].stderr.strip()})")
+            f"LAS into {kind}: the warning of the run in memory ({runs[1].stderr.strip()})")
+
+
+def check_las_into_pcd(c, las, points):
+    """LAS into PCD, and x y z as F4 when every position written is a float (coordinates on a
+    grid of 0.5, a radius with no neighbours: nothing moves); --classes into PCD is refused."""
+    check_las_into(c, las, points, ".pcd")
+    on_grid = os.path.join(c.scratch, "half-grid.las")
+    write_las(on_grid, points)
+    with open(on_grid, "r+b") as stream:
+        stream.seek(131)
+        stream.write(struct.pack("<3d", 0.5, 0.5, 0.5))
+    c.same_as_in_memory("floats-into-pcd", on_grid, ["-r", "0.1", "-N", "1"], [8000],
+                        extension=".pcd")
+    with open(os.path.join(c.scratch, "floats-into-pcd-memory.pcd"), "rb") as stream:
+        head = stream.read(400)
+    c.check(b"SIZE 4 4 4 " in head, "positions that are floats: x y z written as F4")
+    output = os.path.join(c.scratch, "classes.pcd")
+    refused = c.run([las, output, "--classes", "2", "--memory-limit", "1G"])
+    c.check(refused.returncode != 0 and "PCD output" in refused.stderr and
+            not os.path.exists(output), f"--classes into PCD is refused: {refused.stderr.strip()}")
+
+
+def check_damaged(c, las):
+    """A LAS file cut short, into each output streamed: one line, non-zero exit, no output, no
+    temporary file."""
+    cut = os.path.join(c.scratch, "cut.las")
+    with open(las, "rb") as stream:
+        data = stream.read()
+    with open(cut, "wb") as stream:
+        stream.write(data[:len(data) * 2 // 3])
+    for extension in (".las", ".laz", ".xyz", ".pcd"):
+        output = os.path.join(c.scratch, "cut-out" + extension)
+        result = c.run([cut, output, "-r", "1.2", "--edge-aware", "--remove-isolated",
+                        "--memory-limit", "1G"], 8000)
+        c.check(result.returncode != 0 and len(result.stderr.strip().splitlines()) == 1 and
+                not os.path.exists(output) and not c.temporary_left(),
+                f"a LAS file cut short into {extension}: one line, no output, no temporary file "
+                f"({result.stderr.strip()})")
 
 
 def main(program, scratch):
@@ -145,7 +185,9 @@ def main(program, scratch):
     check_edge_aware(c, las, text)
     check_remove_isolated(c, las, text)
     check_oriented_normals(c, points)
-    check_las_into_text(c, las, points)
+    check_las_into(c, las, points, ".xyz")
+    check_las_into_pcd(c, las, points)
+    check_damaged(c, las)
     return 1 if c.failures else 0
 
 
