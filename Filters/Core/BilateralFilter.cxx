@@ -470,7 +470,7 @@ struct BilateralRun::Internals
     {
       view.insert(view.end(), &positions[3 * i], &positions[3 * i] + 3);
     }
-    const double reachInRadii = this->Parameters.EdgeAware ? EdgeAwareReachInRadii : 1.0;
+    const double reachInRadii = IterationReachInRadii(this->Parameters);
     const NearPoints near(view,
       GhostMargin(reachInRadii * this->Bands.Radius[band], this->WholeExtent.LargestMagnitude()),
       this->WholeExtent.Min);
@@ -686,6 +686,11 @@ std::vector<double> BilateralRun::GetPositionsForOthers() const
   return positions;
 }
 
+double IterationReachInRadii(const BilateralParameters& parameters)
+{
+  return parameters.EdgeAware ? EdgeAwareReachInRadii : 1.0;
+}
+
 std::vector<double> BilateralRun::GetGhostReaches() const
 {
   const Internals& run = *this->Impl;
@@ -726,7 +731,7 @@ std::vector<double> BilateralRun::GetGhostReaches() const
   // Points move by less than a radius per iteration, but the boxes are taken from the current
   // positions, so one radius of reach is enough. The edge-aware mode reads its neighbours'
   // normals, which read theirs (with the same band's radii): it reaches further.
-  const double reach = run.Parameters.EdgeAware ? EdgeAwareReachInRadii : 1.0;
+  const double reach = IterationReachInRadii(run.Parameters);
   std::vector<double> boxes;
   for (std::size_t g = 0; g < groups; ++g)
   {
