@@ -96,8 +96,8 @@ total = make_cloud()
 # 2 ranks, 0.44 at 3, 0.69 with the edge-aware mode's layers of 3 radii). Where the radius
 # follows the density, each band's points reach as far as their own radius only
 # (BilateralRun::GetGhostReaches): 0.58 at 3 ranks (0.98 when the whole part reached as far as
-# its largest radius, 10 times the radius of the dense end's thin slab here). Not checked in the
-# edge-aware mode there: the sparse end's points reach 3 of its radii, most of the sheet.
+# its largest radius, 10 times the dense end's here). Not checked in the edge-aware mode there:
+# the sparse bands' points read 3 of their radii, the whole sheet.
 if args.density_ratio > 1.0:
     HELD_BOUND = 1.0 if args.edge_aware else 0.7
 else:
