@@ -170,7 +170,10 @@ std::string UnwrittenArrays(const pcbilateral::LASFileInfo& info,
   for (int a = 0; a < pointData->GetNumberOfArrays(); ++a)
   {
     const char* name = pointData->GetArrayName(a) ? pointData->GetArrayName(a) : "";
-    bool written = std::strcmp(name, "Colors") == 0 && pointData->GetArray("RGB") != nullptr;
+    // (The 8-bit display colours come from RGB; the filter's ids of the points it kept, when it
+    // removed isolated points, are not a point attribute: neither is worth a warning.)
+    bool written = (std::strcmp(name, "Colors") == 0 && pointData->GetArray("RGB") != nullptr) ||
+                   std::strcmp(name, "vtkOriginalPointIds") == 0;
     for (std::size_t d = 0; d < info.Dimensions.size() && !written; ++d)
     {
       written = columns[d] != nullptr && info.Dimensions[d].Name == name;

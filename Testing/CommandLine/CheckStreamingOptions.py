@@ -31,6 +31,8 @@ def same_lines(c, name, source, parameters, slab_points, extension, pattern):
                       "--memory-limit", "1G"] + parameters, slab_points)
     said = [re.findall(pattern, run.stdout, re.MULTILINE) for run in (in_memory, streamed)]
     c.check(said[0] and said[0] == said[1], f"{name}: says {said[1]} as in memory ({said[0]})")
+    c.check(in_memory.stderr == streamed.stderr,
+            f"{name}: warns {streamed.stderr!r} as in memory ({in_memory.stderr!r})")
 
 
 def check_edge_aware(c, las, text):
