@@ -1,4 +1,5 @@
 // Writing a PCD file in one of its three encodings, and PCL's packed colours both ways.
+#include "FileBytes.h"
 #include "PCDFile.h"
 #include "PCDValues.h"
 
@@ -99,6 +100,10 @@ std::string FormatASCII(const std::vector<PCDColumn>& columns, std::size_t count
   std::string text;
   for (std::size_t i = 0; i < count; ++i)
   {
+    if (i % PointsPerProgressPoint == 0 && ProgressPoint(i, count))
+    {
+      return std::string(); // (the caller asks too, and writes nothing)
+    }
     bool first = true;
     for (const PCDColumn& column : columns)
     {
@@ -216,10 +221,16 @@ std::string WritePCD(const std::string& path, const PCDCloud& cloud, PCDEncoding
   std::vector<PCDColumn> columns;
   std::vector<std::uint8_t> data;
   std::string problem = GatherColumns(cloud, columns);
+  SetProgressStage(0.0, 0.6);
   if (problem.empty())
   {
     problem = EncodeData(columns, cloud.NumberOfPoints, encoding, data);
   }
+  if (ProgressStopAsked())
+  {
+    return AbortedMessage;
+  }
+  SetProgressStage(0.6, 1.0);
   if (!problem.empty())
   {
     return path + ": " + problem;
@@ -232,8 +243,9 @@ std::string WritePCD(const std::string& path, const PCDCloud& cloud, PCDEncoding
     return file.OpenError();
   }
   bool written = std::fwrite(header.data(), 1, header.size(), file.Get()) == header.size();
-  written = written && std::fwrite(data.data(), 1, data.size(), file.Get()) == data.size();
-  return file.Commit(written);
+  written = written && WriteInBlocks(file.Get(), data.data(), data.size());
+  const std::string committed = file.Commit(written);
+  return ProgressStopAsked() ? AbortedMessage : committed; // (no file then)
 }
 
 } // namespace pcbilateral
