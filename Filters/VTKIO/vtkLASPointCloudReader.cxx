@@ -75,7 +75,6 @@ int vtkLASPointCloudReader::RequestData(vtkInformation*,
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->ErrorMessage.clear();
-  this->AbortExecute = 0; // (an abort asked of an earlier run)
   vtkPointCloudProgress progress(this);
   pcbilateral::LASFileBytes file;
   pcbilateral::LASFileInfo info;

@@ -241,7 +241,6 @@ std::string vtkLASPointCloudWriter::WritePoints(const std::string& problem,
 
 void vtkLASPointCloudWriter::WriteData()
 {
-  this->AbortExecute = 0; // (an abort asked of an earlier run)
   vtkPointCloudProgress progress(this);
   vtkPointSet* input = vtkPointSet::SafeDownCast(this->GetInput());
   std::string problem;

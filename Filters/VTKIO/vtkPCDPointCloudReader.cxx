@@ -136,7 +136,6 @@ int vtkPCDPointCloudReader::RequestData(vtkInformation*,
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->ErrorMessage.clear();
-  this->AbortExecute = 0; // (an abort asked of an earlier run)
   vtkPointCloudProgress progress(this);
   this->NumberOfDroppedPoints = 0;
   if (!this->FileName || !*this->FileName)

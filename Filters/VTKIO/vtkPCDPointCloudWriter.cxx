@@ -238,7 +238,6 @@ int vtkPCDPointCloudWriter::FillInputPortInformation(int, vtkInformation* info)
 void vtkPCDPointCloudWriter::WriteData()
 {
   this->ErrorMessage.clear();
-  this->AbortExecute = 0; // (an abort asked of an earlier run)
   vtkPointCloudProgress progress(this);
   auto* input = vtkPointSet::SafeDownCast(this->GetInput());
   if (!this->FileName || !*this->FileName)

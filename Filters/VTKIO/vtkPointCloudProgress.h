@@ -10,8 +10,11 @@
 /**
  * Open for the whole of a reader's RequestData or a writer's WriteData: the formats' loops then
  * report through UpdateProgress (ProgressEvent, ParaView's progress bar) and stop once the
- * algorithm's AbortExecute flag is set (ParaView's Abort button, or another thread). The caller
- * clears a flag left from an earlier run first (VTK 9.2 never clears it).
+ * algorithm's AbortExecute flag is set (ParaView's Abort button, or another thread). The flag
+ * is cleared when the scope closes, at the end of the run it stopped (VTK 9.2 never clears it,
+ * and every later run would stop at once); not when the run starts, since VTK's executive
+ * reports progress before RequestData, and an abort asked then belongs to this run. Clearing
+ * it marks the algorithm modified, so the aborted (empty) output is not taken as up to date.
  */
 class vtkPointCloudProgress : public pcbilateral::ProgressScope
 {
@@ -19,8 +22,20 @@ public:
   explicit vtkPointCloudProgress(vtkAlgorithm* algorithm)
     : ProgressScope([algorithm](double fraction) { algorithm->UpdateProgress(fraction); },
         [algorithm]() { return algorithm->GetAbortExecute() != 0; })
+    , Algorithm(algorithm)
   {
   }
+
+  ~vtkPointCloudProgress()
+  {
+    if (this->Algorithm->GetAbortExecute())
+    {
+      this->Algorithm->SetAbortExecute(0);
+    }
+  }
+
+private:
+  vtkAlgorithm* Algorithm;
 };
 
 #endif

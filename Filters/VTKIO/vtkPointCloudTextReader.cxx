@@ -126,7 +126,6 @@ int vtkPointCloudTextReader::RequestData(vtkInformation*,
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->ErrorMessage.clear();
-  this->AbortExecute = 0; // (an abort asked of an earlier run)
   vtkPointCloudProgress progress(this);
   if (!this->FileName || !*this->FileName)
   {

@@ -54,45 +54,12 @@ pcbilateral::PointCloudTextLayout LoadLayout(vtkFieldData* fieldData)
   }
   return layout;
 }
-} // namespace
 
-vtkPointCloudTextWriter::vtkPointCloudTextWriter() = default;
-
-vtkPointCloudTextWriter::~vtkPointCloudTextWriter()
+/// The input's points, normals (when written) and other point arrays as the text writer's
+/// table; stops early (at a progress point) when the write is aborted.
+pcbilateral::PointCloudTable CopyColumns(vtkPolyData* input, bool writeNormals)
 {
-  this->SetFileName(nullptr);
-}
-
-int vtkPointCloudTextWriter::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
-  return 1;
-}
-
-void vtkPointCloudTextWriter::WriteData()
-{
-  this->ErrorMessage.clear();
-  this->AbortExecute = 0; // (an abort asked of an earlier run)
-  vtkPointCloudProgress progress(this);
-  vtkPolyData* input = vtkPolyData::SafeDownCast(this->GetInput());
-  if (!this->FileName || !*this->FileName)
-  {
-    this->ErrorMessage = "no file name was given";
-  }
-  else if (!input)
-  {
-    this->ErrorMessage = "the input is not a vtkPolyData";
-  }
-  if (!this->ErrorMessage.empty())
-  {
-    vtkErrorMacro(<< this->ErrorMessage);
-    this->SetErrorCode(vtkErrorCode::UnknownError);
-    return;
-  }
-
   const vtkIdType count = input->GetNumberOfPoints();
-  // Copying the arrays out takes about a third of the time.
-  progress.SetStage(0.0, 0.3);
   const auto copyStopped = [count](vtkIdType id)
   {
     return id % static_cast<vtkIdType>(pcbilateral::PointsPerProgressPoint) == 0 &&
@@ -106,7 +73,7 @@ void vtkPointCloudTextWriter::WriteData()
     input->GetPoint(id, table.Positions.data() + 3 * id);
   }
   vtkPointData* pointData = input->GetPointData();
-  vtkDataArray* normals = this->WriteNormals ? pointData->GetNormals() : nullptr;
+  vtkDataArray* normals = writeNormals ? pointData->GetNormals() : nullptr;
   if (normals && normals->GetNumberOfComponents() == 3)
   {
     table.Normals.resize(3 * table.NumberOfPoints);
@@ -139,6 +106,47 @@ void vtkPointCloudTextWriter::WriteData()
       table.ExtraColumnNames.push_back(name);
     }
   }
+  return table;
+}
+
+} // namespace
+
+vtkPointCloudTextWriter::vtkPointCloudTextWriter() = default;
+
+vtkPointCloudTextWriter::~vtkPointCloudTextWriter()
+{
+  this->SetFileName(nullptr);
+}
+
+int vtkPointCloudTextWriter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+void vtkPointCloudTextWriter::WriteData()
+{
+  this->ErrorMessage.clear();
+  vtkPointCloudProgress progress(this);
+  vtkPolyData* input = vtkPolyData::SafeDownCast(this->GetInput());
+  if (!this->FileName || !*this->FileName)
+  {
+    this->ErrorMessage = "no file name was given";
+  }
+  else if (!input)
+  {
+    this->ErrorMessage = "the input is not a vtkPolyData";
+  }
+  if (!this->ErrorMessage.empty())
+  {
+    vtkErrorMacro(<< this->ErrorMessage);
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return;
+  }
+
+  // Copying the arrays out takes about a third of the time.
+  progress.SetStage(0.0, 0.3);
+  pcbilateral::PointCloudTable table = CopyColumns(input, this->WriteNormals);
   table.Layout = LoadLayout(input->GetFieldData());
   const std::string notHeld = vtkLASInformationNotHeld(input->GetFieldData());
   if (!notHeld.empty())

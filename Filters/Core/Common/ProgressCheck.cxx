@@ -1,5 +1,6 @@
 #include "ProgressCheck.h"
 
+#include <cstdlib>
 #include <utility>
 
 namespace pcbilateral
@@ -8,6 +9,27 @@ namespace
 {
 /// Each thread's innermost open scope.
 thread_local ProgressScope* InnermostScope = nullptr;
+/// 50 ms, or PCB_PROGRESS_INTERVAL_US from the environment when first asked (for tests: each
+/// library that links this one statically, a VTK module say, has its own copy of the setting).
+std::atomic<std::int64_t>& ReportIntervalMicroseconds()
+{
+  static std::atomic<std::int64_t> interval{ []
+    {
+      const char* given = std::getenv("PCB_PROGRESS_INTERVAL_US");
+      return given != nullptr ? std::strtoll(given, nullptr, 10) : 50000ll;
+    }() };
+  return interval;
+}
+}
+
+std::chrono::microseconds ProgressScope::GetReportInterval()
+{
+  return std::chrono::microseconds(ReportIntervalMicroseconds().load(std::memory_order_relaxed));
+}
+
+void ProgressScope::SetReportInterval(std::chrono::microseconds interval)
+{
+  ReportIntervalMicroseconds().store(interval.count(), std::memory_order_relaxed);
 }
 
 ProgressScope::ProgressScope(ProgressFunction progress, AbortFunction shouldAbort)
@@ -41,7 +63,7 @@ bool ProgressScope::Check(double fraction)
     return false;
   }
   this->Checked = true;
-  this->NextCheck = now + ReportInterval;
+  this->NextCheck = now + GetReportInterval();
   if (this->Progress)
   {
     const double clamped = fraction < 0.0 ? 0.0 : (fraction > 1.0 ? 1.0 : fraction);

@@ -25,9 +25,9 @@ namespace pcbilateral
  *   if (scope.StopAsked()) ...                     // the front end: the phase was aborted
  *
  * The hooks are called only from the thread that opened the scope: at the first point of the
- * phase, then at most every ReportInterval (a clock read per point, nothing else), so a point
+ * phase, then at most every GetReportInterval() (a clock read per point, nothing else), so a point
  * costs nothing measurable at a block of a few thousand points, and an abort is seen within
- * ReportInterval plus one block. Inside a parallel loop the calling thread is thread 0; the
+ * interval plus one block. Inside a parallel loop the calling thread is thread 0; the
  * other threads ask StopAsked() of the scope (Current(), taken before the loop). Scopes nest:
  * an inner one hides the outer one until it closes. Without a scope, ProgressPoint is false.
  */
@@ -37,8 +37,11 @@ public:
   using ProgressFunction = std::function<void(double)>;
   using AbortFunction = std::function<bool()>;
 
-  /// How often, at most, the hooks are called.
-  static constexpr std::chrono::milliseconds ReportInterval{ 50 };
+  /// How often, at most, the hooks are called: 50 ms. Tests set 0, to see every point of a
+  /// phase on small clouds (through the environment variable PCB_PROGRESS_INTERVAL_US for the
+  /// copies of this library linked into the VTK modules).
+  static std::chrono::microseconds GetReportInterval();
+  static void SetReportInterval(std::chrono::microseconds interval);
 
   /// Either hook may be empty.
   ProgressScope(ProgressFunction progress, AbortFunction shouldAbort);
@@ -50,7 +53,7 @@ public:
   static ProgressScope* Current();
 
   /// Reports `fraction` of the phase and asks whether to stop, when due (the first call, then
-  /// every ReportInterval, and at a fraction of 1) and called from the thread that opened the
+  /// every GetReportInterval(), and at a fraction of 1) and called from the thread that opened the
   /// scope (from another thread: StopAsked()). Returns whether the phase is to stop (once true,
   /// always true).
   bool Check(double fraction);

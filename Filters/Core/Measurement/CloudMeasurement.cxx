@@ -30,6 +30,7 @@
 #include "BitOperations.h"
 #include "LocalSurfaceFit.h"
 #include "PointGrid.h"
+#include "ProgressCheck.h"
 #include "Threads.h"
 
 #include <algorithm>
@@ -130,6 +131,8 @@ constexpr double CreaseVariance = 2.0;
 /// Points whose nearest-neighbour distance is measured for its percentiles: enough for the 5th
 /// percentile to be read on some 400 points, a small cost next to the fits.
 constexpr std::size_t NearestNeighbourSamples = 8192;
+/// Points of the whole cloud between two progress and abort checks of the selection.
+constexpr std::size_t PointsPerProgressCheck = 16384;
 /// The structured-noise check (CheckStructuredNoise): the ball's radius in units of the noise
 /// fits' radius, and how much more noise it must read there to count as structured.
 constexpr double StructureScale = 4.0;
@@ -195,17 +198,31 @@ public:
 
   CloudScales Measure()
   {
-    if (!(this->CheckCloud() && this->SortIntoLevels() && this->GuessDensity() &&
-          this->BuildGrids() && this->ChooseSamples()))
+    // Progress and abort between the steps (ProgressPoint): the whole cloud's selection was the
+    // first half of the measurement when there was one, these steps are the rest.
+    const std::uint64_t total = this->PointKeys != nullptr ? 20 : 10;
+    const std::uint64_t done = total - 10;
+    const auto stopped = [&](std::uint64_t step)
+    {
+      if (ProgressPoint(done + step, total))
+      {
+        this->Scales.Problem = AbortedMessage;
+        return true;
+      }
+      return false;
+    };
+    if (!(this->CheckCloud() && !stopped(0) && this->SortIntoLevels() && !stopped(1) &&
+          this->GuessDensity() && !stopped(2) && this->BuildGrids() && !stopped(3) &&
+          this->ChooseSamples() && !stopped(4)))
     {
       return this->Scales;
     }
     this->MeasureNeighbourDistances();
-    if (this->FindNoise() && this->MeasureSpacing())
+    if (!stopped(5) && this->FindNoise() && !stopped(7) && this->MeasureSpacing() && !stopped(8))
     {
       this->MeasureFlatness();
       this->CheckStructuredNoise();
-      this->Scales.Valid = true;
+      this->Scales.Valid = !stopped(10);
     }
     return this->Scales;
   }
@@ -902,6 +919,10 @@ std::vector<double> Select(const PointCloudView& cloud,
   for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
   {
     const double* p = cloud.Positions + 3 * i;
+    if (i % PointsPerProgressCheck == 0 && ProgressPoint(i, 2 * cloud.NumberOfPoints))
+    {
+      return std::vector<double>(); // stopped: the caller asks too
+    }
     if (!IsFinitePoint(p))
     {
       continue;

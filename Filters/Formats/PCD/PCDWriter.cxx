@@ -83,12 +83,16 @@ std::vector<std::uint8_t> Interleave(const std::vector<PCDColumn>& columns, std:
   }
   std::vector<std::uint8_t> records(stride * count);
   std::size_t offset = 0;
-  for (const PCDColumn& column : columns)
+  for (std::size_t c = 0; c < columns.size(); ++c)
   {
-    const std::size_t bytes = column.Field.Bytes();
+    const std::size_t bytes = columns[c].Field.Bytes();
     for (std::size_t i = 0; i < count; ++i)
     {
-      std::copy_n(column.Bytes.data() + i * bytes, bytes, records.data() + i * stride + offset);
+      if (i % PointsPerProgressPoint == 0 && ProgressPoint(c * count + i, columns.size() * count))
+      {
+        return records; // (the caller asks too, and writes nothing)
+      }
+      std::copy_n(columns[c].Bytes.data() + i * bytes, bytes, records.data() + i * stride + offset);
     }
     offset += bytes;
   }
