@@ -100,7 +100,8 @@ const char* const UsageTail =
   "                     memory when the cloud needs more (said)\n"
   "  -q, --quiet        print nothing but warnings and errors (default: what was read,\n"
   "                     measured, chosen and written, each line as soon as it is known, and\n"
-  "                     on a terminal a progress bar with the time left)\n"
+  "                     on a terminal a progress bar with the time left for reading,\n"
+  "                     measuring, each iteration and writing)\n"
   "  -p                 accepted for compatibility and ignored: the filter always runs in "
   "parallel\n"
   "  -h, --help         this text\n";

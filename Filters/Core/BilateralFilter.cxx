@@ -248,13 +248,25 @@ struct BilateralRun::Internals
     const double* positions,
     const RadiiUsed& radii)
   {
+    // The octree's construction asks whether to stop between and within its passes; it reports
+    // the progress so far there too (at most every 0.1 s: Report), so that a GUI repaints and
+    // sees its Abort button while it runs.
+    std::function<bool()> askDuringLoad;
+    if (this->Observer.ShouldAbort || this->Observer.Progress || this->Observer.PhaseProgress)
+    {
+      askDuringLoad = [this]()
+      {
+        this->ReportWithinStep(0.0);
+        return this->Observer.ShouldAbort && this->Observer.ShouldAbort();
+      };
+    }
     auto engine = std::make_unique<IterationEngine>(std::move(state),
       positions,
       this->WholeExtent,
       radii,
       this->Parameters.RemoveIsolatedPoints,
       this->Threads,
-      this->Observer.ShouldAbort);
+      askDuringLoad);
     this->Result.ProcessingDepth = engine->Octree.GetProcessingDepth();
     CellColoringScheduler& scheduler = engine->Scheduler;
     scheduler.ShouldAbort = this->Observer.ShouldAbort;
