@@ -58,7 +58,8 @@ elif shot in ("panel", "beforeafter"):
         simple.Render(view)
     else:
         # Input on the left, output on the right, one camera; both shown as the GUI shows a
-        # point cloud (Point Gaussian), small points so that the surfaces' texture shows.
+        # point cloud (Point Gaussian), small flat discs (shaded spheres would speckle the
+        # picture with their highlights) so that the rows of points show.
         layout = simple.GetLayout(view)
         before = simple.Show(reader, view)
         layout.SplitHorizontal(0, 0.5)
@@ -69,7 +70,7 @@ elif shot in ("panel", "beforeafter"):
         for display in (before, after):
             display.SetRepresentationType("Point Gaussian")
             display.GaussianRadius = float(os.environ.get("PCB_POINT_RADIUS", "0.002"))
-            display.ShaderPreset = "Sphere"
+            display.ShaderPreset = "Plain circle"
         simple.Render(after_view)
         simple.AddCameraLink(view, after_view, "before and after")
         camera = [float(v) for v in os.environ.get("PCB_CAMERA", "").split()]

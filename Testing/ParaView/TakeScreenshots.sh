@@ -118,11 +118,12 @@ sleep 1.5
 import -window "$panel" "$out/properties_panel.png"
 stop_session
 
-# Before and after on a real scan: a Kinect-like depth frame seen from the side (the depth runs
-# left to right), input left, output right: the frame's depth steps (the sensor's quantization
-# and noise) become the surfaces they sample. The crop is the two views, under their toolbars.
+# Before and after on a real scan: a Kinect-like depth frame seen from above (the depth runs
+# up the picture), input left, output right: the frame's depth steps (the sensor's quantization,
+# rows of points parallel to the image plane) become the floor and the objects they sample. The
+# crop is the two views, under their toolbars.
 start_session beforeafter PCB_SCAN="$real/kinect_capture0001.ply" PCB_POINT_RADIUS=0.002 \
-  PCB_CAMERA="4.2 -0.2 2.33 -0.25 -0.2 2.33 0 -1 0"
+  PCB_CAMERA="-0.05 7.4 2.33 -0.05 -0.2 2.33 0 0 -1"
 import -window root -crop 1193x767+302+198 "$out/before_after.png"
 stop_session
 

@@ -7,16 +7,8 @@ namespace laz
 
 namespace
 {
-/// Multiples of the last difference with a code of their own: 1 to 499, and -1 to -9.
-constexpr std::int32_t GPSMulti = 500;
-constexpr std::int32_t GPSMultiMinus = -10;
 constexpr std::uint32_t GPSMultiEnd = GPSMulti - GPSMultiMinus + 1;
 
-std::int32_t Multiply(std::int64_t multiple, std::int32_t difference)
-{
-  // The product wraps to 32 bits, as the encoder's does.
-  return static_cast<std::int32_t>(static_cast<std::uint32_t>(multiple * difference));
-}
 /// The time's bits moved by a difference, wrapping as the encoder's do: a damaged stream may
 /// give any difference, and a signed overflow would be undefined.
 void Advance(std::int64_t& time, std::int32_t difference)
@@ -25,18 +17,6 @@ void Advance(std::int64_t& time, std::int32_t difference)
     static_cast<std::uint64_t>(time) + static_cast<std::uint64_t>(std::int64_t(difference)));
 }
 } // namespace
-
-GPSTimeSequences::GPSTimeSequences(const GPSTimeCodes& codes)
-  : Codes(codes)
-  , Multiple(codes.MultiSymbols)
-  , ZeroDifference(codes.ZeroSymbols)
-{
-}
-
-void GPSTimeSequences::Start(std::int64_t first)
-{
-  this->LastTime[0] = first;
-}
 
 std::int64_t GPSTimeSequences::Decode(ArithmeticDecoder& decoder)
 {
@@ -118,11 +98,12 @@ std::int32_t GPSTimeSequences::DecodeMultiple(ArithmeticDecoder& decoder, std::u
   }
   else if (multi < static_cast<std::uint32_t>(GPSMulti))
   {
-    difference = this->Differences.Decode(decoder, Multiply(multi, previous), multi < 10 ? 2 : 3);
+    difference =
+      this->Differences.Decode(decoder, GPSMultiply(multi, previous), multi < 10 ? 2 : 3);
   }
   else if (multi == static_cast<std::uint32_t>(GPSMulti))
   {
-    difference = this->Differences.Decode(decoder, Multiply(GPSMulti, previous), 4);
+    difference = this->Differences.Decode(decoder, GPSMultiply(GPSMulti, previous), 4);
     extreme = true;
   }
   else
@@ -130,11 +111,11 @@ std::int32_t GPSTimeSequences::DecodeMultiple(ArithmeticDecoder& decoder, std::u
     const std::int32_t negative = GPSMulti - static_cast<std::int32_t>(multi);
     if (negative > GPSMultiMinus)
     {
-      difference = this->Differences.Decode(decoder, Multiply(negative, previous), 5);
+      difference = this->Differences.Decode(decoder, GPSMultiply(negative, previous), 5);
     }
     else
     {
-      difference = this->Differences.Decode(decoder, Multiply(GPSMultiMinus, previous), 6);
+      difference = this->Differences.Decode(decoder, GPSMultiply(GPSMultiMinus, previous), 6);
       extreme = true;
     }
   }

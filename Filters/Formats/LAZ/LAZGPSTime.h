@@ -30,27 +30,36 @@ constexpr GPSTimeCodes GPSTimeCodesV2 = { 6, 1, 516, 512 };
 /// Version 3's codes (point14's layer): the layer is only read when the time changed.
 constexpr GPSTimeCodes GPSTimeCodesV3 = { 5, 0, 515, 511 };
 
+/// Multiples of the last difference with a code of their own: 1 to 499, and -1 to -9.
+constexpr std::int32_t GPSMulti = 500;
+constexpr std::int32_t GPSMultiMinus = -10;
+
+/// multiple x difference wrapped to 32 bits, as both sides of the coder compute it.
+inline std::int32_t GPSMultiply(std::int64_t multiple, std::int32_t difference)
+{
+  return static_cast<std::int32_t>(static_cast<std::uint32_t>(multiple * difference));
+}
+
 /**
- * The GPS time (a double, coded as its 64-bit pattern): up to four sequences of times are
- * followed at once (a scanner may interleave them), each with its last time and its last
- * difference; a time is coded as a multiple of that difference plus a correction, or as a jump to
- * another sequence, or in full.
+ * What both sides of the GPS time coder keep (GPSTimeSequences decodes, GPSTimeEncoder in
+ * LAZGPSTimeEncoder.h encodes, IntegerCoder being each side's integer coder): up to four
+ * sequences of times followed at once (a scanner may interleave them), each with its last time
+ * and its last difference, and the models.
  */
-class GPSTimeSequences
+template<typename IntegerCoder>
+class GPSTimeState
 {
 public:
-  explicit GPSTimeSequences(const GPSTimeCodes& codes);
+  explicit GPSTimeState(const GPSTimeCodes& codes)
+    : Codes(codes)
+    , Multiple(codes.MultiSymbols)
+    , ZeroDifference(codes.ZeroSymbols)
+  {
+  }
 
-  void Start(std::int64_t first);
-  /// Decodes the next time and returns its bit pattern.
-  std::int64_t Decode(ArithmeticDecoder& decoder);
+  void Start(std::int64_t first) { this->LastTime[0] = first; }
 
-private:
-  bool DecodeTime(ArithmeticDecoder& decoder);
-  bool DecodeAfterZero(ArithmeticDecoder& decoder);
-  std::int32_t DecodeMultiple(ArithmeticDecoder& decoder, std::uint32_t multi);
-  void DecodeFullTime(ArithmeticDecoder& decoder);
-
+protected:
   GPSTimeCodes Codes;
   unsigned Current = 0;
   unsigned Newest = 0;
@@ -59,7 +68,26 @@ private:
   std::int32_t ExtremeCounter[4] = {};
   SymbolModel Multiple;
   SymbolModel ZeroDifference;
-  IntegerDecoder Differences{ 32, 9 };
+  IntegerCoder Differences{ 32, 9 };
+};
+
+/**
+ * The GPS time (a double, coded as its 64-bit pattern) decoded: a time is coded as a multiple of
+ * its sequence's last difference plus a correction, or as a jump to another sequence, or in full.
+ */
+class GPSTimeSequences : public GPSTimeState<IntegerDecoder>
+{
+public:
+  using GPSTimeState::GPSTimeState;
+
+  /// Decodes the next time and returns its bit pattern.
+  std::int64_t Decode(ArithmeticDecoder& decoder);
+
+private:
+  bool DecodeTime(ArithmeticDecoder& decoder);
+  bool DecodeAfterZero(ArithmeticDecoder& decoder);
+  std::int32_t DecodeMultiple(ArithmeticDecoder& decoder, std::uint32_t multi);
+  void DecodeFullTime(ArithmeticDecoder& decoder);
 };
 
 } // namespace laz

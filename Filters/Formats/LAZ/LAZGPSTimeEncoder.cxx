@@ -9,33 +9,14 @@ namespace laz
 
 namespace
 {
-constexpr std::int32_t GPSMulti = 500;
-constexpr std::int32_t GPSMultiMinus = -10;
 /// Version 2's code after the multiples: the time did not change.
 constexpr std::uint32_t GPSMultiUnchanged = GPSMulti - GPSMultiMinus + 1;
-
-std::int32_t Multiply(std::int64_t multiple, std::int32_t difference)
-{
-  return static_cast<std::int32_t>(static_cast<std::uint32_t>(multiple * difference));
-}
 
 bool Fits32(std::int64_t value)
 {
   return value == static_cast<std::int32_t>(value);
 }
 } // namespace
-
-GPSTimeEncoder::GPSTimeEncoder(const GPSTimeCodes& codes)
-  : Codes(codes)
-  , Multiple(codes.MultiSymbols)
-  , ZeroDifference(codes.ZeroSymbols)
-{
-}
-
-void GPSTimeEncoder::Start(std::int64_t first)
-{
-  this->LastTime[0] = first;
-}
 
 void GPSTimeEncoder::Encode(ArithmeticEncoder& encoder, std::int64_t bits)
 {
@@ -107,23 +88,23 @@ void GPSTimeEncoder::EncodeMultiple(ArithmeticEncoder& encoder, std::int32_t dif
   else if (multi > 1 && multi < GPSMulti)
   {
     encoder.EncodeSymbol(this->Multiple, static_cast<std::uint32_t>(multi));
-    this->Differences.Encode(encoder, Multiply(multi, previous), difference, multi < 10 ? 2 : 3);
+    this->Differences.Encode(encoder, GPSMultiply(multi, previous), difference, multi < 10 ? 2 : 3);
   }
   else if (multi >= GPSMulti)
   {
     encoder.EncodeSymbol(this->Multiple, GPSMulti);
-    this->Differences.Encode(encoder, Multiply(GPSMulti, previous), difference, 4);
+    this->Differences.Encode(encoder, GPSMultiply(GPSMulti, previous), difference, 4);
     extreme = true;
   }
   else if (multi < 0 && multi > GPSMultiMinus)
   {
     encoder.EncodeSymbol(this->Multiple, static_cast<std::uint32_t>(GPSMulti - multi));
-    this->Differences.Encode(encoder, Multiply(multi, previous), difference, 5);
+    this->Differences.Encode(encoder, GPSMultiply(multi, previous), difference, 5);
   }
   else if (multi < 0)
   {
     encoder.EncodeSymbol(this->Multiple, static_cast<std::uint32_t>(GPSMulti - GPSMultiMinus));
-    this->Differences.Encode(encoder, Multiply(GPSMultiMinus, previous), difference, 6);
+    this->Differences.Encode(encoder, GPSMultiply(GPSMultiMinus, previous), difference, 6);
     extreme = true;
   }
   else

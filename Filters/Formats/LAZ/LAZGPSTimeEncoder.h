@@ -13,12 +13,12 @@ namespace pcbilateral
 namespace laz
 {
 
-class GPSTimeEncoder
+/// The GPS time encoded, the mirror of GPSTimeSequences.
+class GPSTimeEncoder : public GPSTimeState<IntegerEncoder>
 {
 public:
-  explicit GPSTimeEncoder(const GPSTimeCodes& codes);
+  using GPSTimeState::GPSTimeState;
 
-  void Start(std::int64_t first);
   /// Codes the time `bits` (a double's pattern). With version 3's codes it must differ from the
   /// last one (the point14 item says whether it changed).
   void Encode(ArithmeticEncoder& encoder, std::int64_t bits);
@@ -35,16 +35,6 @@ private:
     SymbolModel& model,
     std::uint32_t code,
     std::int64_t bits);
-
-  GPSTimeCodes Codes;
-  unsigned Current = 0;
-  unsigned Newest = 0;
-  std::int64_t LastTime[4] = {};
-  std::int32_t LastDifference[4] = {};
-  std::int32_t ExtremeCounter[4] = {};
-  SymbolModel Multiple;
-  SymbolModel ZeroDifference;
-  IntegerEncoder Differences{ 32, 9 };
 };
 
 } // namespace laz

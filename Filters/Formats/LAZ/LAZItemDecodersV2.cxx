@@ -22,15 +22,12 @@ using las::Store;
 
 /// The 20 bytes of x, y, z, intensity, the return bits, classification, scan angle, user data
 /// and point source of formats 0 to 5.
-class Point10Decoder final : public ItemDecoder
+class Point10Decoder final
+  : public ItemDecoder
+  , private Point10Models<IntegerDecoder>
 {
 public:
-  void Start(const std::uint8_t* item) override
-  {
-    std::memcpy(this->Last, item, 20);
-    // The first point's intensity is not a prediction of the next ones'.
-    Store<std::uint16_t>(this->Last + 12, 0);
-  }
+  void Start(const std::uint8_t* item) override { this->StartFrom(item); }
 
   void Decode(ArithmeticDecoder& decoder, std::uint8_t* item) override
   {
@@ -114,22 +111,6 @@ private:
           this->PointSource.Decode(decoder, Load<std::uint16_t>(this->Last + 18))));
     }
   }
-
-  std::uint8_t Last[20] = {};
-  std::uint16_t LastIntensity[16] = {};
-  StreamingMedian5 XDifferences[16];
-  StreamingMedian5 YDifferences[16];
-  std::int32_t LastHeight[8] = {};
-  SymbolModel ChangedValues{ 64 };
-  IntegerDecoder Intensity{ 16, 4 };
-  SymbolModel ScanAngle[2] = { SymbolModel(256), SymbolModel(256) };
-  IntegerDecoder PointSource{ 16 };
-  LazyModels BitByte{ 256, 256 };
-  LazyModels Classification{ 256, 256 };
-  LazyModels UserData{ 256, 256 };
-  IntegerDecoder DX{ 32, 2 };
-  IntegerDecoder DY{ 32, 22 };
-  IntegerDecoder Z{ 32, 20 };
 };
 
 /// The GPS time of formats 1 and 3.

@@ -24,14 +24,12 @@ std::uint32_t Step(std::int32_t to, std::int32_t from)
 }
 
 /// point10: the mirror of the decoder in LAZItemDecodersV2.cxx.
-class Point10Encoder final : public ItemEncoder
+class Point10Encoder final
+  : public ItemEncoder
+  , private Point10Models<IntegerEncoder>
 {
 public:
-  void Start(const std::uint8_t* item) override
-  {
-    std::memcpy(this->Last, item, 20);
-    Store<std::uint16_t>(this->Last + 12, 0);
-  }
+  void Start(const std::uint8_t* item) override { this->StartFrom(item); }
 
   void Encode(ArithmeticEncoder& encoder, const std::uint8_t* item) override
   {
@@ -98,22 +96,6 @@ private:
         encoder, Load<std::uint16_t>(this->Last + 18), Load<std::uint16_t>(item + 18));
     }
   }
-
-  std::uint8_t Last[20] = {};
-  std::uint16_t LastIntensity[16] = {};
-  StreamingMedian5 XDifferences[16];
-  StreamingMedian5 YDifferences[16];
-  std::int32_t LastHeight[8] = {};
-  SymbolModel ChangedValues{ 64 };
-  IntegerEncoder Intensity{ 16, 4 };
-  SymbolModel ScanAngle[2] = { SymbolModel(256), SymbolModel(256) };
-  IntegerEncoder PointSource{ 16 };
-  LazyModels BitByte{ 256, 256 };
-  LazyModels Classification{ 256, 256 };
-  LazyModels UserData{ 256, 256 };
-  IntegerEncoder DX{ 32, 2 };
-  IntegerEncoder DY{ 32, 22 };
-  IntegerEncoder Z{ 32, 20 };
 };
 
 class GPSTimeItemEncoder final : public ItemEncoder

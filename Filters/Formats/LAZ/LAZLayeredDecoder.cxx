@@ -111,12 +111,7 @@ public:
   std::size_t LayerCount() const override { return this->NearInfrared ? 2 : 1; }
 
 private:
-  struct Models
-  {
-    RGBModels Colour;
-    SymbolModel NIRBytesUsed{ 4 };
-    SymbolModel NIRDifferences[2] = { SymbolModel(256), SymbolModel(256) };
-  };
+  using Models = ColourLayerModels;
 
   void MakeModels(unsigned channel) override
   {

@@ -92,12 +92,7 @@ public:
   }
 
 private:
-  struct Models
-  {
-    RGBModels Colour;
-    SymbolModel NIRBytesUsed{ 4 };
-    SymbolModel NIRDifferences[2] = { SymbolModel(256), SymbolModel(256) };
-  };
+  using Models = ColourLayerModels;
 
   void MakeModels(unsigned channel) override
   {

@@ -2,6 +2,7 @@
 
 #include "LASBinary.h"
 #include "LAZGPSTime.h"
+#include "LAZPoint14Channel.h"
 #include "LAZPointContexts.h"
 
 namespace pcbilateral
@@ -84,51 +85,10 @@ void StorePoint14(const Point14& p, std::uint8_t* item)
   Store<std::int64_t>(item + 22, p.GPSTime);
 }
 
-/// What is predicted per scanner channel: the channel's last point and the models.
-struct Point14Context
+/// What is predicted per scanner channel when decoding.
+struct Point14Context : Point14ChannelModels<IntegerDecoder, GPSTimeSequences>
 {
-  explicit Point14Context(const Point14& from)
-    : Last(from)
-  {
-    this->Last.GPSTimeChanged = false;
-    for (std::int32_t& z : this->LastZ)
-    {
-      z = from.Z;
-    }
-    for (std::uint16_t& intensity : this->LastIntensity)
-    {
-      intensity = from.Intensity;
-    }
-    this->Times.Start(from.GPSTime);
-  }
-
-  Point14 Last;
-  SymbolModel ChangedValues[8] = { SymbolModel(128),
-    SymbolModel(128),
-    SymbolModel(128),
-    SymbolModel(128),
-    SymbolModel(128),
-    SymbolModel(128),
-    SymbolModel(128),
-    SymbolModel(128) };
-  SymbolModel ScannerChannel{ 3 };
-  LazyModels NumberOfReturns{ 16, 16 };
-  LazyModels ReturnNumber{ 16, 16 };
-  SymbolModel ReturnNumberSameTime{ 13 };
-  IntegerDecoder DX{ 32, 2 };
-  IntegerDecoder DY{ 32, 22 };
-  IntegerDecoder Z{ 32, 20 };
-  StreamingMedian5 XDifferences[12];
-  StreamingMedian5 YDifferences[12];
-  std::int32_t LastZ[8];
-  LazyModels Classification{ 64, 256 };
-  LazyModels Flags{ 64, 64 };
-  LazyModels UserData{ 64, 256 };
-  IntegerDecoder Intensity{ 16, 4 };
-  std::uint16_t LastIntensity[8];
-  IntegerDecoder ScanAngle{ 16, 2 };
-  IntegerDecoder PointSource{ 16 };
-  GPSTimeSequences Times{ GPSTimeCodesV3 };
+  using Point14ChannelModels::Point14ChannelModels;
 };
 
 Point14Decoder::Point14Decoder() = default;

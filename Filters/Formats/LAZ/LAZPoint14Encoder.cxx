@@ -1,6 +1,7 @@
 #include "LAZPoint14Encoder.h"
 
 #include "LAZGPSTimeEncoder.h"
+#include "LAZPoint14Channel.h"
 #include "LAZPointContexts.h"
 
 namespace pcbilateral
@@ -8,52 +9,10 @@ namespace pcbilateral
 namespace laz
 {
 
-/// What is predicted per scanner channel, as Point14Context (LAZPoint14Decoder.cxx) on the
-/// decoding side.
-struct Point14EncoderContext
+/// What is predicted per scanner channel when encoding.
+struct Point14EncoderContext : Point14ChannelModels<IntegerEncoder, GPSTimeEncoder>
 {
-  explicit Point14EncoderContext(const Point14& from)
-    : Last(from)
-  {
-    this->Last.GPSTimeChanged = false;
-    for (std::int32_t& z : this->LastZ)
-    {
-      z = from.Z;
-    }
-    for (std::uint16_t& intensity : this->LastIntensity)
-    {
-      intensity = from.Intensity;
-    }
-    this->Times.Start(from.GPSTime);
-  }
-
-  Point14 Last;
-  SymbolModel ChangedValues[8] = { SymbolModel(128),
-    SymbolModel(128),
-    SymbolModel(128),
-    SymbolModel(128),
-    SymbolModel(128),
-    SymbolModel(128),
-    SymbolModel(128),
-    SymbolModel(128) };
-  SymbolModel ScannerChannel{ 3 };
-  LazyModels NumberOfReturns{ 16, 16 };
-  LazyModels ReturnNumber{ 16, 16 };
-  SymbolModel ReturnNumberSameTime{ 13 };
-  IntegerEncoder DX{ 32, 2 };
-  IntegerEncoder DY{ 32, 22 };
-  IntegerEncoder Z{ 32, 20 };
-  StreamingMedian5 XDifferences[12];
-  StreamingMedian5 YDifferences[12];
-  std::int32_t LastZ[8];
-  LazyModels Classification{ 64, 256 };
-  LazyModels Flags{ 64, 64 };
-  LazyModels UserData{ 64, 256 };
-  IntegerEncoder Intensity{ 16, 4 };
-  std::uint16_t LastIntensity[8];
-  IntegerEncoder ScanAngle{ 16, 2 };
-  IntegerEncoder PointSource{ 16 };
-  GPSTimeEncoder Times{ GPSTimeCodesV3 };
+  using Point14ChannelModels::Point14ChannelModels;
 };
 
 Point14Encoder::Point14Encoder() = default;

@@ -1,6 +1,6 @@
-// What the LAZ item decoders share: the contexts derived from a point's return number r and
-// number of returns n, the running median of five differences that predicts x and y, and the
-// coding of colours. Private to the LAZ codec.
+// What the LAZ item decoders and encoders share: the contexts derived from a point's return
+// number r and number of returns n, the running median of five differences that predicts x and
+// y, the point10 item's models and the coding of colours. Private to the LAZ codec.
 #ifndef pcbilateral_LAZPointContexts_h
 #define pcbilateral_LAZPointContexts_h
 
@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <vector>
 
@@ -157,6 +158,39 @@ private:
   std::uint32_t Symbols;
 };
 
+/**
+ * What the point10 item (formats 0 to 5) predicts from: the last point's 20 bytes, the last
+ * intensities, differences and heights by return context, and the models, the same on both
+ * sides of the coder (IntegerCoder: IntegerDecoder or IntegerEncoder).
+ */
+template<typename IntegerCoder>
+struct Point10Models
+{
+  /// Starts from the chunk's first point, stored raw.
+  void StartFrom(const std::uint8_t* item)
+  {
+    std::memcpy(this->Last, item, 20);
+    // The first point's intensity is not a prediction of the next ones'.
+    std::memset(this->Last + 12, 0, 2);
+  }
+
+  std::uint8_t Last[20] = {};
+  std::uint16_t LastIntensity[16] = {};
+  StreamingMedian5 XDifferences[16];
+  StreamingMedian5 YDifferences[16];
+  std::int32_t LastHeight[8] = {};
+  SymbolModel ChangedValues{ 64 };
+  IntegerCoder Intensity{ 16, 4 };
+  SymbolModel ScanAngle[2] = { SymbolModel(256), SymbolModel(256) };
+  IntegerCoder PointSource{ 16 };
+  LazyModels BitByte{ 256, 256 };
+  LazyModels Classification{ 256, 256 };
+  LazyModels UserData{ 256, 256 };
+  IntegerCoder DX{ 32, 2 };
+  IntegerCoder DY{ 32, 22 };
+  IntegerCoder Z{ 32, 20 };
+};
+
 /// The models of one colour coder: which of the six bytes changed, and each byte's change.
 struct RGBModels
 {
@@ -167,6 +201,15 @@ struct RGBModels
     SymbolModel(256),
     SymbolModel(256),
     SymbolModel(256) };
+};
+
+/// The models of the layered items' colour (rgb14, rgbnir14): the colour's, and the near
+/// infrared's, which bytes changed and each byte's change.
+struct ColourLayerModels
+{
+  RGBModels Colour;
+  SymbolModel NIRBytesUsed{ 4 };
+  SymbolModel NIRDifferences[2] = { SymbolModel(256), SymbolModel(256) };
 };
 
 /**
