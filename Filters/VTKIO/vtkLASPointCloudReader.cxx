@@ -75,7 +75,7 @@ int vtkLASPointCloudReader::RequestData(vtkInformation*,
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->ErrorMessage.clear();
-  vtkPointCloudProgress progress(this);
+  vtkPointCloudProgress progress(this, this->AbortExecute);
   pcbilateral::LASFileBytes file;
   pcbilateral::LASFileInfo info;
   if (!this->FileName || !*this->FileName)

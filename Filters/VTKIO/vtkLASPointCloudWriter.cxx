@@ -241,7 +241,7 @@ std::string vtkLASPointCloudWriter::WritePoints(const std::string& problem,
 
 void vtkLASPointCloudWriter::WriteData()
 {
-  vtkPointCloudProgress progress(this);
+  vtkPointCloudProgress progress(this, this->AbortExecute);
   vtkPointSet* input = vtkPointSet::SafeDownCast(this->GetInput());
   std::string problem;
   if (!this->FileName || !*this->FileName)

@@ -136,7 +136,7 @@ int vtkPCDPointCloudReader::RequestData(vtkInformation*,
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->ErrorMessage.clear();
-  vtkPointCloudProgress progress(this);
+  vtkPointCloudProgress progress(this, this->AbortExecute);
   this->NumberOfDroppedPoints = 0;
   if (!this->FileName || !*this->FileName)
   {

@@ -238,7 +238,7 @@ int vtkPCDPointCloudWriter::FillInputPortInformation(int, vtkInformation* info)
 void vtkPCDPointCloudWriter::WriteData()
 {
   this->ErrorMessage.clear();
-  vtkPointCloudProgress progress(this);
+  vtkPointCloudProgress progress(this, this->AbortExecute);
   auto* input = vtkPointSet::SafeDownCast(this->GetInput());
   if (!this->FileName || !*this->FileName)
   {

@@ -126,7 +126,7 @@ int vtkPointCloudTextReader::RequestData(vtkInformation*,
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->ErrorMessage.clear();
-  vtkPointCloudProgress progress(this);
+  vtkPointCloudProgress progress(this, this->AbortExecute);
   if (!this->FileName || !*this->FileName)
   {
     this->ErrorMessage = "no file name was given";

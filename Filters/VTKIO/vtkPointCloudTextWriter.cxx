@@ -127,7 +127,7 @@ int vtkPointCloudTextWriter::FillInputPortInformation(int, vtkInformation* info)
 void vtkPointCloudTextWriter::WriteData()
 {
   this->ErrorMessage.clear();
-  vtkPointCloudProgress progress(this);
+  vtkPointCloudProgress progress(this, this->AbortExecute);
   vtkPolyData* input = vtkPolyData::SafeDownCast(this->GetInput());
   if (!this->FileName || !*this->FileName)
   {
