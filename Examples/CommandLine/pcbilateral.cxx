@@ -95,7 +95,8 @@ const char* const UsageTail =
   "                     xmin,xmax,ymin,ymax,zmin,zmax (the file's coordinates)\n"
   "  --memory-limit SIZE  filter the file in slabs within SIZE of memory (e.g. 512M, 2G),\n"
   "                     temporary files in TMPDIR or beside the output; the same output\n"
-  "                     file as in memory. LAS or LAZ into LAS or LAZ, text into text.\n"
+  "                     file as in memory. LAS or LAZ into LAS, LAZ, text or PCD, text\n"
+  "                     into text; --edge-aware, --remove-isolated and -R too.\n"
   "                     Default: in memory, or streamed within 80% of the available\n"
   "                     memory when the cloud needs more (said)\n"
   "  -q, --quiet        print nothing but warnings and errors (default: what was read,\n"
@@ -418,8 +419,8 @@ bool ParseOption(int argc, char* argv[], int& i, Options& options)
   return true;
 }
 
-/// The core's checks and messages, before any file is read.
-void CheckOptions(const Options& options)
+/// The core's parameters the options give.
+pcbilateral::BilateralParameters CoreParameters(const Options& options)
 {
   pcbilateral::BilateralParameters parameters;
   parameters.Radius = options.Radius;
@@ -427,7 +428,15 @@ void CheckOptions(const Options& options)
   parameters.NumberOfIterations = options.Iterations;
   parameters.Automatic = options.Automatic;
   parameters.NumberOfThreads = options.Threads;
-  const std::string problem = pcbilateral::CheckParameters(parameters);
+  parameters.EdgeAware = options.EdgeAware;
+  parameters.RemoveIsolatedPoints = options.RemoveIsolated;
+  return parameters;
+}
+
+/// The core's checks and messages, before any file is read.
+void CheckOptions(const Options& options)
+{
+  const std::string problem = pcbilateral::CheckParameters(CoreParameters(options));
   if (!problem.empty())
   {
     Fail(problem);
@@ -621,21 +630,16 @@ void WriteOutput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData
 /// Why the streamed run (--memory-limit) cannot run with these files and options, or empty.
 std::string StreamingUnsupported(const Options& options)
 {
-  if (options.EdgeAware || options.RemoveIsolated || options.OrientedNormals ||
-      options.COPCLevel != -1 || options.COPCUseBounds ||
-      (!options.Classes.empty() && vtkPointCloudFileIO::IsTextFormat(options.Input.c_str())))
+  const std::string& out = options.Output;
+  const bool pcdOutput = out.size() > 4 && out.compare(out.size() - 4, 4, ".pcd") == 0;
+  if (options.COPCLevel != -1 || options.COPCUseBounds ||
+      (!options.Classes.empty() &&
+        (pcdOutput || vtkPointCloudFileIO::IsTextFormat(options.Input.c_str()))))
   {
-    return "streaming does not take --edge-aware, --remove-isolated, -R, the --copc options "
-           "or --classes with text input yet";
+    return "streaming does not take the --copc options, or --classes with text input or PCD "
+           "output, yet";
   }
   return pcbilateral::StreamingFormatsProblem(options.Input, options.Output);
-}
-
-std::string Megabytes(std::uint64_t bytes)
-{
-  char text[32];
-  std::snprintf(text, sizeof text, "%.0f MB", static_cast<double>(bytes) / 1048576.0);
-  return text;
 }
 
 /// The streamed run's progress: a bar per phase on a terminal, a line per slab otherwise.
@@ -674,16 +678,9 @@ void StreamProgress(const std::string& phase, double fraction)
 /// The settings of a streamed run within `limit` bytes.
 pcbilateral::OutOfCoreSettings StreamSettings(const Options& options, std::uint64_t limit)
 {
-  pcbilateral::OutOfCoreSettings settings;
-  settings.MemoryLimit = limit;
-  // The program, its libraries and the buffers of reading and writing.
-  settings.ReservedBytes = pcbilateral::ResidentMemory() + (96u << 20);
-  settings.TemporaryDirectory = pcbilateral::TemporaryDirectoryFor(options.Output);
-  settings.NumberOfThreads = options.Threads;
+  pcbilateral::OutOfCoreSettings settings =
+    pcbilateral::StreamingSettings(limit, options.Output, options.Threads);
   settings.Progress = StreamProgress;
-  // (For tests: many slabs on a small file.)
-  const char* slabPoints = std::getenv("PCB_STREAMING_SLAB_POINTS");
-  settings.MaximumSlabPoints = slabPoints ? std::strtoull(slabPoints, nullptr, 10) : 0;
   return settings;
 }
 
@@ -702,7 +699,7 @@ std::string RunStreamed(const Options& options, std::uint64_t limit)
 {
   std::string problem;
   const std::unique_ptr<pcbilateral::StreamedFile> file =
-    pcbilateral::OpenStreamedFile(options.Input, options.Output, problem);
+    pcbilateral::OpenStreamedFile(options.Input, options.Output, options.OrientedNormals, problem);
   if (problem.empty() && file->GetNumberOfPoints() == 0)
   {
     problem = options.Input + ": contains no points";
@@ -719,23 +716,17 @@ std::string RunStreamed(const Options& options, std::uint64_t limit)
   Say("input:         %s, %llu points, streamed within %s of memory\n",
     options.Input.c_str(),
     static_cast<unsigned long long>(input.GetNumberOfPoints()),
-    Megabytes(limit).c_str());
-  pcbilateral::BilateralParameters parameters;
-  parameters.Radius = options.Radius;
-  parameters.NormalRadius = options.NormalRadius;
-  parameters.NumberOfIterations = options.Iterations;
-  parameters.Automatic = options.Automatic;
-  parameters.NumberOfThreads = options.Threads;
+    pcbilateral::MegabytesText(limit).c_str());
   const pcbilateral::OutOfCoreSettings settings = StreamSettings(options, limit);
   pcbilateral::RemoveTemporaryFilesOnSignals(options.Output + ".partial");
-  pcbilateral::OutOfCoreRun run(input, parameters, settings);
+  pcbilateral::OutOfCoreRun run(input, CoreParameters(options), settings);
   std::size_t warned = 0;
   problem = run.Measure();
   SayWarnings(run.GetSummary().Warnings, warned);
   if (problem.empty())
   {
     Say("temporary:     %s on disk in %s (removed at the end)\n",
-      Megabytes(run.GetDiskBytesNeeded()).c_str(),
+      pcbilateral::MegabytesText(run.GetDiskBytesNeeded()).c_str(),
       settings.TemporaryDirectory.c_str());
     problem = run.Bucket();
   }
@@ -760,17 +751,26 @@ std::string RunStreamed(const Options& options, std::uint64_t limit)
   {
     return problem;
   }
+  if (options.RemoveIsolated)
+  {
+    Say("removed:       %llu isolated points\n",
+      static_cast<unsigned long long>(run.GetNumberOfRemovedPoints()));
+  }
   Say("filtering:     %.3f s\n",
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   problem = input.WriteFiltered(run,
     options.Output,
     pcbilateral::StreamedRangePoints(),
     [](double fraction) { StreamProgress("writing", fraction); });
+  if (problem.empty() && !input.WriteWarning(options.Output).empty())
+  {
+    std::fprintf(stderr, "pcbilateral: warning: %s\n", input.WriteWarning(options.Output).c_str());
+  }
   if (problem.empty())
   {
     Say("output:        %s, %llu points\n",
       options.Output.c_str(),
-      static_cast<unsigned long long>(input.GetNumberOfPoints()));
+      static_cast<unsigned long long>(input.GetNumberOfPoints() - run.GetNumberOfRemovedPoints()));
   }
   return problem;
 }
@@ -814,9 +814,9 @@ std::uint64_t ChooseMemoryLimit(const Options& options)
   }
   Say("memory:        about %s needed in memory, %s available: streamed within %s "
       "(automatic; --memory-limit sets it)\n",
-    Megabytes(pcbilateral::InMemoryBytesPerPoint * points).c_str(),
-    Megabytes(available).c_str(),
-    Megabytes(limit).c_str());
+    pcbilateral::MegabytesText(pcbilateral::InMemoryBytesPerPoint * points).c_str(),
+    pcbilateral::MegabytesText(available).c_str(),
+    pcbilateral::MegabytesText(limit).c_str());
   return limit;
 }
 

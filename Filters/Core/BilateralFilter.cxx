@@ -531,7 +531,7 @@ struct BilateralRun::Internals
     {
       view.insert(view.end(), &positions[3 * i], &positions[3 * i] + 3);
     }
-    const double reachInRadii = this->Parameters.EdgeAware ? EdgeAwareReachInRadii : 1.0;
+    const double reachInRadii = IterationReachInRadii(this->Parameters);
     const NearPoints near(view,
       GhostMargin(reachInRadii * this->Bands.Radius[band], this->WholeExtent.LargestMagnitude()),
       this->WholeExtent.Min);
@@ -749,6 +749,11 @@ std::vector<double> BilateralRun::GetPositionsForOthers() const
   return positions;
 }
 
+double IterationReachInRadii(const BilateralParameters& parameters)
+{
+  return parameters.EdgeAware ? EdgeAwareReachInRadii : 1.0;
+}
+
 void BilateralRun::GetGhostReach(double box[6]) const
 {
   for (int axis = 0; axis < 3; ++axis)
@@ -774,7 +779,7 @@ void BilateralRun::GetGhostReach(double box[6]) const
   // Points move by less than a radius per iteration, but the box is taken from the current
   // positions, so one radius of reach is enough.
   // The edge-aware mode reads its neighbours' normals, which read theirs: it reaches further.
-  const double reach = this->Impl->Parameters.EdgeAware ? EdgeAwareReachInRadii : 1.0;
+  const double reach = IterationReachInRadii(this->Impl->Parameters);
   const double radius =
     this->Impl->Bands.Empty() ? this->Impl->Radii.Radius : this->Impl->Bands.LargestRadius();
   const double margin = GhostMargin(reach * radius, magnitude);

@@ -177,6 +177,12 @@ private:
   std::unique_ptr<Internals> Impl;
 };
 
+/// How far one iteration reads from a point, in radii: 1 for the paper's filter (the normal and
+/// the move read the neighbours within one radius), EdgeAwareReachInRadii for the edge-aware
+/// mode (the move reads filtered normals, which read normals, which read positions, each within
+/// one radius). A distributed run's ghosts and a streamed run's halo are taken from it.
+double IterationReachInRadii(const BilateralParameters& parameters);
+
 /// Runs NumberOfIterations iterations of the bilateral filter on the cloud: a loop over a
 /// BilateralRun.
 BilateralResult RunBilateralFilter(const PointCloudView& cloud,

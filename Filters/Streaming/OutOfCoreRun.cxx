@@ -32,6 +32,8 @@ struct IndexedPoint
 };
 /// Disk per point: a bin's record, then a result's.
 constexpr std::uint64_t DiskBytesPerPoint = 2 * sizeof(IndexedPoint);
+/// A result's index carries this bit when --remove-isolated removed the point.
+constexpr std::uint64_t RemovedBit = std::uint64_t{ 1 } << 63;
 
 std::string Describe(const std::string& path, const char* what)
 {
@@ -122,6 +124,8 @@ struct OutOfCoreRun::Internals
   std::vector<std::size_t> SlabFirstBin;
   std::vector<RecordReader> Results;
   std::vector<std::string> WarningsSeen;
+  /// Whether every filtered position kept is exactly a float (a PCD file's x y z are then F4).
+  bool ResultsAreFloats = true;
 
   Internals(StreamedPoints& points,
     const BilateralParameters& parameters,
@@ -287,7 +291,18 @@ struct OutOfCoreRun::Internals
     return this->Whole.Min[this->Plan.Axis] + static_cast<double>(bin) * this->BinWidth;
   }
 
-  /// The halo of bins [first, last]: N^2 times the largest radius of the bins it reaches,
+  /// The halo in radii: N^2 for the paper's filter, whose every step reads its neighbours
+  /// within one radius; N^2 + (c - 1) N for the edge-aware mode, whose iteration reads within c
+  /// = EdgeAwareReachInRadii radii (the move reads the filtered normals within one radius, which
+  /// read the normals within one more, which read the positions within one more).
+  double HaloInRadii() const
+  {
+    const double iterations = this->Summary.NumberOfIterationsUsed;
+    const double reach = IterationReachInRadii(this->User);
+    return iterations * iterations + (reach - 1.0) * iterations;
+  }
+
+  /// The halo of bins [first, last]: HaloInRadii() times the largest radius of the bins it reaches,
   /// widened until it reaches no further bin; and the bins it reaches, which also take in every
   /// bin whose points could move into the halo in N - 1 iterations (each by less than its
   /// largest radius): a point never loaded then never comes within the halo, and every point
@@ -306,7 +321,7 @@ struct OutOfCoreRun::Internals
       {
         largest = std::max(largest, this->BinLargestRadius[b]);
       }
-      const double halo = iterations * iterations * 1.01 * largest + margin;
+      const double halo = this->HaloInRadii() * 1.01 * largest + margin;
       const double from = this->BinStart(first) - halo;
       const double to = this->BinStart(last + 1) + halo;
       std::size_t newLow = this->BinAt(from), newHigh = this->BinAt(to);
@@ -370,13 +385,17 @@ struct OutOfCoreRun::Internals
 
 std::string OutOfCoreRun::Internals::PlanSlabs()
 {
-  const std::uint64_t budget = this->Settings.MemoryLimit > this->Settings.ReservedBytes
-                                 ? this->Settings.MemoryLimit - this->Settings.ReservedBytes
-                                 : 0;
-  const std::uint64_t slabPoints =
-    this->Settings.MaximumSlabPoints > 0
-      ? std::min(this->Settings.MaximumSlabPoints, budget / BytesPerSlabPoint)
-      : budget / BytesPerSlabPoint;
+  // The edge-aware mode keeps each point's records, normals and filtered normals besides the
+  // paper's arrays, and the neighbour lists of its first step up to a fixed budget.
+  const std::uint64_t perPoint =
+    this->User.EdgeAware ? EdgeAwareBytesPerSlabPoint : BytesPerSlabPoint;
+  const std::uint64_t reserved =
+    this->Settings.ReservedBytes + (this->User.EdgeAware ? EdgeAwareNeighbourListBytes : 0);
+  const std::uint64_t budget =
+    this->Settings.MemoryLimit > reserved ? this->Settings.MemoryLimit - reserved : 0;
+  const std::uint64_t slabPoints = this->Settings.MaximumSlabPoints > 0
+                                     ? std::min(this->Settings.MaximumSlabPoints, budget / perPoint)
+                                     : budget / perPoint;
   std::size_t first = 0;
   while (first < NumberOfBins)
   {
@@ -388,15 +407,14 @@ std::string OutOfCoreRun::Internals::PlanSlabs()
       // A limit that holds this slab, in whole megabytes, so that the user knows what to give
       // rather than guess: 5% over the need, since the program's own memory, measured when the
       // run starts, varies a little from run to run.
-      const std::uint64_t needed =
-        (this->Settings.ReservedBytes + points * BytesPerSlabPoint) / 20 * 21;
+      const std::uint64_t needed = (reserved + points * perPoint) / 20 * 21;
       const std::uint64_t megabyte = 1024 * 1024;
       std::ostringstream problem;
-      if (budget / BytesPerSlabPoint == 0)
+      if (budget / perPoint == 0)
       {
         problem << "the memory limit (" << this->Settings.MemoryLimit / megabyte
                 << " MB) does not cover what the program holds besides the slabs ("
-                << (this->Settings.ReservedBytes + megabyte - 1) / megabyte << " MB)";
+                << (reserved + megabyte - 1) / megabyte << " MB)";
       }
       else
       {
@@ -513,10 +531,21 @@ std::string OutOfCoreRun::Internals::FilterSlab(std::size_t slab)
   for (std::size_t i = 0; i < core; ++i)
   {
     std::copy_n(&result.Positions[3 * i], 3, points[i].Position);
+    if (!result.Removed.empty() && result.Removed[i])
+    {
+      points[i].Index |= RemovedBit;
+      ++this->Summary.NumberOfRemovedPoints;
+      continue;
+    }
+    for (const double value : points[i].Position)
+    {
+      this->ResultsAreFloats = this->ResultsAreFloats && static_cast<float>(value) == value;
+    }
   }
   std::sort(points.begin(),
     points.end(),
-    [](const IndexedPoint& a, const IndexedPoint& b) { return a.Index < b.Index; });
+    [](const IndexedPoint& a, const IndexedPoint& b)
+    { return (a.Index & ~RemovedBit) < (b.Index & ~RemovedBit); });
   const std::string path = this->Files.PathOf(NumberOfBins + slab);
   std::FILE* file = std::fopen(path.c_str(), "wb");
   const bool ok = file && std::fwrite(points.data(), sizeof(IndexedPoint), core, file) == core;
@@ -587,6 +616,16 @@ const BilateralResult& OutOfCoreRun::GetSummary() const
 std::uint64_t OutOfCoreRun::GetDiskBytesNeeded() const
 {
   return DiskBytesPerPoint * this->Impl->Whole.NumberOfFinitePoints;
+}
+
+bool OutOfCoreRun::AreFilteredPositionsFloats() const
+{
+  return this->Impl->ResultsAreFloats;
+}
+
+std::uint64_t OutOfCoreRun::GetNumberOfRemovedPoints() const
+{
+  return this->Impl->Summary.NumberOfRemovedPoints;
 }
 
 const OutOfCorePlan& OutOfCoreRun::GetPlan() const
@@ -710,23 +749,35 @@ std::string OutOfCoreRun::Filter()
   return std::string();
 }
 
-std::string OutOfCoreRun::ReadFiltered(std::uint64_t first, std::size_t count, double* positions)
+std::string OutOfCoreRun::ReadFiltered(std::uint64_t first,
+  std::size_t count,
+  double* positions,
+  std::uint8_t* removed)
 {
   Internals& run = *this->Impl;
   const std::uint64_t end = first + count;
+  if (removed)
+  {
+    std::fill_n(removed, count, std::uint8_t{ 0 });
+  }
   for (RecordReader& results : run.Results)
   {
     while (const IndexedPoint* p = results.Peek())
     {
-      if (p->Index >= end)
+      const std::uint64_t index = p->Index & ~RemovedBit;
+      if (index >= end)
       {
         break;
       }
-      if (p->Index < first)
+      if (index < first)
       {
         return "the filtered points were read out of order";
       }
-      std::copy_n(p->Position, 3, positions + 3 * (p->Index - first));
+      std::copy_n(p->Position, 3, positions + 3 * (index - first));
+      if (removed)
+      {
+        removed[index - first] = (p->Index & RemovedBit) ? 1 : 0;
+      }
       results.Next();
     }
   }
@@ -809,6 +860,28 @@ std::string TemporaryDirectoryFor(const std::string& outputPath)
   }
   const std::size_t slash = outputPath.find_last_of('/');
   return slash == std::string::npos ? std::string(".") : outputPath.substr(0, slash + 1);
+}
+
+OutOfCoreSettings StreamingSettings(std::uint64_t limit,
+  const std::string& outputPath,
+  int numberOfThreads)
+{
+  OutOfCoreSettings settings;
+  settings.MemoryLimit = limit;
+  // The program, its libraries and the buffers of reading and writing.
+  settings.ReservedBytes = ResidentMemory() + (96u << 20);
+  settings.TemporaryDirectory = TemporaryDirectoryFor(outputPath);
+  settings.NumberOfThreads = numberOfThreads;
+  const char* slabPoints = std::getenv("PCB_STREAMING_SLAB_POINTS");
+  settings.MaximumSlabPoints = slabPoints ? std::strtoull(slabPoints, nullptr, 10) : 0;
+  return settings;
+}
+
+std::string MegabytesText(std::uint64_t bytes)
+{
+  char text[32];
+  std::snprintf(text, sizeof text, "%.0f MB", static_cast<double>(bytes) / 1048576.0);
+  return text;
 }
 
 } // namespace pcbilateral

@@ -113,11 +113,24 @@ public:
   const OutOfCorePlan& GetPlan() const;
   std::string Filter();
   /// Filtered positions of points [first, first + count), read in increasing order of first;
-  /// points that are not finite are left as they are in `positions`.
-  std::string ReadFiltered(std::uint64_t first, std::size_t count, double* positions);
+  /// points that are not finite are left as they are in `positions`. With `removed`, 1 for each
+  /// point --remove-isolated removed (to be left out of the output), else 0.
+  std::string ReadFiltered(std::uint64_t first,
+    std::size_t count,
+    double* positions,
+    std::uint8_t* removed = nullptr);
+  /// The points --remove-isolated removed (known after Filter).
+  std::uint64_t GetNumberOfRemovedPoints() const;
+  /// Whether every filtered position of the points kept is exactly a float (after Filter).
+  bool AreFilteredPositionsFloats() const;
 
   /// Bytes of memory a slab takes per point (the run's arrays, the octree, the bins read).
   static constexpr std::uint64_t BytesPerSlabPoint = 160;
+  /// The same for the edge-aware mode, whose run also keeps the neighbour lists of its first
+  /// step up to 2^26 entries (EdgeAwareNormals.cxx, NeighbourCache: 256 MB and the lists' own
+  /// headers, 24 bytes a point): those are counted as a fixed share besides the slab's points.
+  static constexpr std::uint64_t EdgeAwareBytesPerSlabPoint = 240;
+  static constexpr std::uint64_t EdgeAwareNeighbourListBytes = std::uint64_t(272) << 20;
 
 private:
   struct Internals;
@@ -151,6 +164,16 @@ std::uint64_t ResidentMemory();
 /// Where the temporary files of a run that writes `outputPath` go: TMPDIR when set, else the
 /// output's folder.
 std::string TemporaryDirectoryFor(const std::string& outputPath);
+
+/// The settings of pcbilateral's streamed run within `limit` bytes into `outputPath`: the memory
+/// the program holds now and 96 MB of buffers reserved, the temporary folder, and
+/// PCB_STREAMING_SLAB_POINTS from the environment (tests: many slabs on a small file).
+OutOfCoreSettings StreamingSettings(std::uint64_t limit,
+  const std::string& outputPath,
+  int numberOfThreads);
+
+/// "512 MB": a size in whole megabytes.
+std::string MegabytesText(std::uint64_t bytes);
 
 } // namespace pcbilateral
 

@@ -33,11 +33,52 @@ bool IsText(const std::string& name)
   return EndsWith(name, ".txt") || EndsWith(name, ".xyz");
 }
 
+/// Moves the rows of the points not `removed` (--remove-isolated) to the front, in order, and
+/// drops the others.
+void LeaveOutRemoved(const std::vector<std::uint8_t>& removed, PointCloudTable& table)
+{
+  std::size_t kept = 0;
+  const bool normals = !table.Normals.empty();
+  for (std::size_t i = 0; i < table.NumberOfPoints; ++i)
+  {
+    if (removed[i])
+    {
+      continue;
+    }
+    if (kept != i)
+    {
+      std::copy_n(&table.Positions[3 * i], 3, &table.Positions[3 * kept]);
+      if (normals)
+      {
+        std::copy_n(&table.Normals[3 * i], 3, &table.Normals[3 * kept]);
+      }
+      for (std::vector<double>& column : table.ExtraColumns)
+      {
+        column[kept] = column[i];
+      }
+    }
+    ++kept;
+  }
+  table.NumberOfPoints = kept;
+  table.Positions.resize(3 * kept);
+  table.Normals.resize(normals ? 3 * kept : 0);
+  for (std::vector<double>& column : table.ExtraColumns)
+  {
+    column.resize(kept);
+  }
+}
+
 /// A text file (x y z, then further columns) read and written back a range at a time.
 class TextPointSource : public StreamedFile
 {
 public:
-  std::string Open(const std::string& path) { return this->Text.Open(path, false); }
+  /// `orientedNormals` (-R): columns 4-6 are normals, read and written back as normals (a line
+  /// with fewer than 6 columns is the run in memory's error).
+  std::string Open(const std::string& path, bool orientedNormals)
+  {
+    this->WithNormals = orientedNormals;
+    return this->Text.Open(path, orientedNormals);
+  }
   std::uint64_t GetNumberOfPoints() const override { return this->Text.GetNumberOfPoints(); }
   std::string ReadPositions(std::uint64_t first, std::size_t count, double* positions) override
   {
@@ -53,6 +94,7 @@ public:
 private:
   PointCloudTextStream Text;
   PointCloudTable Range;
+  bool WithNormals = false;
 };
 
 std::string TextPointSource::WriteFiltered(OutOfCoreRun& run,
@@ -61,19 +103,22 @@ std::string TextPointSource::WriteFiltered(OutOfCoreRun& run,
   const std::function<void(double)>& progress)
 {
   PointCloudTextStreamWriter writer;
-  std::string problem = writer.Open(path, this->Text.GetHeader(), false);
+  std::string problem = writer.Open(path, this->Text.GetHeader(), this->WithNormals);
   const std::uint64_t total = this->GetNumberOfPoints();
+  std::vector<std::uint8_t> removed;
   for (std::uint64_t first = 0; first < total && problem.empty(); first += pointsPerRange)
   {
     const auto count =
       static_cast<std::size_t>(std::min<std::uint64_t>(pointsPerRange, total - first));
     problem = this->Text.Read(first, count, this->Range);
+    removed.resize(count);
     if (problem.empty())
     {
-      problem = run.ReadFiltered(first, count, this->Range.Positions.data());
+      problem = run.ReadFiltered(first, count, this->Range.Positions.data(), removed.data());
     }
     if (problem.empty())
     {
+      LeaveOutRemoved(removed, this->Range);
       problem = writer.Append(this->Range);
     }
     if (progress)
@@ -87,7 +132,7 @@ std::string TextPointSource::WriteFiltered(OutOfCoreRun& run,
 
 std::string StreamingFormatsProblem(const std::string& input, const std::string& output)
 {
-  if (IsLAS(input) && IsLAS(output))
+  if (IsLAS(input) && (IsLAS(output) || IsText(output) || EndsWith(output, ".pcd")))
   {
     return std::string();
   }
@@ -95,8 +140,8 @@ std::string StreamingFormatsProblem(const std::string& input, const std::string&
   {
     return std::string();
   }
-  return "streaming reads .las or .laz into .las or .laz, and .txt or .xyz into .txt or .xyz "
-         "(not yet PCD, PLY or VTP, nor one format into another)";
+  return "streaming reads .las or .laz into .las, .laz, .txt, .xyz or .pcd, and .txt or .xyz "
+         "into .txt or .xyz (not yet PCD input, PLY or VTP, nor text into LAS or PCD)";
 }
 
 std::size_t StreamedRangePoints()
@@ -109,6 +154,7 @@ std::size_t StreamedRangePoints()
 
 std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,
   const std::string& output,
+  bool orientedNormals,
   std::string& problem)
 {
   problem = StreamingFormatsProblem(input, output);
@@ -123,7 +169,7 @@ std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,
     return problem.empty() ? std::move(las) : nullptr;
   }
   auto text = std::make_unique<TextPointSource>();
-  problem = text->Open(input);
+  problem = text->Open(input, orientedNormals);
   return problem.empty() ? std::move(text) : nullptr;
 }
 

@@ -29,6 +29,14 @@ public:
     std::size_t pointsPerRange,
     const std::function<void(double)>& progress) = 0;
 
+  /// The warning the run in memory says when it writes this input's cloud into `path` (e.g.
+  /// what the output's format cannot hold), or empty.
+  virtual std::string WriteWarning(const std::string& path) const
+  {
+    (void)path;
+    return std::string();
+  }
+
   /// --classes: filter only the points whose integer dimension `name` holds one of `classes`,
   /// the others left alone (GetNumberOfPointsLeftAlone). An empty string, or the run in
   /// memory's one-line error; a file that has no such dimensions says it is not streamed.
@@ -48,9 +56,11 @@ std::string StreamingFormatsProblem(const std::string& input, const std::string&
 /// the environment (tests).
 std::size_t StreamedRangePoints();
 
-/// The input opened for streaming into `output`'s format, or null with `problem` set.
+/// The input opened for streaming into `output`'s format, or null with `problem` set;
+/// `orientedNormals` (pcbilateral -R): a text file's columns 4-6 are normals, written back.
 std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,
   const std::string& output,
+  bool orientedNormals,
   std::string& problem);
 
 } // namespace pcbilateral

@@ -4,6 +4,8 @@
 #include "LASReader.h"
 #include "LASWriter.h"
 #include "LAZReader.h"
+#include "PCDFile.h"
+#include "PointCloudText.h"
 
 #include <fcntl.h>
 #include <sys/mman.h>
@@ -58,13 +60,24 @@ double ColumnValue(LASValueType type, const std::uint8_t* column, std::size_t i)
   return 0.0;
 }
 
+bool EndsWith(const std::string& path, const char* suffix)
+{
+  const std::size_t n = std::strlen(suffix);
+  return path.size() >= n &&
+         std::equal(path.end() - static_cast<std::ptrdiff_t>(n),
+           path.end(),
+           suffix,
+           [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
+}
+
 bool IsLAZName(const std::string& path)
 {
-  return path.size() >= 4 &&
-         std::equal(path.end() - 4,
-           path.end(),
-           ".laz",
-           [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
+  return EndsWith(path, ".laz");
+}
+
+bool IsTextName(const std::string& path)
+{
+  return EndsWith(path, ".txt") || EndsWith(path, ".xyz");
 }
 } // namespace
 
@@ -204,7 +217,43 @@ std::string LASPointSource::WriteFiltered(OutOfCoreRun& run,
   std::size_t pointsPerRange,
   const std::function<void(double)>& progress)
 {
-  return WriteStreamedLAS(*this, run, path, pointsPerRange, progress);
+  if (EndsWith(path, ".pcd"))
+  {
+    return WriteStreamedLASAsPCD(*this, run, path, pointsPerRange, progress);
+  }
+  return IsTextName(path) ? WriteStreamedLASAsText(*this, run, path, pointsPerRange, progress)
+                          : WriteStreamedLAS(*this, run, path, pointsPerRange, progress);
+}
+
+std::string LASPointSource::WriteWarning(const std::string& path) const
+{
+  const bool pcd = EndsWith(path, ".pcd");
+  if (!IsTextName(path) && !pcd)
+  {
+    return std::string();
+  }
+  bool coordinateSystem = false;
+  for (const auto* records : { &this->Info.VLRs, &this->Info.EVLRs })
+  {
+    for (const LASRecord& record : *records)
+    {
+      coordinateSystem = coordinateSystem || record.UserId == "LASF_Projection";
+    }
+  }
+  // (The run in memory's words: vtkPointCloudTextWriter and vtkPCDPointCloudWriter,
+  // vtkLASInformationNotHeld.)
+  return path + (pcd ? ": a PCD file cannot hold " : ": a text file cannot hold ") +
+         (coordinateSystem ? "the LAS file's coordinate system (CRS), scale and offset"
+                           : "the LAS file's scale and offset") +
+         (pcd ? ", which are not written" : ", which are not written (the coordinates are)");
+}
+
+std::string LASPointSource::ColoursFitEightBits(bool& fit)
+{
+  const std::string problem = LASColoursFitEightBits(
+    this->Data, this->Size, this->Info, this->Path, 0, this->GetNumberOfPoints(), fit);
+  this->Release();
+  return problem;
 }
 
 LASFileInfo LASInfoAsWritten(const LASFileInfo& info)
@@ -236,6 +285,35 @@ LASFileInfo LASInfoAsWritten(const LASFileInfo& info)
 
 namespace
 {
+/// Moves the records of the points not `removed` (--remove-isolated) to the front of the
+/// positions and columns, in order; returns how many there are.
+std::size_t LeaveOutRemoved(const LASFileInfo& info,
+  const std::vector<std::uint8_t>& removed,
+  std::vector<double>& positions,
+  std::vector<std::vector<std::uint8_t>>& columns)
+{
+  const std::size_t count = positions.size() / 3;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    if (removed[i])
+    {
+      continue;
+    }
+    if (kept != i)
+    {
+      std::copy_n(&positions[3 * i], 3, &positions[3 * kept]);
+      for (std::size_t d = 0; d < columns.size(); ++d)
+      {
+        const std::size_t bytes = LASColumnBytes(info.Dimensions[d]);
+        std::copy_n(&columns[d][bytes * i], bytes, &columns[d][bytes * kept]);
+      }
+    }
+    ++kept;
+  }
+  return kept;
+}
+
 /// The records of `input`, a range at a time, at their filtered positions, into `writer` (a
 /// LASStreamWriter or a LAZStreamWriter).
 template<typename Writer>
@@ -251,6 +329,7 @@ std::string WriteRanges(LASPointSource& input,
   std::vector<double> positions;
   std::vector<std::vector<std::uint8_t>> columns(info.Dimensions.size());
   std::vector<void*> pointers(info.Dimensions.size());
+  std::vector<std::uint8_t> removed(pointsPerRange);
   for (std::uint64_t first = 0; first < total && problem.empty(); first += pointsPerRange)
   {
     const auto count =
@@ -264,11 +343,12 @@ std::string WriteRanges(LASPointSource& input,
     problem = input.ReadPoints(first, count, positions.data(), pointers.data());
     if (problem.empty())
     {
-      problem = run.ReadFiltered(first, count, positions.data());
+      problem = run.ReadFiltered(first, count, positions.data(), removed.data());
     }
     if (problem.empty())
     {
-      problem = writer.Append(count, positions.data(), pointers.data());
+      const std::size_t kept = LeaveOutRemoved(info, removed, positions, columns);
+      problem = writer.Append(kept, positions.data(), pointers.data());
     }
     if (progress)
     {
@@ -286,7 +366,7 @@ std::string WriteStreamedLAS(LASPointSource& input,
   const std::function<void(double)>& progress)
 {
   const LASFileInfo written = LASInfoAsWritten(input.GetInfo());
-  const std::uint64_t total = input.GetNumberOfPoints();
+  const std::uint64_t total = input.GetNumberOfPoints() - run.GetNumberOfRemovedPoints();
   if (IsLAZName(path))
   {
     LAZStreamWriter writer;
@@ -296,6 +376,274 @@ std::string WriteStreamedLAS(LASPointSource& input,
   LASStreamWriter writer;
   const std::string problem = writer.Open(path, written, total);
   return problem.empty() ? WriteRanges(input, run, writer, pointsPerRange, progress) : problem;
+}
+
+namespace
+{
+/// The text columns the run in memory writes for a LAS file (vtkLASPointCloudReader's arrays
+/// through vtkPointCloudTextWriter): each dimension's components, named "Name" or "Name:k",
+/// then, with RGB, the 8-bit display colours "Colors:0" to "Colors:2".
+PointCloudTable LASTextHeader(const LASFileInfo& info, bool colours)
+{
+  PointCloudTable header;
+  for (const LASDimension& dimension : info.Dimensions)
+  {
+    for (int c = 0; c < dimension.Components; ++c)
+    {
+      header.ExtraColumnNames.push_back(
+        dimension.Components > 1 ? dimension.Name + ":" + std::to_string(c) : dimension.Name);
+    }
+  }
+  for (int c = 0; colours && c < 3; ++c)
+  {
+    header.ExtraColumnNames.push_back("Colors:" + std::to_string(c));
+  }
+  header.ExtraColumns.resize(header.ExtraColumnNames.size());
+  return header;
+}
+
+/// The first `kept` points' columns into `table` (laid out by LASTextHeader), as doubles; the
+/// display colours are the RGB values' high bytes, or the values when `eightBit`.
+void FillTextColumns(const LASFileInfo& info,
+  const std::vector<std::vector<std::uint8_t>>& columns,
+  std::size_t kept,
+  bool eightBit,
+  PointCloudTable& table)
+{
+  std::size_t next = 0;
+  for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+  {
+    const LASDimension& dimension = info.Dimensions[d];
+    const auto components = static_cast<std::size_t>(dimension.Components);
+    for (std::size_t c = 0; c < components; ++c)
+    {
+      std::vector<double>& column = table.ExtraColumns[next++];
+      column.resize(kept);
+      for (std::size_t i = 0; i < kept; ++i)
+      {
+        column[i] = ColumnValue(dimension.ColumnType, columns[d].data(), i * components + c);
+      }
+    }
+    if (dimension.Name == "RGB" && next + 3 <= table.ExtraColumns.size())
+    {
+      for (std::size_t c = 0; c < 3; ++c)
+      {
+        std::vector<double>& colour = table.ExtraColumns[table.ExtraColumns.size() - 3 + c];
+        colour.resize(kept);
+        for (std::size_t i = 0; i < kept; ++i)
+        {
+          const auto value = static_cast<unsigned>(table.ExtraColumns[next - 3 + c][i]);
+          colour[i] = static_cast<unsigned char>(eightBit ? value : value >> 8);
+        }
+      }
+    }
+  }
+}
+} // namespace
+
+std::string WriteStreamedLASAsText(LASPointSource& input,
+  OutOfCoreRun& run,
+  const std::string& path,
+  std::size_t pointsPerRange,
+  const std::function<void(double)>& progress)
+{
+  const LASFileInfo& info = input.GetInfo();
+  const bool colours = std::any_of(info.Dimensions.begin(),
+    info.Dimensions.end(),
+    [](const LASDimension& dimension) { return dimension.Name == "RGB"; });
+  bool eightBit = false;
+  std::string problem = input.ColoursFitEightBits(eightBit);
+  PointCloudTable table = LASTextHeader(info, colours);
+  PointCloudTextStreamWriter writer;
+  problem = problem.empty() ? writer.Open(path, table, false) : problem;
+  const std::uint64_t total = input.GetNumberOfPoints();
+  std::vector<std::vector<std::uint8_t>> columns(info.Dimensions.size());
+  std::vector<void*> pointers(info.Dimensions.size());
+  std::vector<std::uint8_t> removed(pointsPerRange);
+  for (std::uint64_t first = 0; first < total && problem.empty(); first += pointsPerRange)
+  {
+    const auto count =
+      static_cast<std::size_t>(std::min<std::uint64_t>(pointsPerRange, total - first));
+    table.Positions.resize(3 * count);
+    for (std::size_t d = 0; d < columns.size(); ++d)
+    {
+      columns[d].resize(count * LASColumnBytes(info.Dimensions[d]));
+      pointers[d] = columns[d].data();
+    }
+    problem = input.ReadPoints(first, count, table.Positions.data(), pointers.data());
+    problem = problem.empty()
+                ? run.ReadFiltered(first, count, table.Positions.data(), removed.data())
+                : problem;
+    if (problem.empty())
+    {
+      table.NumberOfPoints = LeaveOutRemoved(info, removed, table.Positions, columns);
+      table.Positions.resize(3 * table.NumberOfPoints);
+      FillTextColumns(info, columns, table.NumberOfPoints, eightBit, table);
+      problem = writer.Append(table);
+    }
+    if (progress)
+    {
+      progress(static_cast<double>(first + count) / static_cast<double>(total));
+    }
+  }
+  return problem.empty() ? writer.Close() : problem;
+}
+
+namespace
+{
+/// A LAS column type's PCD type and size (as vtkPCDFieldType gives them for the VTK arrays the
+/// LAS reader makes).
+PCDField PCDFieldOf(const LASDimension& dimension)
+{
+  static const struct
+  {
+    char Type;
+    unsigned Size;
+  } types[] = { { 'U', 1 },
+    { 'I', 1 },
+    { 'U', 2 },
+    { 'I', 2 },
+    { 'U', 4 },
+    { 'I', 4 },
+    { 'U', 8 },
+    { 'I', 8 },
+    { 'F', 4 },
+    { 'F', 8 } };
+  const auto kind = types[static_cast<int>(dimension.ColumnType)];
+  PCDField field{
+    dimension.Name, kind.Type, kind.Size, static_cast<unsigned>(dimension.Components)
+  };
+  std::replace_if(
+    field.Name.begin(), field.Name.end(), [](char c) { return c == ' ' || c == '\t'; }, '_');
+  return field;
+}
+
+/// The fields the run in memory writes for a LAS file (vtkPCDPointCloudWriter of the LAS
+/// reader's arrays, no layout read): x y z (F4 when every position written is a float, else
+/// F8), `rgb` packed from the 8-bit display colours with RGB, then each dimension whose name is
+/// not taken (`written`: which are).
+PCDHeader LASPCDHeader(const LASFileInfo& info,
+  bool floats,
+  bool colours,
+  std::size_t count,
+  std::vector<bool>& written)
+{
+  PCDHeader header;
+  header.Width = count;
+  for (const char* name : { "x", "y", "z" })
+  {
+    header.Fields.push_back(PCDField{ name, 'F', floats ? 4u : 8u, 1 });
+  }
+  if (colours)
+  {
+    header.Fields.push_back(PCDField{ "rgb", 'F', 4, 1 });
+  }
+  written.assign(info.Dimensions.size(), false);
+  for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+  {
+    const PCDField field = PCDFieldOf(info.Dimensions[d]);
+    const bool taken = std::any_of(header.Fields.begin(),
+      header.Fields.end(),
+      [&](const PCDField& other) { return other.Name == field.Name; });
+    if (!taken && !field.IsPadding())
+    {
+      header.Fields.push_back(field);
+      written[d] = true;
+    }
+  }
+  return header;
+}
+
+/// The first `kept` points' values into `range` (fields of LASPCDHeader).
+void FillPCDColumns(const LASFileInfo& info,
+  const std::vector<std::vector<std::uint8_t>>& columns,
+  const std::vector<bool>& written,
+  bool colours,
+  bool eightBit,
+  std::size_t kept,
+  PCDCloud& range)
+{
+  range.Columns.clear();
+  range.NumberOfPoints = kept;
+  for (std::size_t d = 0; d < info.Dimensions.size() && colours; ++d)
+  {
+    if (info.Dimensions[d].Name != "RGB")
+    {
+      continue;
+    }
+    std::vector<std::uint8_t> display(3 * kept);
+    for (std::size_t i = 0; i < 3 * kept; ++i)
+    {
+      const auto value =
+        static_cast<unsigned>(ColumnValue(LASValueType::UInt16, columns[d].data(), i));
+      display[i] = static_cast<std::uint8_t>(eightBit ? value : value >> 8);
+    }
+    range.Columns.push_back(PackPCDColours(PCDField{ "rgb", 'F', 4, 1 }, display.data(), 3, kept));
+  }
+  for (std::size_t d = 0; d < info.Dimensions.size(); ++d)
+  {
+    if (written[d])
+    {
+      const std::size_t bytes = kept * LASColumnBytes(info.Dimensions[d]);
+      range.Columns.push_back(PCDColumn{ PCDFieldOf(info.Dimensions[d]),
+        std::vector<std::uint8_t>(columns[d].begin(), columns[d].begin() + bytes) });
+    }
+  }
+}
+} // namespace
+
+std::string WriteStreamedLASAsPCD(LASPointSource& input,
+  OutOfCoreRun& run,
+  const std::string& path,
+  std::size_t pointsPerRange,
+  const std::function<void(double)>& progress)
+{
+  const LASFileInfo& info = input.GetInfo();
+  const bool colours = std::any_of(info.Dimensions.begin(),
+    info.Dimensions.end(),
+    [](const LASDimension& dimension) { return dimension.Name == "RGB"; });
+  bool eightBit = false;
+  std::string problem = input.ColoursFitEightBits(eightBit);
+  const std::uint64_t total = input.GetNumberOfPoints();
+  std::vector<bool> written;
+  PCDCloud range;
+  range.Header = LASPCDHeader(info,
+    run.AreFilteredPositionsFloats(),
+    colours,
+    static_cast<std::size_t>(total - run.GetNumberOfRemovedPoints()),
+    written);
+  PCDBinaryStreamWriter writer;
+  problem = problem.empty() ? writer.Open(path, range.Header, range.Header.Width) : problem;
+  std::vector<std::vector<std::uint8_t>> columns(info.Dimensions.size());
+  std::vector<void*> pointers(info.Dimensions.size());
+  std::vector<std::uint8_t> removed(pointsPerRange);
+  for (std::uint64_t first = 0; first < total && problem.empty(); first += pointsPerRange)
+  {
+    const auto count =
+      static_cast<std::size_t>(std::min<std::uint64_t>(pointsPerRange, total - first));
+    range.Positions.resize(3 * count);
+    for (std::size_t d = 0; d < columns.size(); ++d)
+    {
+      columns[d].resize(count * LASColumnBytes(info.Dimensions[d]));
+      pointers[d] = columns[d].data();
+    }
+    problem = input.ReadPoints(first, count, range.Positions.data(), pointers.data());
+    problem = problem.empty()
+                ? run.ReadFiltered(first, count, range.Positions.data(), removed.data())
+                : problem;
+    if (problem.empty())
+    {
+      const std::size_t kept = LeaveOutRemoved(info, removed, range.Positions, columns);
+      range.Positions.resize(3 * kept);
+      FillPCDColumns(info, columns, written, colours, eightBit, kept, range);
+      problem = writer.Append(range);
+    }
+    if (progress)
+    {
+      progress(static_cast<double>(first + count) / static_cast<double>(total));
+    }
+  }
+  return problem.empty() ? writer.Close() : problem;
 }
 
 } // namespace pcbilateral

@@ -44,6 +44,10 @@ public:
     const std::function<void(double)>& progress) override;
   std::string ChooseClasses(const std::string& name,
     const std::vector<long long>& classes) override;
+  std::string WriteWarning(const std::string& path) const override;
+  /// Whether every RGB value of the file is at most 255 (true without RGB): the run in memory's
+  /// display colours are then the values, else their high bytes.
+  std::string ColoursFitEightBits(bool& fit);
   std::uint64_t GetNumberOfPointsLeftAlone() const override { return this->LeftAlone; }
   std::string GetClassArrayName() const override { return this->ClassName; }
 
@@ -75,6 +79,31 @@ LASFileInfo LASInfoAsWritten(const LASFileInfo& info);
  * one-line message (no file is left then).
  */
 std::string WriteStreamedLAS(LASPointSource& input,
+  OutOfCoreRun& run,
+  const std::string& path,
+  std::size_t pointsPerRange,
+  const std::function<void(double)>& progress);
+
+/**
+ * Writes the filtered cloud of `run` as a text file (.txt, .xyz), as pcbilateral's run in memory
+ * writes a LAS or LAZ file's cloud: a header line, tabs, x y z then every dimension's values
+ * and, with RGB, the 8-bit display colours (whether the file's colours fit 8 bits is read from
+ * the whole file first). Progress from 0 to 1; an empty string or a one-line message.
+ */
+std::string WriteStreamedLASAsText(LASPointSource& input,
+  OutOfCoreRun& run,
+  const std::string& path,
+  std::size_t pointsPerRange,
+  const std::function<void(double)>& progress);
+
+/**
+ * Writes the filtered cloud of `run` as a binary PCD file, as pcbilateral's run in memory writes
+ * a LAS or LAZ file's cloud (vtkPCDPointCloudWriter): x y z as F4 when every filtered position is
+ * a float, else F8; with RGB a packed `rgb` of the 8-bit display colours; then every dimension,
+ * its components as the field's COUNT. Progress from 0 to 1; an empty string or a one-line
+ * message.
+ */
+std::string WriteStreamedLASAsPCD(LASPointSource& input,
   OutOfCoreRun& run,
   const std::string& path,
   std::size_t pointsPerRange,

@@ -14,6 +14,7 @@ Autzen survey as LAS, LAZ and LAS 1.4, and a file with extra bytes.
 """
 import os
 import re
+import shutil
 import signal
 import struct
 import subprocess
@@ -71,6 +72,7 @@ class Checks:
     def __init__(self, program, scratch):
         self.program, self.scratch, self.failures = program, scratch, []
         self.tmp = os.path.join(scratch, "tmp")
+        shutil.rmtree(self.tmp, ignore_errors=True)  # (what a crashed earlier run left)
         os.makedirs(self.tmp, exist_ok=True)
 
     def check(self, condition, message):
@@ -129,9 +131,9 @@ def check_refusals(c, source):
             not os.path.exists(output) and len(result.stderr.strip().splitlines()) == 1,
             f"a slab that cannot fit: one line, non-zero exit, no output ({result.stderr.strip()})")
     c.check(not c.temporary_left(), "the refusal leaves no temporary file")
-    for arguments, words in (([source, os.path.join(c.scratch, "o.txt")], "into .las"),
-                             ([source, os.path.join(c.scratch, "o.pcd")], "not yet"),
-                             ([source, output, "--edge-aware"], "does not take"),
+    for arguments, words in (([source, os.path.join(c.scratch, "o.ply")], "into .las"),
+                             ([source, os.path.join(c.scratch, "o.vtp")], "not yet"),
+                             ([source, output, "--copc-level", "0"], "does not take"),
                              ([source, output, "-r", "3"], None)):
         size = "2X" if words is None else "1G"
         result = c.run(arguments + ["--memory-limit", size])
@@ -237,6 +239,10 @@ def check_interrupt(c, source):
             f"(seen before: {seen}), no output")
 
 
+def laz_path(las_dir):
+    return os.path.join(las_dir, "..", "laz", "autzen_trim.laz")
+
+
 def check_samples(c, las_dir):
     """The shared samples: Autzen as LAS, LAZ and LAS 1.4, extra bytes, into LAS and LAZ, and
     with --classes."""
@@ -256,6 +262,14 @@ def check_samples(c, las_dir):
                         ["-r", "5", "-N", "2"], [30000], extension=".laz")
     c.same_as_in_memory("autzen-1.4-into-laz", os.path.join(las_dir, "autzen_trim_7.las"),
                         ["-r", "5"], [30000], extension=".laz", range_points=23456)
+    # Into text and PCD: every dimension as columns or fields, RGB and the display colours,
+    # extra bytes.
+    for name, source in (("autzen", autzen), ("autzen-laz", laz_path(las_dir)),
+                         ("autzen-1.4", os.path.join(las_dir, "autzen_trim_7.las")),
+                         ("extra-bytes", os.path.join(las_dir, "extrabytes.las"))):
+        for extension in (".txt", ".pcd"):
+            c.same_as_in_memory(name + "-into" + extension, source, ["-r", "5", "-N", "2"],
+                                [30000], extension=extension, range_points=23456)
     # --classes (Autzen: classes 1 and 2): only the chosen classes filtered, the others
     # passed through; the in-memory errors and warning.
     laz = os.path.join(las_dir, "..", "laz", "autzen_trim.laz")

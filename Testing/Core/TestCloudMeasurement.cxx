@@ -8,9 +8,11 @@
 //                                      true surface against the old defaults and the paper's
 #include "AutomaticRule.h"
 #include "BilateralFilter.h"
+#include "BitOperations.h"
 #include "CloudMeasurement.h"
 #include "CloudView.h"
 #include "CoreTesting.h"
+#include "MeasurementSelection.h"
 #include "SampleShapes.h"
 
 #include <algorithm>
@@ -849,6 +851,52 @@ void StructuredNoise()
   }
 }
 
+/// The selection compares keys with an integer bound, not as doubles (MeasurementSelection.h):
+/// the bound is the first key whose double reaches fraction x 2^64, at fractions whose threshold
+/// is an integer that neighbouring keys round to (from 2^54), and below 2^53, where it is not an
+/// integer; the points selected are those of the definition.
+void Selection()
+{
+  const double fractions[] = { 1e-17, 3e-12, 1e-4, 0.0625, 0.3, 0.87, 0.5 + 1e-12, 1.0 - 1e-16 };
+  for (double fraction : fractions)
+  {
+    const double threshold = std::ldexp(fraction, 64);
+    const std::uint64_t bound = pcbilateral::SelectionBound(fraction);
+    const bool first = static_cast<double>(bound) >= threshold &&
+                       (bound == 0 || static_cast<double>(bound - 1) < threshold);
+    PCB_CHECK(first, "SelectionBound(%.17g) is not the first key reaching it", fraction);
+  }
+  PCB_CHECK(pcbilateral::SelectionBound(0.0) == 0 && pcbilateral::SelectionBound(-1.0) == 0 &&
+              pcbilateral::SelectionBound(std::nan("")) == 0,
+    "%s",
+    "a fraction of 0, below 0 or NaN selects a key");
+  // The points: every finite point whose second hash, as a double, is below the threshold.
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  std::vector<double> xyz;
+  for (int i = 0; i < 100000; ++i)
+  {
+    xyz.insert(xyz.end(), { coordinate(random), coordinate(random), i % 1000 ? 0.25 : NAN });
+  }
+  for (double fraction : { 0.01, 0.5, 0.87 })
+  {
+    std::vector<double> expected;
+    for (std::size_t i = 0; i < xyz.size(); i += 3)
+    {
+      const std::uint64_t key =
+        pcbilateral::MixBits(pcbilateral::MeasurementKey(&xyz[i]) ^ 0x5bd1e995ull);
+      if (pcbilateral::IsFinitePoint(&xyz[i]) &&
+          static_cast<double>(key) < std::ldexp(fraction, 64))
+      {
+        expected.insert(expected.end(), &xyz[i], &xyz[i] + 3);
+      }
+    }
+    PCB_CHECK(pcbilateral::SelectMeasurementPoints(ViewOf(xyz), fraction) == expected,
+      "the selection of %g is not the definition's",
+      fraction);
+  }
+}
+
 int main(int argc, char* argv[])
 {
   return RunNamedCase(argc,
@@ -857,5 +905,6 @@ int main(int argc, char* argv[])
       { "Determinism", Determinism },
       { "Rule", Rule },
       { "Sampling", Sampling },
+      { "Selection", Selection },
       { "StructuredNoise", StructuredNoise } });
 }

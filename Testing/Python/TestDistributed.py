@@ -92,6 +92,11 @@ def make_cloud():
 
 
 total = make_cloud()
+# The most a rank may hold, as a fraction of the cloud: its 1/N and two border layers (0.56 at
+# 2 ranks, 0.44 at 3, 0.69 with the edge-aware mode's layers of 3 radii). Not checked where the
+# radius follows the density: a rank's layer is then as wide as the largest radius anywhere
+# (BilateralRun::GetGhostReach), 10 times the radius of the dense end's thin slab here.
+HELD_BOUND = 1.0 if args.density_ratio > 1.0 else 0.75
 simple.LoadPlugin(args.plugin, remote=True, ns=vars(simple))
 # Before any filter object reaches Python, or VTK wraps it as its base class for good.
 from pointcloudbilateral import vtkPointCloudBilateralFilter  # noqa: E402
@@ -150,7 +155,7 @@ properties = dict(Radius=args.radius, NormalRadius=args.normal_radius,
                   NumberOfIterations=args.iterations, RemoveIsolatedPoints=args.remove_isolated,
                   EdgeAware=int(args.edge_aware),
                   OrientNormalsBy="Normals", OutputEstimatedNormals=1,
-                  OutputDisplacementLength=1, NumberOfThreads=1,
+                  OutputDisplacementLength=1, OutputPointRadius=1, NumberOfThreads=1,
                   Classes=[2] if args.classes else [])
 bilateral = simple.PointCloudBilateralFilter(Input=tagged, **properties)
 # Warnings reach the user during a distributed run too, once: rank 0's filter is this process's.
@@ -179,6 +184,16 @@ elif args.split in ("slabs", "random"):
 else:
     check(np.min(per_rank) > 0.9 * np.max(per_rank), "Distribute Points split the cloud evenly")
 
+# No rank holds the whole cloud: the filter moves the points into one slab of space per rank,
+# with equal counts, so that each holds about 1/N of them plus a layer at its slab's borders
+# (one radius wide, three in the edge-aware mode). Before, a rank held its share as it was and
+# every other point within reach as ghosts: on the random split, rank 0 its 60% and all the
+# others' points (the whole cloud).
+held = bilateral.GetClientSideObject().GetLargestNumberOfPointsHeld()
+print(f"the most points a rank held: {held} of {total} ({held / total:.2f})")
+check(0 < held <= HELD_BOUND * total,
+      f"the most points a rank held ({held}) is at most {HELD_BOUND} of the cloud ({total})")
+
 # The same filter, serially, on the gathered input: points of the same type, the same arrays.
 
 # The serial class never communicates: made in a script under mpirun, it runs on this rank alone
@@ -193,6 +208,7 @@ serial.SetEdgeAware(args.edge_aware)
 serial.SetOrientationArrayName("Normals")
 serial.GenerateEstimatedNormalsOn()
 serial.GenerateDisplacementLengthOn()
+serial.GeneratePointRadiusOn()  # where the radius follows the density: BilateralPointRadius
 if args.classes:
     serial.AddClass(2)
 serial.Update()
@@ -266,6 +282,8 @@ if len(ids_out) == len(ids_ref) and set(ids_out) == set(ids_ref):
     names = set(reference.PointData.keys()) - {"vtkOriginalPointIds"}
     check(names == set(cloud_out.PointData.keys()) - {"vtkOriginalPointIds"},
           f"the same point arrays as serially: {sorted(names)}")
+    if args.density_ratio > 1.0:  # each point's radius, brought back from the rank that filtered it
+        check("BilateralPointRadius" in names, "the output has each point's radius")
     for name in sorted(names & set(cloud_out.PointData.keys())):
         mine = np.ascontiguousarray(np.asarray(cloud_out.PointData[name]))
         theirs = np.ascontiguousarray(np.asarray(reference.PointData[name])[where])

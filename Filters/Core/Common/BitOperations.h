@@ -24,6 +24,21 @@ inline int CountTrailingZeros(std::uint64_t mask)
 #endif
 }
 
+/// The number of zero bits above the highest set bit (64 for 0).
+inline int CountLeadingZeros(std::uint64_t value)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  return value == 0 ? 64 : __builtin_clzll(value);
+#else
+  int count = 64;
+  for (; value != 0; value >>= 1)
+  {
+    --count;
+  }
+  return count;
+#endif
+}
+
 /// The number of set bits.
 inline int PopCount(std::uint32_t mask)
 {

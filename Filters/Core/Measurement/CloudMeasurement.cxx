@@ -29,6 +29,7 @@
 
 #include "BitOperations.h"
 #include "LocalSurfaceFit.h"
+#include "MeasurementSelection.h"
 #include "PointGrid.h"
 #include "ProgressCheck.h"
 #include "Threads.h"
@@ -44,30 +45,6 @@ namespace pcbilateral
 {
 namespace
 {
-std::uint64_t Bits(double value)
-{
-  // -0 and +0 are one point.
-  value = value == 0.0 ? 0.0 : value;
-  std::uint64_t bits;
-  std::memcpy(&bits, &value, sizeof bits);
-  return bits;
-}
-
-/// A fixed pseudo-random key per point, from its coordinates alone: the same point gets the same
-/// key whatever its index, in whichever part of a distributed cloud it is.
-std::uint64_t MeasurementKey(const double* p)
-{
-  return MixBits(MixBits(MixBits(Bits(p[0])) ^ Bits(p[1])) ^ Bits(p[2]));
-}
-
-/// The key that decides whether a point is in the measured selection (SelectMeasurementPoints),
-/// from its MeasurementKey: another hash, so that the selection and the levels inside it are
-/// independent.
-std::uint64_t SelectionKey(std::uint64_t measurementKey)
-{
-  return MixBits(measurementKey ^ 0x5bd1e995ull);
-}
-
 /// A finite point's MeasurementKey and index.
 struct KeyedPoint
 {
@@ -131,8 +108,6 @@ constexpr double CreaseVariance = 2.0;
 /// Points whose nearest-neighbour distance is measured for its percentiles: enough for the 5th
 /// percentile to be read on some 400 points, a small cost next to the fits.
 constexpr std::size_t NearestNeighbourSamples = 8192;
-/// Points of the whole cloud between two progress and abort checks of the selection.
-constexpr std::size_t PointsPerProgressCheck = 16384;
 /// The structured-noise check (CheckStructuredNoise): the ball's radius in units of the noise
 /// fits' radius, and how much more noise it must read there to count as structured.
 constexpr double StructureScale = 4.0;
@@ -152,17 +127,26 @@ void GatherBall(const PointGrid& grid,
   double rho,
   std::vector<std::array<double, 3>>& points)
 {
-  points.clear();
   const double* x = grid.GetX();
   const double* y = grid.GetY();
   const double* z = grid.GetZ();
-  grid.ForEachInBall(centre,
+  const double rhoSquared = rho * rho;
+  std::size_t count = 0;
+  grid.ForEachRunAroundBall(centre,
     rho,
-    [&](std::size_t i, double)
+    [&](std::size_t begin, std::size_t end)
     {
-      points.push_back(
-        { (x[i] - centre[0]) / rho, (y[i] - centre[1]) / rho, (z[i] - centre[2]) / rho });
+      // Every point written to the next slot and counted only when in the ball (ForEachInBall's
+      // test): a branch on it would be mispredicted for many of the points near the sphere.
+      points.resize(count + (end - begin));
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        const double dx = x[i] - centre[0], dy = y[i] - centre[1], dz = z[i] - centre[2];
+        points[count] = { dx / rho, dy / rho, dz / rho };
+        count += dx * dx + dy * dy + dz * dz <= rhoSquared;
+      }
     });
+  points.resize(count);
   std::sort(points.begin(), points.end());
 }
 
@@ -263,6 +247,8 @@ private:
     this->Keyed.reserve(this->N);
     this->Levels.assign(1, {});
     this->Levels[0].reserve(this->N);
+    // The deepest level of each point: level l keeps the keys whose top 2l bits are zero.
+    std::vector<std::uint8_t> deepest(this->Cloud.NumberOfPoints, 0);
     for (std::size_t i = 0; i < this->Cloud.NumberOfPoints; ++i)
     {
       if (!IsFinitePoint(this->Cloud.Positions + 3 * i))
@@ -273,20 +259,28 @@ private:
                                   ? this->PointKeys[i]
                                   : MeasurementKey(this->Cloud.Positions + 3 * i);
       this->Keyed.push_back({ key, i });
-      // Each level keeps the keys whose top 2l bits are zero.
-      std::size_t level = 0;
-      while (level < 28 && (key >> (62 - 2 * level)) == 0)
+      this->Levels[0].push_back(static_cast<std::uint32_t>(i));
+      deepest[i] = static_cast<std::uint8_t>(std::min(28, CountLeadingZeros(key) / 2));
+    }
+    // Each level from the one above it, every point written to the next slot and counted only
+    // when it belongs (a branch on the keys' bits would be mispredicted a quarter of the time).
+    while (this->Levels.back().size() >= 256)
+    {
+      const std::vector<std::uint32_t>& above = this->Levels.back();
+      const auto level = static_cast<std::uint8_t>(this->Levels.size());
+      std::vector<std::uint32_t> points(above.size() + 1);
+      std::size_t count = 0;
+      for (std::uint32_t i : above)
       {
-        ++level;
+        points[count] = i;
+        count += deepest[i] >= level;
       }
-      if (this->Levels.size() <= level)
+      if (count == 0)
       {
-        this->Levels.resize(level + 1);
+        break;
       }
-      for (std::size_t l = 0; l <= level; ++l)
-      {
-        this->Levels[l].push_back(static_cast<std::uint32_t>(i));
-      }
+      points.resize(count);
+      this->Levels.push_back(std::move(points));
     }
     while (this->Levels.size() > 1 && this->Levels.back().size() < 256)
     {
@@ -431,17 +425,21 @@ private:
     // neighbour: a ball that spans a few cells.)
     for (double radius = 0.5 * this->TwoSpacings(0); radius <= 2.0 * wholeCloud; radius *= 2.0)
     {
+      // The nearest of every point around the ball: when it lies in the ball, no point outside
+      // the cells looked at is nearer.
       double nearest = std::numeric_limits<double>::infinity();
-      grid.ForEachInBall(p,
+      grid.ForEachRunAroundBall(p,
         radius,
-        [&](std::size_t i, double distanceSquared)
+        [&](std::size_t begin, std::size_t end)
         {
-          if (ids[i] != index)
+          for (std::size_t i = begin; i < end; ++i)
           {
-            nearest = std::min(nearest, distanceSquared);
+            const double dx = x[i] - p[0], dy = y[i] - p[1], dz = z[i] - p[2];
+            const double distanceSquared = dx * dx + dy * dy + dz * dz;
+            nearest = ids[i] != index ? std::min(nearest, distanceSquared) : nearest;
           }
         });
-      if (std::isfinite(nearest))
+      if (nearest <= radius * radius)
       {
         return std::sqrt(nearest);
       }
@@ -890,56 +888,8 @@ CloudScales MeasureScales(const PointCloudView& cloud, const ScaleMeasurementOpt
   return ScaleMeasurement(cloud, options).Measure();
 }
 
-double MeasuredFraction(std::size_t numberOfFinitePoints)
-{
-  return numberOfFinitePoints <= MaximumMeasuredPoints
-           ? 1.0
-           : static_cast<double>(MaximumMeasuredPoints) / static_cast<double>(numberOfFinitePoints);
-}
-
 namespace
 {
-/// SelectMeasurementPoints, and the selected points' MeasurementKey when keys is not null.
-std::vector<double> Select(const PointCloudView& cloud,
-  double fraction,
-  std::vector<std::uint64_t>* keys)
-{
-  // Selected: SelectionKey / 2^64 < fraction.
-  const double threshold = std::ldexp(fraction, 64);
-  std::vector<double> selection;
-  // (About fraction of the points, and a margin, without growing the arrays on the way.)
-  const double expected = fraction * static_cast<double>(cloud.NumberOfPoints);
-  const auto reserved = static_cast<std::size_t>(std::min(
-    expected + 6.0 * std::sqrt(expected) + 16.0, static_cast<double>(cloud.NumberOfPoints)));
-  selection.reserve(3 * reserved);
-  if (keys != nullptr)
-  {
-    keys->reserve(reserved);
-  }
-  for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
-  {
-    const double* p = cloud.Positions + 3 * i;
-    if (i % PointsPerProgressCheck == 0 && ProgressPoint(i, 2 * cloud.NumberOfPoints))
-    {
-      return std::vector<double>(); // stopped: the caller asks too
-    }
-    if (!IsFinitePoint(p))
-    {
-      continue;
-    }
-    const std::uint64_t key = MeasurementKey(p);
-    if (fraction >= 1.0 || static_cast<double>(SelectionKey(key)) < threshold)
-    {
-      selection.insert(selection.end(), p, p + 3);
-      if (keys != nullptr)
-      {
-        keys->push_back(key);
-      }
-    }
-  }
-  return selection;
-}
-
 /// MeasureSelection, with the selected points' MeasurementKey at hand (null: computed).
 CloudScales MeasureSelected(const std::vector<double>& selection,
   double fraction,
@@ -955,11 +905,6 @@ CloudScales MeasureSelected(const std::vector<double>& selection,
   return ScaleMeasurement(view, options, keys).Measure();
 }
 } // namespace
-
-std::vector<double> SelectMeasurementPoints(const PointCloudView& cloud, double fraction)
-{
-  return Select(cloud, fraction, nullptr);
-}
 
 CloudScales MeasureSelection(const std::vector<double>& selection, double fraction, int threads)
 {
@@ -979,7 +924,7 @@ CloudScales MeasureWholeCloud(const PointCloudView& cloud, int threads)
   }
   // (The selection's keys are computed on the way: the levels need them again.)
   std::vector<std::uint64_t> keys;
-  const std::vector<double> selection = Select(cloud, fraction, &keys);
+  const std::vector<double> selection = SelectWithKeys(cloud, fraction, &keys);
   return MeasureSelected(selection, fraction, threads, keys.data());
 }
 

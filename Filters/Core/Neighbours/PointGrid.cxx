@@ -218,13 +218,23 @@ bool PointGrid::LayOutInColumns(const double* positions,
     {
       __builtin_prefetch(positions + 3 * static_cast<std::size_t>(packed[at + Ahead].Id));
     }
+    // (Place's work, on the packed keys: a cell starts where its key differs from the last.)
     const std::uint64_t cell = packed[at].Key;
-    const std::int64_t key[3] = { this->KeyMin[0] +
-                                    static_cast<std::int64_t>(cell >> (this->YBits + this->ZBits)),
-      this->KeyMin[1] + static_cast<std::int64_t>((cell >> this->ZBits) & yMask),
-      this->KeyMin[2] + static_cast<std::int64_t>(cell & zMask) };
+    if (at == 0 || cell != packed[at - 1].Key)
+    {
+      this->CellKey.push_back(
+        this->KeyMin[0] + static_cast<std::int64_t>(cell >> (this->YBits + this->ZBits)));
+      this->CellKey.push_back(
+        this->KeyMin[1] + static_cast<std::int64_t>((cell >> this->ZBits) & yMask));
+      this->CellKey.push_back(this->KeyMin[2] + static_cast<std::int64_t>(cell & zMask));
+      this->CellBegin.push_back(static_cast<std::uint32_t>(at));
+    }
     const std::uint32_t id = packed[at].Id;
-    this->Place(at, id, positions + 3 * static_cast<std::size_t>(id), key);
+    const double* p = positions + 3 * static_cast<std::size_t>(id);
+    this->Ids[at] = id;
+    this->X[at] = p[0];
+    this->Y[at] = p[1];
+    this->Z[at] = p[2];
   }
   this->HashColumns();
   return true;

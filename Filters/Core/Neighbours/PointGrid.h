@@ -95,6 +95,13 @@ public:
   template<typename Visit>
   void ForEachInBall(const double centre[3], double radius, Visit&& visit) const;
 
+  /// Calls visitRun(begin, end) for runs of consecutive layout indices that hold every point of
+  /// the ball and others near it (the cells its bounding box spans, or every point), in the
+  /// order ForEachInBall visits them: for loops that test the distance themselves, without a
+  /// branch per point.
+  template<typename VisitRun>
+  void ForEachRunAroundBall(const double centre[3], double radius, VisitRun&& visitRun) const;
+
 private:
   /// The ByCoordinates layout: every point sorted by cell, then by coordinates.
   void LayOutByCoordinates(const double* positions,
@@ -152,25 +159,34 @@ private:
 template<typename Visit>
 void PointGrid::ForEachInBall(const double centre[3], double radius, Visit&& visit) const
 {
+  const double radiusSquared = radius * radius;
+  this->ForEachRunAroundBall(centre,
+    radius,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        const double dx = this->X[i] - centre[0], dy = this->Y[i] - centre[1],
+                     dz = this->Z[i] - centre[2];
+        const double distanceSquared = dx * dx + dy * dy + dz * dz;
+        if (distanceSquared <= radiusSquared)
+        {
+          visit(i, distanceSquared);
+        }
+      }
+    });
+}
+
+template<typename VisitRun>
+void PointGrid::ForEachRunAroundBall(const double centre[3],
+  double radius,
+  VisitRun&& visitRun) const
+{
   std::int64_t low[3], high[3];
   if (this->Ids.empty() || !this->CellRange(centre, radius, low, high))
   {
     return;
   }
-  const double radiusSquared = radius * radius;
-  auto visitRun = [&](std::size_t begin, std::size_t end)
-  {
-    for (std::size_t i = begin; i < end; ++i)
-    {
-      const double dx = this->X[i] - centre[0], dy = this->Y[i] - centre[1],
-                   dz = this->Z[i] - centre[2];
-      const double distanceSquared = dx * dx + dy * dy + dz * dz;
-      if (distanceSquared <= radiusSquared)
-      {
-        visit(i, distanceSquared);
-      }
-    }
-  };
   double cellsInRange = 1.0;
   for (int axis = 0; axis < 3; ++axis)
   {

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -135,6 +136,30 @@ std::string ReadPCD(const std::string& path, const PCDReadOptions& options, PCDC
  * complete. Returns an empty string or one line naming the path.
  */
 std::string WritePCD(const std::string& path, const PCDCloud& cloud, PCDEncoding encoding);
+
+/**
+ * WritePCD in the binary encoding a range of points at a time: the same bytes as WritePCD given
+ * every point at once. Open writes the header of `header`'s fields for `count` points (WIDTH and
+ * HEIGHT as WritePCD sets them); each Append takes a cloud of those fields (its Positions and
+ * Columns, as WritePCD reads them); Close checks that `count` points came and moves the file
+ * onto the path (no file is left after a failure). Each returns an empty string or one line.
+ */
+class PCDBinaryStreamWriter
+{
+public:
+  PCDBinaryStreamWriter();
+  ~PCDBinaryStreamWriter();
+  PCDBinaryStreamWriter(const PCDBinaryStreamWriter&) = delete;
+  PCDBinaryStreamWriter& operator=(const PCDBinaryStreamWriter&) = delete;
+
+  std::string Open(const std::string& path, const PCDHeader& header, std::size_t count);
+  std::string Append(const PCDCloud& range);
+  std::string Close();
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
+};
 
 /// Whether a field holds packed colours: a 4-byte field named rgb or rgba.
 bool IsPCDPackedColour(const PCDField& field);

@@ -252,4 +252,82 @@ std::string WritePCD(const std::string& path, const PCDCloud& cloud, PCDEncoding
   return ProgressStopAsked() ? AbortedMessage : committed; // (no file then)
 }
 
+struct PCDBinaryStreamWriter::Internals
+{
+  std::string Path;
+  PCDHeader Header;
+  std::size_t Expected = 0;
+  std::size_t Appended = 0;
+  std::unique_ptr<ReplacingFile> Output;
+  bool Ok = false;
+};
+
+PCDBinaryStreamWriter::PCDBinaryStreamWriter()
+  : Impl(std::make_unique<Internals>())
+{
+}
+
+PCDBinaryStreamWriter::~PCDBinaryStreamWriter() = default;
+
+std::string PCDBinaryStreamWriter::Open(const std::string& path,
+  const PCDHeader& header,
+  std::size_t count)
+{
+  Internals& w = *this->Impl;
+  w.Path = path;
+  w.Header = header;
+  w.Expected = count;
+  w.Output = std::make_unique<ReplacingFile>(path);
+  if (!w.Output->Get())
+  {
+    return w.Output->OpenError();
+  }
+  const std::string text = FormatHeader(header, count, PCDEncoding::Binary);
+  w.Ok = std::fwrite(text.data(), 1, text.size(), w.Output->Get()) == text.size();
+  return std::string();
+}
+
+std::string PCDBinaryStreamWriter::Append(const PCDCloud& range)
+{
+  Internals& w = *this->Impl;
+  if (!w.Output || !w.Output->Get() || w.Appended + range.NumberOfPoints > w.Expected)
+  {
+    w.Ok = false;
+    return w.Path + ": more points written than announced, or the file was not opened";
+  }
+  if (range.Header.Fields.size() != w.Header.Fields.size())
+  {
+    w.Ok = false;
+    return w.Path + ": a range with other fields than the header's";
+  }
+  std::vector<PCDColumn> columns;
+  const std::string problem = GatherColumns(range, columns);
+  if (!problem.empty())
+  {
+    w.Ok = false;
+    return w.Path + ": " + problem;
+  }
+  const std::vector<std::uint8_t> records = Interleave(columns, range.NumberOfPoints);
+  w.Ok = w.Ok && std::fwrite(records.data(), 1, records.size(), w.Output->Get()) == records.size();
+  w.Appended += range.NumberOfPoints;
+  return std::string();
+}
+
+std::string PCDBinaryStreamWriter::Close()
+{
+  Internals& w = *this->Impl;
+  if (!w.Output || !w.Output->Get())
+  {
+    return w.Path + ": the file was not opened";
+  }
+  if (w.Appended != w.Expected)
+  {
+    w.Ok = false;
+  }
+  const std::string problem = w.Output->Commit(w.Ok);
+  return problem.empty() && w.Appended != w.Expected
+           ? w.Path + ": fewer points written than announced"
+           : problem;
+}
+
 } // namespace pcbilateral
