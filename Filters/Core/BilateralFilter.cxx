@@ -7,6 +7,7 @@
 #include "EdgeAwareNormals.h"
 #include "HugePages.h"
 #include "ProcessingOctree.h"
+#include "ProgressCheck.h"
 #include "RadiusBands.h"
 #include "Threads.h"
 
@@ -201,13 +202,33 @@ struct BilateralRun::Internals
     // a GUI that runs the filter on its own thread (ParaView) repaints and sees its Abort button
     // only in these calls.
     const auto now = std::chrono::steady_clock::now();
-    if (this->Observer.Progress && (fraction - this->LastReported >= 0.01 ||
-                                     now - this->LastReportTime >= std::chrono::milliseconds(100)))
+    if ((this->Observer.Progress || this->Observer.PhaseProgress) &&
+        (fraction - this->LastReported >= 0.01 ||
+          now - this->LastReportTime >= std::chrono::milliseconds(100)))
     {
-      this->Observer.Progress(fraction);
+      this->ReportPhase(fraction);
+      if (this->Observer.Progress)
+      {
+        this->Observer.Progress(fraction);
+      }
       this->LastReported = fraction;
       this->LastReportTime = now;
     }
+  }
+
+  /// The iteration that the whole run's `fraction` falls in, and the fraction of it done.
+  void ReportPhase(double fraction) const
+  {
+    if (!this->Observer.PhaseProgress)
+    {
+      return;
+    }
+    const int iterations = std::max(1, this->Parameters.NumberOfIterations);
+    const double done = fraction * iterations;
+    const int iteration = std::min(iterations - 1, static_cast<int>(done));
+    this->Observer.PhaseProgress(
+      "iteration " + std::to_string(iteration + 1) + " of " + std::to_string(iterations),
+      done - iteration);
   }
 
   /// The result's positions as a copy of the input's, if not made yet: made only when needed,
@@ -227,13 +248,25 @@ struct BilateralRun::Internals
     const double* positions,
     const RadiiUsed& radii)
   {
+    // The octree's construction asks whether to stop between and within its passes; it reports
+    // the progress so far there too (at most every 0.1 s: Report), so that a GUI repaints and
+    // sees its Abort button while it runs.
+    std::function<bool()> askDuringLoad;
+    if (this->Observer.ShouldAbort || this->Observer.Progress || this->Observer.PhaseProgress)
+    {
+      askDuringLoad = [this]()
+      {
+        this->ReportWithinStep(0.0);
+        return this->Observer.ShouldAbort && this->Observer.ShouldAbort();
+      };
+    }
     auto engine = std::make_unique<IterationEngine>(std::move(state),
       positions,
       this->WholeExtent,
       radii,
       this->Parameters.RemoveIsolatedPoints,
       this->Threads,
-      this->Observer.ShouldAbort);
+      askDuringLoad);
     this->Result.ProcessingDepth = engine->Octree.GetProcessingDepth();
     CellColoringScheduler& scheduler = engine->Scheduler;
     scheduler.ShouldAbort = this->Observer.ShouldAbort;
@@ -305,6 +338,34 @@ struct BilateralRun::Internals
       return false;
     }
     this->Result.NumberOfNeighbourEvaluations += evaluations;
+    return true;
+  }
+
+  /// Measures this run's cloud (progress and abort at the measurement's points: ProgressScope)
+  /// and chooses the automatic parameters from it. False if aborted.
+  bool MeasureOwnCloud()
+  {
+    const BilateralObserver& observer = this->Observer;
+    ProgressScope scope(
+      [&observer](double fraction)
+      {
+        if (observer.PhaseProgress)
+        {
+          observer.PhaseProgress("measuring", fraction);
+        }
+        if (observer.Progress)
+        {
+          observer.Progress(0.0); // (a GUI repaints and sees its Abort button in these calls)
+        }
+      },
+      observer.ShouldAbort);
+    scope.Check(0.0);
+    const CloudScales scales = MeasureWholeCloud(this->Cloud, this->Threads);
+    if (scope.StopAsked() || scope.CheckNow())
+    {
+      return false;
+    }
+    this->ChooseAutomaticParameters(scales);
     return true;
   }
 
@@ -610,12 +671,14 @@ bool BilateralRun::Start(const CloudExtent& wholeCloud, const CloudScales* whole
   }
   if (this->NeedsScales() && wholeCloud.NumberOfFinitePoints > 0)
   {
-    run.ChooseAutomaticParameters(
-      wholeCloudScales != nullptr ? *wholeCloudScales : MeasureWholeCloud(run.Cloud, run.Threads));
-    // An abort asked during the run's own measurement (a distributed run is given the scales,
-    // and every part must decide alike here: its parts see an abort in Step, together).
-    if (wholeCloudScales == nullptr && run.Observer.ShouldAbort && run.Observer.ShouldAbort())
+    if (wholeCloudScales != nullptr)
     {
+      run.ChooseAutomaticParameters(*wholeCloudScales);
+    }
+    else if (!run.MeasureOwnCloud())
+    {
+      // Asked during the run's own measurement (a distributed run is given the scales, and
+      // every part must decide alike here: its parts see an abort in Step, together).
       this->Stop(BilateralStatus::Aborted);
       return false;
     }

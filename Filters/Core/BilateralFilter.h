@@ -26,6 +26,10 @@ struct BilateralObserver
 {
   /// Fraction done, from 0 to 1, at least every percent.
   std::function<void(double)> Progress;
+  /// The phase running ("measuring", "iteration K of N") and the fraction of it done, called
+  /// just before Progress (and, while measuring, at the measurement's progress points, when
+  /// Progress is called with 0).
+  std::function<void(const std::string&, double)> PhaseProgress;
   /// Polled often; returning true stops the run, which then reports Aborted.
   std::function<bool()> ShouldAbort;
   /// Called with each warning as soon as it arises (they are also in BilateralResult::Warnings).
