@@ -159,7 +159,7 @@ tagged.UpdatePipeline()
 properties = dict(Radius=args.radius, NormalRadius=args.normal_radius,
                   NumberOfIterations=args.iterations, RemoveIsolatedPoints=args.remove_isolated,
                   EdgeAware=int(args.edge_aware),
-                  OrientNormalsBy="Normals", OutputEstimatedNormals=1,
+                  OrientEstimatedNormals=1, OrientNormalsBy="Normals", OutputEstimatedNormals=1,
                   OutputDisplacementLength=1, OutputPointRadius=1, NumberOfThreads=1,
                   Classes=[2] if args.classes else [])
 bilateral = simple.PointCloudBilateralFilter(Input=tagged, **properties)
