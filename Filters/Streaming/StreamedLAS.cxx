@@ -314,14 +314,17 @@ std::size_t LeaveOutRemoved(const LASFileInfo& info,
   return kept;
 }
 
-/// The records of `input`, a range at a time, at their filtered positions, into `writer` (a
-/// LASStreamWriter or a LAZStreamWriter).
-template<typename Writer>
-std::string WriteRanges(LASPointSource& input,
+/**
+ * The records of `input`, a range at a time, at their filtered positions, the removed points
+ * left out: `append(kept, positions, columns, pointers)` gets each range (its first `kept`
+ * positions and column records) and returns an empty string or a problem, which ends the loop.
+ */
+template<typename Append>
+std::string ForEachFilteredRange(LASPointSource& input,
   OutOfCoreRun& run,
-  Writer& writer,
   std::size_t pointsPerRange,
-  const std::function<void(double)>& progress)
+  const std::function<void(double)>& progress,
+  Append&& append)
 {
   const LASFileInfo& info = input.GetInfo();
   const std::uint64_t total = input.GetNumberOfPoints();
@@ -348,13 +351,34 @@ std::string WriteRanges(LASPointSource& input,
     if (problem.empty())
     {
       const std::size_t kept = LeaveOutRemoved(info, removed, positions, columns);
-      problem = writer.Append(kept, positions.data(), pointers.data());
+      problem = append(kept, positions, columns, pointers);
     }
     if (progress)
     {
       progress(static_cast<double>(first + count) / static_cast<double>(total));
     }
   }
+  return problem;
+}
+
+/// The records of `input` at their filtered positions into `writer` (a LASStreamWriter or a
+/// LAZStreamWriter).
+template<typename Writer>
+std::string WriteRanges(LASPointSource& input,
+  OutOfCoreRun& run,
+  Writer& writer,
+  std::size_t pointsPerRange,
+  const std::function<void(double)>& progress)
+{
+  const std::string problem = ForEachFilteredRange(input,
+    run,
+    pointsPerRange,
+    progress,
+    [&](std::size_t kept,
+      std::vector<double>& positions,
+      std::vector<std::vector<std::uint8_t>>&,
+      std::vector<void*>& pointers)
+    { return writer.Append(kept, positions.data(), pointers.data()); });
   return problem.empty() ? writer.Close() : problem;
 }
 } // namespace
@@ -456,35 +480,25 @@ std::string WriteStreamedLASAsText(LASPointSource& input,
   PointCloudTable table = LASTextHeader(info, colours);
   PointCloudTextStreamWriter writer;
   problem = problem.empty() ? writer.Open(path, table, false) : problem;
-  const std::uint64_t total = input.GetNumberOfPoints();
-  std::vector<std::vector<std::uint8_t>> columns(info.Dimensions.size());
-  std::vector<void*> pointers(info.Dimensions.size());
-  std::vector<std::uint8_t> removed(pointsPerRange);
-  for (std::uint64_t first = 0; first < total && problem.empty(); first += pointsPerRange)
+  if (problem.empty())
   {
-    const auto count =
-      static_cast<std::size_t>(std::min<std::uint64_t>(pointsPerRange, total - first));
-    table.Positions.resize(3 * count);
-    for (std::size_t d = 0; d < columns.size(); ++d)
-    {
-      columns[d].resize(count * LASColumnBytes(info.Dimensions[d]));
-      pointers[d] = columns[d].data();
-    }
-    problem = input.ReadPoints(first, count, table.Positions.data(), pointers.data());
-    problem = problem.empty()
-                ? run.ReadFiltered(first, count, table.Positions.data(), removed.data())
-                : problem;
-    if (problem.empty())
-    {
-      table.NumberOfPoints = LeaveOutRemoved(info, removed, table.Positions, columns);
-      table.Positions.resize(3 * table.NumberOfPoints);
-      FillTextColumns(info, columns, table.NumberOfPoints, eightBit, table);
-      problem = writer.Append(table);
-    }
-    if (progress)
-    {
-      progress(static_cast<double>(first + count) / static_cast<double>(total));
-    }
+    problem = ForEachFilteredRange(input,
+      run,
+      pointsPerRange,
+      progress,
+      [&](std::size_t kept,
+        std::vector<double>& positions,
+        std::vector<std::vector<std::uint8_t>>& columns,
+        std::vector<void*>&)
+      {
+        table.Positions.swap(positions);
+        table.NumberOfPoints = kept;
+        table.Positions.resize(3 * kept);
+        FillTextColumns(info, columns, kept, eightBit, table);
+        const std::string appended = writer.Append(table);
+        table.Positions.swap(positions);
+        return appended;
+      });
   }
   return problem.empty() ? writer.Close() : problem;
 }
@@ -614,34 +628,24 @@ std::string WriteStreamedLASAsPCD(LASPointSource& input,
     written);
   PCDBinaryStreamWriter writer;
   problem = problem.empty() ? writer.Open(path, range.Header, range.Header.Width) : problem;
-  std::vector<std::vector<std::uint8_t>> columns(info.Dimensions.size());
-  std::vector<void*> pointers(info.Dimensions.size());
-  std::vector<std::uint8_t> removed(pointsPerRange);
-  for (std::uint64_t first = 0; first < total && problem.empty(); first += pointsPerRange)
+  if (problem.empty())
   {
-    const auto count =
-      static_cast<std::size_t>(std::min<std::uint64_t>(pointsPerRange, total - first));
-    range.Positions.resize(3 * count);
-    for (std::size_t d = 0; d < columns.size(); ++d)
-    {
-      columns[d].resize(count * LASColumnBytes(info.Dimensions[d]));
-      pointers[d] = columns[d].data();
-    }
-    problem = input.ReadPoints(first, count, range.Positions.data(), pointers.data());
-    problem = problem.empty()
-                ? run.ReadFiltered(first, count, range.Positions.data(), removed.data())
-                : problem;
-    if (problem.empty())
-    {
-      const std::size_t kept = LeaveOutRemoved(info, removed, range.Positions, columns);
-      range.Positions.resize(3 * kept);
-      FillPCDColumns(info, columns, written, colours, eightBit, kept, range);
-      problem = writer.Append(range);
-    }
-    if (progress)
-    {
-      progress(static_cast<double>(first + count) / static_cast<double>(total));
-    }
+    problem = ForEachFilteredRange(input,
+      run,
+      pointsPerRange,
+      progress,
+      [&](std::size_t kept,
+        std::vector<double>& positions,
+        std::vector<std::vector<std::uint8_t>>& columns,
+        std::vector<void*>&)
+      {
+        range.Positions.swap(positions);
+        range.Positions.resize(3 * kept);
+        FillPCDColumns(info, columns, written, colours, eightBit, kept, range);
+        const std::string appended = writer.Append(range);
+        range.Positions.swap(positions);
+        return appended;
+      });
   }
   return problem.empty() ? writer.Close() : problem;
 }
