@@ -243,6 +243,7 @@ struct PCDBinaryStreamWriter::Internals
   std::size_t Expected = 0;
   std::size_t Appended = 0;
   std::unique_ptr<ReplacingFile> Output;
+  PCDEncoding Encoding = PCDEncoding::Binary;
   bool Ok = false;
 };
 
@@ -255,9 +256,15 @@ PCDBinaryStreamWriter::~PCDBinaryStreamWriter() = default;
 
 std::string PCDBinaryStreamWriter::Open(const std::string& path,
   const PCDHeader& header,
-  std::size_t count)
+  std::size_t count,
+  PCDEncoding encoding)
 {
   Internals& w = *this->Impl;
+  if (encoding == PCDEncoding::BinaryCompressed)
+  {
+    return path + ": binary_compressed is one block, not written a range at a time";
+  }
+  w.Encoding = encoding;
   w.Path = path;
   w.Header = header;
   w.Expected = count;
@@ -266,7 +273,7 @@ std::string PCDBinaryStreamWriter::Open(const std::string& path,
   {
     return w.Output->OpenError();
   }
-  const std::string text = FormatHeader(header, count, PCDEncoding::Binary);
+  const std::string text = FormatHeader(header, count, encoding);
   w.Ok = std::fwrite(text.data(), 1, text.size(), w.Output->Get()) == text.size();
   return std::string();
 }
@@ -291,7 +298,8 @@ std::string PCDBinaryStreamWriter::Append(const PCDCloud& range)
     w.Ok = false;
     return w.Path + ": " + problem;
   }
-  const std::vector<std::uint8_t> records = Interleave(columns, range.NumberOfPoints);
+  std::vector<std::uint8_t> records;
+  EncodeData(columns, range.NumberOfPoints, w.Encoding, records);
   w.Ok = w.Ok && std::fwrite(records.data(), 1, records.size(), w.Output->Get()) == records.size();
   w.Appended += range.NumberOfPoints;
   return std::string();
