@@ -290,6 +290,10 @@ std::string PCDPointSource::CheckData()
     {
       this->Kept += this->IsKept(records.data() + i * this->Stride);
     }
+    if (this->Checkpoints.size() % 256 == 0)
+    {
+      this->Release(); // (the pages read so far: the pass holds a range, not the file)
+    }
   }
   if (this->Header.Encoding == PCDEncoding::ASCII && cursor.NextLine())
   {
