@@ -61,6 +61,21 @@ std::string ParseRecordLine(const PCDHeader& header, PCDTextCursor& cursor, std:
            : "line " + std::to_string(cursor.Line) + ": more values than the fields take";
 }
 
+/// A value of a field other than x y z and padding as the run in memory writes it back: rgb's
+/// alpha byte as 255 (read as RGB, packed again), normals through doubles.
+void RewriteValue(const PCDHeader& header, const PCDField& field, std::uint8_t* value)
+{
+  if (IsPCDPackedColour(field) && field.Name == "rgb")
+  {
+    const std::uint32_t packed = LoadPCDValue<std::uint32_t>(value) | 0xFF000000u;
+    std::memcpy(value, &packed, 4);
+  }
+  else if (IsGatheredNormal(header, field))
+  {
+    StorePCDValue(field, PCDValueAsDouble(field, value), value);
+  }
+}
+
 /// A range of records as the writer's cloud: the filtered positions, then every field that is
 /// not x y z or padding, converted as the run in memory's VTK round trip converts it.
 PCDCloud RangeAsWritten(const PCDHeader& header,
@@ -127,11 +142,6 @@ std::string PCDLayoutProblem(const PCDHeader& header)
                "' is not streamed (the run in memory gives its name to another array)";
       }
     }
-  }
-  if (header.Encoding == PCDEncoding::BinaryCompressed)
-  {
-    return "--memory-limit: binary_compressed PCD input is not streamed yet (ascii and binary "
-           "are)";
   }
   return std::string();
 }
@@ -223,14 +233,10 @@ void PCDPointSource::FindCoordinates()
   }
 }
 
-std::string PCDPointSource::CheckData()
+std::string PCDPointSource::CheckSize()
 {
-  this->FindCoordinates();
-  const auto* block = reinterpret_cast<const char*>(this->Data) + this->Header.DataOffset;
   const std::size_t blockSize = this->Size - this->Header.DataOffset;
   const std::uint64_t count = this->Header.NumberOfPoints;
-  this->FirstLine = 1 + static_cast<std::size_t>(
-                          std::count(reinterpret_cast<const char*>(this->Data), block, '\n'));
   if (this->Header.Encoding == PCDEncoding::Binary && count > blockSize / this->Stride)
   {
     return this->Path + ": the binary data holds " + std::to_string(blockSize / this->Stride) +
@@ -246,6 +252,30 @@ std::string PCDPointSource::CheckData()
   {
     return this->Path + ": the ascii data holds fewer than the " + std::to_string(count) +
            " points the header announces";
+  }
+  if (this->Header.Encoding == PCDEncoding::BinaryCompressed)
+  {
+    const std::string problem = this->Decompress();
+    if (!problem.empty())
+    {
+      return problem;
+    }
+  }
+  return std::string();
+}
+
+std::string PCDPointSource::CheckData()
+{
+  this->FindCoordinates();
+  const auto* block = reinterpret_cast<const char*>(this->Data) + this->Header.DataOffset;
+  const std::size_t blockSize = this->Size - this->Header.DataOffset;
+  const std::uint64_t count = this->Header.NumberOfPoints;
+  this->FirstLine = 1 + static_cast<std::size_t>(
+                          std::count(reinterpret_cast<const char*>(this->Data), block, '\n'));
+  const std::string problem = this->CheckSize();
+  if (!problem.empty())
+  {
+    return problem;
   }
   // One pass over every record: the checkpoints, the points kept, and (ascii) every value
   // parsed, so that a damaged line is found before anything is written.
@@ -263,11 +293,12 @@ std::string PCDPointSource::CheckData()
     this->Checkpoints.push_back(checkpoint);
     const auto n = static_cast<std::size_t>(std::min(CheckpointRecords, count - first));
     records.resize(n * this->Stride);
-    if (this->Header.Encoding == PCDEncoding::Binary)
+    if (this->Header.Encoding != PCDEncoding::ASCII)
     {
-      std::copy_n(this->Data + this->Header.DataOffset + first * this->Stride,
-        records.size(),
-        records.data());
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        this->CopyRecord(first + i, records.data() + i * this->Stride);
+      }
     }
     else
     {
@@ -303,6 +334,40 @@ std::string PCDPointSource::CheckData()
   return std::string();
 }
 
+std::string PCDPointSource::Decompress()
+{
+  const std::uint64_t count = this->Header.NumberOfPoints;
+  const std::uint8_t* block = this->Data + this->Header.DataOffset;
+  const std::size_t blockSize = this->Size - this->Header.DataOffset;
+  const std::string problem = DecompressPCDFields(
+    block, blockSize, this->Header, static_cast<std::size_t>(count), this->Fields);
+  if (!problem.empty())
+  {
+    return this->Path + ": " + problem;
+  }
+  std::size_t start = 0;
+  for (const PCDField& field : this->Header.Fields)
+  {
+    this->FieldStarts.push_back(start);
+    start += static_cast<std::size_t>(count) * field.Bytes();
+  }
+  return std::string();
+}
+
+void PCDPointSource::CopyRecord(std::uint64_t record, std::uint8_t* out) const
+{
+  if (this->Header.Encoding == PCDEncoding::Binary)
+  {
+    std::copy_n(this->Data + this->Header.DataOffset + record * this->Stride, this->Stride, out);
+    return;
+  }
+  for (std::size_t f = 0; f < this->Header.Fields.size(); ++f)
+  {
+    const std::size_t bytes = this->Header.Fields[f].Bytes();
+    out = std::copy_n(this->Fields.data() + this->FieldStarts[f] + record * bytes, bytes, out);
+  }
+}
+
 std::string PCDPointSource::ReadRecords(std::uint64_t first,
   std::size_t count,
   std::vector<std::uint8_t>& records)
@@ -328,9 +393,9 @@ std::string PCDPointSource::ReadRecords(std::uint64_t first,
        ++record)
   {
     std::uint8_t* out = records.data() + filled * this->Stride;
-    if (this->Header.Encoding == PCDEncoding::Binary)
+    if (this->Header.Encoding != PCDEncoding::ASCII)
     {
-      std::copy_n(this->Data + this->Header.DataOffset + record * this->Stride, this->Stride, out);
+      this->CopyRecord(record, out);
     }
     else
     {
@@ -367,6 +432,10 @@ std::string PCDPointSource::WriteFiltered(OutOfCoreRun& run,
   std::size_t pointsPerRange,
   const std::function<void(double)>& progress)
 {
+  if (this->Header.Encoding == PCDEncoding::BinaryCompressed)
+  {
+    return this->WriteCompressed(run, path, pointsPerRange, progress);
+  }
   PCDBinaryStreamWriter writer;
   const std::uint64_t total = this->Kept;
   std::string problem = writer.Open(path,
@@ -404,6 +473,91 @@ std::string PCDPointSource::WriteFiltered(OutOfCoreRun& run,
     }
   }
   return problem.empty() ? writer.Close() : problem;
+}
+
+std::string PCDPointSource::WriteCompressed(OutOfCoreRun& run,
+  const std::string& path,
+  std::size_t pointsPerRange,
+  const std::function<void(double)>& progress)
+{
+  const std::uint64_t total = this->Header.NumberOfPoints;
+  const std::vector<PCDField>& fields = this->Header.Fields;
+  std::vector<bool> written(static_cast<std::size_t>(total), false);
+  std::vector<std::uint64_t> records;
+  std::vector<double> positions;
+  std::vector<std::uint8_t> removed, record(this->Stride);
+  std::uint64_t first = 0;
+  for (std::uint64_t next = 0; next < total || !records.empty();)
+  {
+    for (; next < total && records.size() < pointsPerRange; ++next)
+    {
+      this->CopyRecord(next, record.data());
+      if (this->IsKept(record.data()))
+      {
+        records.push_back(next);
+      }
+    }
+    positions.assign(3 * records.size(), 0.0);
+    removed.assign(records.size(), 0);
+    std::string problem = run.ReadFiltered(first, records.size(), positions.data(), removed.data());
+    if (!problem.empty())
+    {
+      return problem;
+    }
+    for (std::size_t i = 0; i < records.size(); ++i)
+    {
+      written[records[i]] = !removed[i];
+      for (std::size_t f = 0; f < fields.size(); ++f)
+      {
+        std::uint8_t* value =
+          this->Fields.data() + this->FieldStarts[f] + records[i] * fields[f].Bytes();
+        if (fields[f].IsCoordinate())
+        {
+          StorePCDValue(fields[f], positions[3 * i + (fields[f].Name[0] - 'x')], value);
+        }
+        else if (fields[f].IsPadding())
+        {
+          std::fill_n(value, fields[f].Bytes(), 0);
+        }
+        else
+        {
+          RewriteValue(this->Header, fields[f], value);
+        }
+      }
+    }
+    first += records.size();
+    records.clear();
+    if (progress)
+    {
+      progress(0.9 * static_cast<double>(next) / static_cast<double>(total));
+    }
+  }
+  // The points written to the front, field by field: a field's values move only to places
+  // before their own, and after the fields already moved, so nothing unread is overwritten.
+  const auto count = static_cast<std::size_t>(std::count(written.begin(), written.end(), true));
+  std::size_t outStart = 0;
+  for (std::size_t f = 0; f < fields.size(); ++f)
+  {
+    const std::size_t bytes = fields[f].Bytes();
+    std::size_t k = 0;
+    for (std::size_t r = 0; r < written.size(); ++r)
+    {
+      if (written[r])
+      {
+        std::memmove(this->Fields.data() + outStart + k++ * bytes,
+          this->Fields.data() + this->FieldStarts[f] + r * bytes,
+          bytes);
+      }
+    }
+    outStart += count * bytes;
+  }
+  const std::string problem =
+    WritePCDCompressedFields(path, this->Header, count, this->Fields.data());
+  if (progress)
+  {
+    progress(1.0);
+  }
+  return problem;
 }
 
 } // namespace pcbilateral

@@ -16,7 +16,8 @@ namespace pcbilateral
 {
 
 /**
- * An ascii or binary PCD file, mapped without being read in. Open checks the whole file as
+ * A PCD file, mapped without being read in (binary_compressed: its one LZF block decompressed
+ * whole). Open checks the whole file as
  * the run in memory's reader does (the same one-line errors, in the same order) and counts its
  * points with coordinates; the points without (NaN) are left out, as the run in memory leaves
  * them out by default, so the points are numbered as in memory. A checkpoint every 4096
@@ -59,7 +60,21 @@ private:
     std::size_t Line = 0;
   };
   void FindCoordinates();
+  /// The data's size against the header's points, as DecodePCD checks it first; then the
+  /// binary_compressed block decompressed.
+  std::string CheckSize();
   std::string CheckData();
+  /// binary_compressed: the block checked and decompressed into Fields.
+  std::string Decompress();
+  /// Record `record` (binary layout) into `out`, from the mapped file or, binary_compressed,
+  /// from the decompressed fields.
+  void CopyRecord(std::uint64_t record, std::uint8_t* out) const;
+  /// binary_compressed: the filtered values written into the decompressed fields in place,
+  /// the points kept moved to the front field by field, then compressed as one block.
+  std::string WriteCompressed(OutOfCoreRun& run,
+    const std::string& path,
+    std::size_t pointsPerRange,
+    const std::function<void(double)>& progress);
   /// The records (binary layout, `Stride` bytes each) of the kept points [first, first + count).
   std::string ReadRecords(std::uint64_t first,
     std::size_t count,
@@ -76,6 +91,11 @@ private:
   std::size_t CoordinateOffsets[3] = { 0, 0, 0 };
   PCDField CoordinateFields[3];
   std::vector<Checkpoint> Checkpoints;
+  /// binary_compressed: every field's values, one field after another (one LZF block,
+  /// decompressed whole when opened; counted in the memory the run holds before its slabs),
+  /// and where each field starts.
+  std::vector<std::uint8_t> Fields;
+  std::vector<std::size_t> FieldStarts;
   std::uint64_t Kept = 0;
 };
 

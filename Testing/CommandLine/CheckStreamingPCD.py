@@ -2,14 +2,16 @@
 filtered in slabs into PCD gives the same file, byte for byte, as the run in memory (its fields,
 WIDTH, HEIGHT and VIEWPOINT, packed rgb unpacked and packed again, normals gathered and
 scattered, padding as zeros, the points without coordinates of an organised frame dropped);
---keep-nan and binary_compressed input are refused; a damaged file gives the run in memory's
+binary_compressed input is decompressed whole; --keep-nan is refused; a damaged file gives the run in memory's
 one-line error, no output and no temporary file.
 
 Cases: a generated survey as an organised frame with NaN pixels (F4 and F8 coordinates, normals,
 rgb, padding, a U2 and an I8 x 2 field), ascii and binary, in spatial and random order, explicit
 and automatic parameters, several slab sizes, --remove-isolated; given the shared PCD folder,
 instead: face_model.pcd (binary), lamppost.pcd and object_template_0.pcd (ascii, padding), and
-milk.pcd (binary_compressed, refused).
+binary_compressed files (decompressed whole): milk.pcd (rgba), region_growing_tutorial.pcd (rgb),
+capture0001.pcd (an organised frame with NaN pixels, with --remove-isolated),
+samp21_utm_ground.pcd, and milk.pcd cut short or damaged (the run in memory's error).
 
     CheckStreamingPCD.py PCBILATERAL SCRATCH [PCD_DATA_DIR]
 """
@@ -119,10 +121,36 @@ def main(program, scratch, pcd_dir=None):
         c.same_as_in_memory("lamppost", os.path.join(pcd_dir, "lamppost.pcd"), [], [0, 1000])
         c.same_as_in_memory("object-template", os.path.join(pcd_dir, "object_template_0.pcd"),
                             [], [0])
-        output = os.path.join(scratch, "refused.pcd")
-        result = c.run([os.path.join(pcd_dir, "milk.pcd"), output, "--memory-limit", "1G"])
-        c.check(result.returncode == 1 and "binary_compressed" in result.stderr and
-                not os.path.exists(output), f"refused: binary_compressed ({result.stderr.strip()})")
+        # binary_compressed: rgba (milk), rgb in a float's bits (region growing), an organised
+        # frame with NaN pixels (capture0001), UTM coordinates as floats (samp21).
+        c.same_as_in_memory("milk", os.path.join(pcd_dir, "milk.pcd"), [], [0, 8000],
+                            range_points=3000)
+        c.same_as_in_memory("region-growing", os.path.join(pcd_dir,
+                                                           "region_growing_tutorial.pcd"),
+                            ["-r", "0.05", "-N", "2"], [0, 40000], range_points=30000)
+        stdout = c.same_as_in_memory("capture", os.path.join(pcd_dir, "capture0001.pcd"),
+                                     ["-r", "0.02", "-N", "2", "--remove-isolated"], [0, 80000])
+        c.check("dropped" in stdout, "capture: the points without coordinates said dropped")
+        c.same_as_in_memory("samp21", os.path.join(pcd_dir, "samp21_utm_ground.pcd"), [],
+                            [0, 5000])
+        with open(os.path.join(pcd_dir, "milk.pcd"), "rb") as stream:
+            milk = stream.read()
+        output = os.path.join(scratch, "damaged-out.pcd")
+        if os.path.exists(output):
+            os.remove(output)  # (an earlier run's)
+        sizes = milk.index(b"DATA binary_compressed\n") + len("DATA binary_compressed\n")
+        for name, data in (("milk-cut", milk[:len(milk) // 2]),
+                           ("milk-wrong-size", milk[:sizes + 4] + b"\x10\0\0\0" + milk[sizes + 8:])):
+            damaged = os.path.join(scratch, name + ".pcd")
+            with open(damaged, "wb") as stream:
+                stream.write(data)
+            memory = c.run([damaged, output, "-r", "0.01"])
+            streamed = c.run([damaged, output, "-r", "0.01", "--memory-limit", "1G"])
+            c.check(memory.returncode == 1 and streamed.returncode == 1 and
+                    streamed.stderr == memory.stderr and not os.path.exists(output) and
+                    not c.temporary_left(),
+                    f"{name}: the run in memory's error, no output, no temporary file "
+                    f"({streamed.stderr.strip()} / {memory.stderr.strip()})")
         return 1 if c.failures else 0
     files = {}
     for order in ("ordered", "shuffled"):

@@ -166,6 +166,28 @@ private:
   std::unique_ptr<Internals> Impl;
 };
 
+/**
+ * The data block of a binary_compressed file (after its header): its two sizes checked against
+ * the header's `count` points and the block's `size`, then decompressed into `fields` (every
+ * field's values for every point, one field after another). An empty string or DecodePCD's
+ * message (without the file's name).
+ */
+std::string DecompressPCDFields(const std::uint8_t* data,
+  std::size_t size,
+  const PCDHeader& header,
+  std::size_t count,
+  std::vector<std::uint8_t>& fields);
+
+/**
+ * WritePCD in binary_compressed from the fields already laid out one after another (`fields`:
+ * `count` points, header.PointBytes() bytes each, as DecompressPCDFields gives them): the same
+ * bytes as WritePCD given the same values as columns, without copying them.
+ */
+std::string WritePCDCompressedFields(const std::string& path,
+  const PCDHeader& header,
+  std::size_t count,
+  const std::uint8_t* fields);
+
 /// Whether a field holds packed colours: a 4-byte field named rgb or rgba.
 bool IsPCDPackedColour(const PCDField& field);
 
