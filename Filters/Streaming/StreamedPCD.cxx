@@ -341,6 +341,7 @@ std::string PCDPointSource::Decompress()
   const std::size_t blockSize = this->Size - this->Header.DataOffset;
   const std::string problem = DecompressPCDFields(
     block, blockSize, this->Header, static_cast<std::size_t>(count), this->Fields);
+  this->Release(); // (the compressed pages: the decompressed fields are what the run holds)
   if (!problem.empty())
   {
     return this->Path + ": " + problem;
