@@ -16,6 +16,7 @@
 #include "OutOfCoreRun.h"
 #include "StreamedFile.h"
 #include "StreamedLAS.h"
+#include "pcbilateral_progress.h"
 #include "vtkPointCloudBilateralFilter.h"
 #include "vtkPointCloudFileIO.h"
 
@@ -46,6 +47,8 @@
 
 namespace
 {
+using pcbilateral_cli::Say;
+using pcbilateral_cli::Screen;
 // The help's fixed text; the automatic rule and the paper's heuristic are the core's own words
 // (AutomaticRule.h), inserted by HelpText.
 const char* const UsageHead =
@@ -98,7 +101,8 @@ const char* const UsageTail =
   "                     memory when the cloud needs more (said)\n"
   "  -q, --quiet        print nothing but warnings and errors (default: what was read,\n"
   "                     measured, chosen and written, each line as soon as it is known, and\n"
-  "                     on a terminal a progress bar with the time left)\n"
+  "                     on a terminal a progress bar with the time left for reading,\n"
+  "                     measuring, each iteration and writing)\n"
   "  -p                 accepted for compatibility and ignored: the filter always runs in "
   "parallel\n"
   "  -h, --help         this text\n";
@@ -157,77 +161,7 @@ public:
 };
 vtkStandardNewMacro(QuietOutputWindow);
 
-/// Prints the filter's errors and warnings as one line each, as they arise.
-/// What the program prints while it runs: each summary line as soon as it is known, and on a
-/// terminal a progress bar for the filtering, with the time left, redrawn at most four times a
-/// second and erased before anything else is printed. --quiet prints neither.
-struct Terminal
-{
-  bool Quiet = false;
-  bool ShowBar = false;
-  bool BarShown = false;
-  std::chrono::steady_clock::time_point Start, LastDrawn;
-
-  void ClearBar()
-  {
-    if (this->BarShown)
-    {
-      std::fputs("\r\033[K", stdout);
-      std::fflush(stdout);
-      this->BarShown = false;
-    }
-  }
-
-  void Bar(double fraction, const char* label = "filtering:")
-  {
-    const auto now = std::chrono::steady_clock::now();
-    if (!this->ShowBar || now - this->LastDrawn < std::chrono::milliseconds(250))
-    {
-      return;
-    }
-    this->LastDrawn = now;
-    const double elapsed = std::chrono::duration<double>(now - this->Start).count();
-    constexpr int Width = 30;
-    const int filled = static_cast<int>(fraction * Width);
-    char left[32] = "";
-    if (fraction > 0.02 && fraction < 1.0)
-    {
-      std::snprintf(left, sizeof left, ", %.0f s left", elapsed * (1.0 - fraction) / fraction);
-    }
-    std::printf("\r%-15s[%s%s] %3.0f%%%s\033[K",
-      label,
-      std::string(static_cast<std::size_t>(filled), '#').c_str(),
-      std::string(static_cast<std::size_t>(Width - filled), '.').c_str(),
-      100.0 * fraction,
-      left);
-    std::fflush(stdout);
-    this->BarShown = true;
-  }
-};
-
-Terminal& Screen()
-{
-  static Terminal terminal;
-  return terminal;
-}
-
-/// printf to the standard output, unless --quiet; the progress bar erased first, the line out at
-/// once.
-void Say(const char* format, ...)
-{
-  Terminal& screen = Screen();
-  if (screen.Quiet)
-  {
-    return;
-  }
-  screen.ClearBar();
-  va_list arguments;
-  va_start(arguments, format);
-  std::vprintf(format, arguments);
-  va_end(arguments);
-  std::fflush(stdout);
-}
-
+/// The "input:" line of the points without coordinates a PCD reader left out.
 void SayDropped(unsigned long long dropped)
 {
   if (dropped > 0)
@@ -236,6 +170,7 @@ void SayDropped(unsigned long long dropped)
   }
 }
 
+/// Prints the filter's errors and warnings as one line each, as they arise.
 struct ReportMessages
 {
   bool ErrorSeen = false;
@@ -266,6 +201,7 @@ struct ReportMessages
 
 [[noreturn]] void Fail(const std::string& message)
 {
+  Screen().ClearBar();
   std::fprintf(stderr, "pcbilateral: error: %s\n", message.c_str());
   std::exit(EXIT_FAILURE);
 }
@@ -544,7 +480,9 @@ Options ParseArguments(int argc, char* argv[])
 /// The input cloud; a file that cannot be read or holds no points is an error.
 void ReadInput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData* input)
 {
-  if (!files->Read(options.Input.c_str(), input))
+  const bool read = files->Read(options.Input.c_str(), input);
+  Screen().EndPhase();
+  if (!read)
   {
     Fail(files->GetErrorMessage());
   }
@@ -679,7 +617,9 @@ void WriteOutput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData
     // The authors' layout: the input's columns in order, no columns of the filter's own.
     output->GetPointData()->RemoveArray("vtkOriginalPointIds");
   }
-  if (!files->Write(output, options.Output.c_str()))
+  const bool written = files->Write(output, options.Output.c_str());
+  Screen().EndPhase();
+  if (!written)
   {
     Fail(files->GetErrorMessage());
   }
@@ -705,31 +645,33 @@ std::string StreamingUnsupported(const Options& options)
 /// The streamed run's progress: a bar per phase on a terminal, a line per slab otherwise.
 void StreamProgress(const std::string& phase, double fraction)
 {
+  static std::chrono::steady_clock::time_point start;
   static std::string current;
-  Terminal& screen = Screen();
   const bool slab = phase.compare(0, 5, "slab ") == 0 || phase == "filtered";
-  const std::string label = slab ? "slabs:" : phase + ":";
+  const std::string label = slab ? "slabs" : phase;
   const auto now = std::chrono::steady_clock::now();
   if (label != current)
   {
     current = label;
-    screen.Start = now;
-    screen.LastDrawn = {};
+    start = now;
   }
-  screen.Bar(fraction, label.c_str());
-  const double elapsed = std::chrono::duration<double>(now - screen.Start).count();
-  if (slab && !screen.ShowBar && fraction > 0.0)
+  if (!slab || Screen().ShowsBar())
   {
-    unsigned long done = 0, total = 0;
-    if (phase == "filtered" || std::sscanf(phase.c_str(), "slab %lu of %lu", &done, &total) == 2)
-    {
-      const double left = elapsed * (1.0 - fraction) / fraction;
-      Say(phase == "filtered" ? "slabs:         all done\n"
-                              : "slabs:         %lu of %lu done, %.0f s left\n",
-        done - 1,
-        total,
-        left);
-    }
+    Screen().Phase(label, fraction);
+    return;
+  }
+  Screen().EndPhase();
+  const double elapsed = std::chrono::duration<double>(now - start).count();
+  unsigned long done = 0, total = 0;
+  if (fraction > 0.0 &&
+      (phase == "filtered" || std::sscanf(phase.c_str(), "slab %lu of %lu", &done, &total) == 2))
+  {
+    const double left = elapsed * (1.0 - fraction) / fraction;
+    Say(phase == "filtered" ? "slabs:         all done\n"
+                            : "slabs:         %lu of %lu done, %.0f s left\n",
+      done - 1,
+      total,
+      left);
   }
 }
 
@@ -879,6 +821,28 @@ std::uint64_t ChooseMemoryLimit(const Options& options)
   return limit;
 }
 
+/// Shows the progress events of `object` as the phase `phase`; the filter's (null `phase`) as
+/// its own phases (measuring, each iteration). Returns the observer's tag.
+unsigned long ShowProgress(vtkObject* object, const char* phase)
+{
+  vtkNew<vtkCallbackCommand> show;
+  show->SetClientData(const_cast<char*>(phase));
+  show->SetCallback(
+    [](vtkObject* caller, unsigned long, void* client, void* callData)
+    {
+      if (auto* filter = vtkPointCloudBilateralFilter::SafeDownCast(caller))
+      {
+        if (*filter->GetProgressPhase()) // (not before the run has a phase)
+        {
+          Screen().Phase(filter->GetProgressPhase(), filter->GetPhaseProgress());
+        }
+        return;
+      }
+      Screen().Phase(static_cast<const char*>(client), *static_cast<double*>(callData));
+    });
+  return object->AddObserver(vtkCommand::ProgressEvent, show);
+}
+
 /// With a memory limit (given, or needed: ChooseMemoryLimit), the streamed run, then exit.
 void StreamIfLimited(const Options& options)
 {
@@ -925,8 +889,7 @@ int main(int argc, char* argv[])
   vtkNew<QuietOutputWindow> quiet;
   vtkOutputWindow::SetInstance(quiet);
   const Options options = ParseArguments(argc, argv);
-  Screen().Quiet = options.Quiet;
-  Screen().ShowBar = !options.Quiet && isatty(fileno(stdout));
+  Screen().Configure(options.Quiet, isatty(fileno(stdout)));
   StreamIfLimited(options);
 
   // One place picks the reader and writer by extension and checks the file first.
@@ -937,7 +900,9 @@ int main(int argc, char* argv[])
   files->SetCOPCUseBounds(options.COPCUseBounds);
   files->SetCOPCBounds(options.COPCBounds);
   vtkNew<vtkPolyData> input;
+  const unsigned long reading = ShowProgress(files, "reading");
   ReadInput(files, options, input);
+  files->RemoveObserver(reading);
 
   Say("input:         %s, %lld points\n",
     options.Input.c_str(),
@@ -959,23 +924,18 @@ int main(int argc, char* argv[])
   vtkNew<vtkCallbackCommand> watcher;
   watcher->SetClientData(&watch);
   watcher->SetCallback(
-    [](vtkObject*, unsigned long event, void* client, void* callData)
+    [](vtkObject*, unsigned long, void* client, void*)
     {
       auto* self = static_cast<Watch*>(client);
-      if (event == vtkCommand::ProgressEvent)
-      {
-        Screen().Bar(*static_cast<double*>(callData));
-        return;
-      }
+      Screen().EndPhase(); // measuring
       PrintParametersUsed(self->Filter, *self->Chosen);
       self->ParametersSaid = true;
     });
   filter->AddObserver(vtkPointCloudBilateralFilter::ParametersChosenEvent, watcher);
-  filter->AddObserver(vtkCommand::ProgressEvent, watcher);
+  ShowProgress(filter, nullptr);
   const auto start = std::chrono::steady_clock::now();
-  Screen().Start = start;
   filter->Update();
-  Screen().ClearBar();
+  Screen().EndPhase();
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (messages.ErrorSeen)
@@ -995,6 +955,7 @@ int main(int argc, char* argv[])
       static_cast<long long>(filter->GetNumberOfRemovedPoints()));
   }
   Say("filtering:     %.3f s\n", seconds);
+  ShowProgress(files, "writing");
   WriteOutput(files, options, output);
   return EXIT_SUCCESS;
 }

@@ -7,6 +7,7 @@
 #include "EdgeAwareNormals.h"
 #include "HugePages.h"
 #include "ProcessingOctree.h"
+#include "ProgressCheck.h"
 #include "RadiusBands.h"
 #include "Threads.h"
 
@@ -201,13 +202,33 @@ struct BilateralRun::Internals
     // a GUI that runs the filter on its own thread (ParaView) repaints and sees its Abort button
     // only in these calls.
     const auto now = std::chrono::steady_clock::now();
-    if (this->Observer.Progress && (fraction - this->LastReported >= 0.01 ||
-                                     now - this->LastReportTime >= std::chrono::milliseconds(100)))
+    if ((this->Observer.Progress || this->Observer.PhaseProgress) &&
+        (fraction - this->LastReported >= 0.01 ||
+          now - this->LastReportTime >= std::chrono::milliseconds(100)))
     {
-      this->Observer.Progress(fraction);
+      this->ReportPhase(fraction);
+      if (this->Observer.Progress)
+      {
+        this->Observer.Progress(fraction);
+      }
       this->LastReported = fraction;
       this->LastReportTime = now;
     }
+  }
+
+  /// The iteration that the whole run's `fraction` falls in, and the fraction of it done.
+  void ReportPhase(double fraction) const
+  {
+    if (!this->Observer.PhaseProgress)
+    {
+      return;
+    }
+    const int iterations = std::max(1, this->Parameters.NumberOfIterations);
+    const double done = fraction * iterations;
+    const int iteration = std::min(iterations - 1, static_cast<int>(done));
+    this->Observer.PhaseProgress(
+      "iteration " + std::to_string(iteration + 1) + " of " + std::to_string(iterations),
+      done - iteration);
   }
 
   /// The result's positions as a copy of the input's, if not made yet: made only when needed,
@@ -227,13 +248,25 @@ struct BilateralRun::Internals
     const double* positions,
     const RadiiUsed& radii)
   {
+    // The octree's construction asks whether to stop between and within its passes; it reports
+    // the progress so far there too (at most every 0.1 s: Report), so that a GUI repaints and
+    // sees its Abort button while it runs.
+    std::function<bool()> askDuringLoad;
+    if (this->Observer.ShouldAbort || this->Observer.Progress || this->Observer.PhaseProgress)
+    {
+      askDuringLoad = [this]()
+      {
+        this->ReportWithinStep(0.0);
+        return this->Observer.ShouldAbort && this->Observer.ShouldAbort();
+      };
+    }
     auto engine = std::make_unique<IterationEngine>(std::move(state),
       positions,
       this->WholeExtent,
       radii,
       this->Parameters.RemoveIsolatedPoints,
       this->Threads,
-      this->Observer.ShouldAbort);
+      askDuringLoad);
     this->Result.ProcessingDepth = engine->Octree.GetProcessingDepth();
     CellColoringScheduler& scheduler = engine->Scheduler;
     scheduler.ShouldAbort = this->Observer.ShouldAbort;
@@ -305,6 +338,34 @@ struct BilateralRun::Internals
       return false;
     }
     this->Result.NumberOfNeighbourEvaluations += evaluations;
+    return true;
+  }
+
+  /// Measures this run's cloud (progress and abort at the measurement's points: ProgressScope)
+  /// and chooses the automatic parameters from it. False if aborted.
+  bool MeasureOwnCloud()
+  {
+    const BilateralObserver& observer = this->Observer;
+    ProgressScope scope(
+      [&observer](double fraction)
+      {
+        if (observer.PhaseProgress)
+        {
+          observer.PhaseProgress("measuring", fraction);
+        }
+        if (observer.Progress)
+        {
+          observer.Progress(0.0); // (a GUI repaints and sees its Abort button in these calls)
+        }
+      },
+      observer.ShouldAbort);
+    scope.Check(0.0);
+    const CloudScales scales = MeasureWholeCloud(this->Cloud, this->Threads);
+    if (scope.StopAsked() || scope.CheckNow())
+    {
+      return false;
+    }
+    this->ChooseAutomaticParameters(scales);
     return true;
   }
 
@@ -610,12 +671,14 @@ bool BilateralRun::Start(const CloudExtent& wholeCloud, const CloudScales* whole
   }
   if (this->NeedsScales() && wholeCloud.NumberOfFinitePoints > 0)
   {
-    run.ChooseAutomaticParameters(
-      wholeCloudScales != nullptr ? *wholeCloudScales : MeasureWholeCloud(run.Cloud, run.Threads));
-    // An abort asked during the run's own measurement (a distributed run is given the scales,
-    // and every part must decide alike here: its parts see an abort in Step, together).
-    if (wholeCloudScales == nullptr && run.Observer.ShouldAbort && run.Observer.ShouldAbort())
+    if (wholeCloudScales != nullptr)
     {
+      run.ChooseAutomaticParameters(*wholeCloudScales);
+    }
+    else if (!run.MeasureOwnCloud())
+    {
+      // Asked during the run's own measurement (a distributed run is given the scales, and
+      // every part must decide alike here: its parts see an abort in Step, together).
       this->Stop(BilateralStatus::Aborted);
       return false;
     }
@@ -691,40 +754,63 @@ double IterationReachInRadii(const BilateralParameters& parameters)
   return parameters.EdgeAware ? EdgeAwareReachInRadii : 1.0;
 }
 
-void BilateralRun::GetGhostReach(double box[6]) const
+std::vector<double> BilateralRun::GetGhostReaches() const
 {
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    box[2 * axis] = std::numeric_limits<double>::max();
-    box[2 * axis + 1] = -std::numeric_limits<double>::max();
-  }
-  const std::vector<double> own = this->GetPositionsForOthers();
-  if (own.empty())
-  {
-    return;
-  }
-  double magnitude = 0.0;
-  for (std::size_t i = 0; i < own.size(); i += 3)
+  const Internals& run = *this->Impl;
+  const BilateralResult& result = run.Result;
+  const double* current = run.PositionsCopied ? result.Positions.data() : run.Cloud.Positions;
+  // One group per band (one for all points when the radius is fixed): a band's points read
+  // neighbours within its own radius only (IterateBands views each band with its own reach), so
+  // the sparse bands' long reach does not spread over the dense bands' points.
+  const bool banded = !run.Bands.Empty();
+  const std::size_t groups = banded ? run.Bands.Radius.size() : 1;
+  std::vector<double> bounds(6 * groups);
+  std::vector<std::uint8_t> used(groups, 0);
+  for (std::size_t g = 0; g < groups; ++g)
   {
     for (int axis = 0; axis < 3; ++axis)
     {
-      box[2 * axis] = std::min(box[2 * axis], own[i + axis]);
-      box[2 * axis + 1] = std::max(box[2 * axis + 1], own[i + axis]);
-      magnitude = std::max(magnitude, std::abs(own[i + axis]));
+      bounds[6 * g + 2 * axis] = std::numeric_limits<double>::max();
+      bounds[6 * g + 2 * axis + 1] = -std::numeric_limits<double>::max();
     }
   }
-  // Points move by less than a radius per iteration, but the box is taken from the current
-  // positions, so one radius of reach is enough.
-  // The edge-aware mode reads its neighbours' normals, which read theirs: it reaches further.
-  const double reach = IterationReachInRadii(this->Impl->Parameters);
-  const double radius =
-    this->Impl->Bands.Empty() ? this->Impl->Radii.Radius : this->Impl->Bands.LargestRadius();
-  const double margin = GhostMargin(reach * radius, magnitude);
-  for (int axis = 0; axis < 3; ++axis)
+  double magnitude = 0.0;
+  for (std::size_t i = 0; i < result.Removed.size(); ++i)
   {
-    box[2 * axis] -= margin;
-    box[2 * axis + 1] += margin;
+    const double* p = current + 3 * i;
+    const std::size_t g = banded ? run.Bands.BandOfPoint[i] : 0;
+    if (result.Removed[i] || !IsFinitePoint(p) || g >= groups)
+    {
+      continue;
+    }
+    used[g] = 1;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      bounds[6 * g + 2 * axis] = std::min(bounds[6 * g + 2 * axis], p[axis]);
+      bounds[6 * g + 2 * axis + 1] = std::max(bounds[6 * g + 2 * axis + 1], p[axis]);
+      magnitude = std::max(magnitude, std::abs(p[axis]));
+    }
   }
+  // Points move by less than a radius per iteration, but the boxes are taken from the current
+  // positions, so one radius of reach is enough. The edge-aware mode reads its neighbours'
+  // normals, which read theirs (with the same band's radii): it reaches further.
+  const double reach = IterationReachInRadii(run.Parameters);
+  std::vector<double> boxes;
+  for (std::size_t g = 0; g < groups; ++g)
+  {
+    if (!used[g])
+    {
+      continue;
+    }
+    const double radius = banded ? run.Bands.Radius[g] : run.Radii.Radius;
+    const double margin = GhostMargin(reach * radius, magnitude);
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      boxes.push_back(bounds[6 * g + 2 * axis] - margin);
+      boxes.push_back(bounds[6 * g + 2 * axis + 1] + margin);
+    }
+  }
+  return boxes;
 }
 
 BilateralStatus BilateralRun::Step()

@@ -26,6 +26,10 @@ struct BilateralObserver
 {
   /// Fraction done, from 0 to 1, at least every percent.
   std::function<void(double)> Progress;
+  /// The phase running ("measuring", "iteration K of N") and the fraction of it done, called
+  /// just before Progress (and, while measuring, at the measurement's progress points, when
+  /// Progress is called with 0).
+  std::function<void(const std::string&, double)> PhaseProgress;
   /// Polled often; returning true stops the run, which then reports Aborted.
   std::function<bool()> ShouldAbort;
   /// Called with each warning as soon as it arises (they are also in BilateralResult::Warnings).
@@ -98,7 +102,7 @@ struct BilateralResult
  *   run.Start(extent of the whole cloud,             // every part uses the same parameters
  *     scales of the whole cloud if run.NeedsScales()); // and octree
  *   while (run.HasNextIteration())
- *     run.Step(ghosts);   // ghosts: the other parts' points within GetGhostReach() of this one
+ *     run.Step(ghosts);   // ghosts: the other parts' points in GetGhostReaches() of this one
  *   BilateralResult result = run.Finish();
  *
  * With ghosts, each step rebuilds the octree from the part's points and the ghosts, which are
@@ -149,12 +153,16 @@ public:
 
   /**
    * The current positions, interleaved, of this run's points that other parts may need as
-   * neighbours (finite, not removed), and the box within reach of them: the other parts' points
-   * in it are this run's ghosts for the next step (more than needed is harmless, the kernel
-   * ignores candidates beyond the radius). The box is empty (min > max) when there are none.
+   * neighbours (finite, not removed), and the boxes within reach of them (6 doubles each: x
+   * min, x max, y min, ..., none when there are no such points): the other parts' points in any
+   * of them are this run's ghosts for the next step (more than needed is harmless, the kernel
+   * ignores candidates beyond the radius). One box per radius band this run has points in,
+   * each that band's points grown by the band's own reach (one box when the radius is fixed):
+   * where the radius follows the density, one box grown by the largest radius would reach over
+   * most of a dense neighbour's part.
    */
   std::vector<double> GetPositionsForOthers() const;
-  void GetGhostReach(double box[6]) const;
+  std::vector<double> GetGhostReaches() const;
 
   /// Runs the next iteration on this run's points alone. Returns the status after it.
   BilateralStatus Step();

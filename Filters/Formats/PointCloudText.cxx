@@ -3,6 +3,7 @@
 
 #include "TextFields.h"
 
+#include "ProgressCheck.h"
 #include "ReplacingFile.h"
 
 #include <algorithm>
@@ -254,14 +255,22 @@ std::string ParsePoints(const TextStart& start,
   const std::vector<const char*> bounds = PieceBounds(start.FirstPoint, end, minimumPieceBytes);
   const int pieceCount = static_cast<int>(bounds.size()) - 1;
   std::vector<ParsedPiece> pieces(static_cast<std::size_t>(pieceCount));
+  ParallelProgress progress(static_cast<std::uint64_t>(end - start.FirstPoint));
 #pragma omp parallel for schedule(dynamic, 1)
   for (int k = 0; k < pieceCount; ++k)
   {
-    ParsePiece(std::min(bounds[k], end),
-      std::min(bounds[k + 1], end),
-      start.Columns,
-      leadingColumns,
-      pieces[k]);
+    if (progress.StopAsked())
+    {
+      continue;
+    }
+    const char* first = std::min(bounds[k], end);
+    const char* last = std::min(bounds[k + 1], end);
+    ParsePiece(first, last, start.Columns, leadingColumns, pieces[k]);
+    progress.Done(static_cast<std::uint64_t>(last - first));
+  }
+  if (progress.StopAsked())
+  {
+    return AbortedMessage;
   }
   std::size_t lineNumber = start.LineNumber;
   for (const ParsedPiece& piece : pieces)
@@ -413,16 +422,33 @@ std::string ReadPointCloudText(const std::string& path,
   {
     return path + ": cannot be opened for reading (" + std::strerror(errno) + ")";
   }
-  // Not zero-filled first: the read fills it.
+  // Not zero-filled first: the read fills it. In blocks, for progress and abort.
   const auto size = static_cast<std::size_t>(fileSize);
   const std::unique_ptr<char[]> text(new char[size + 1]);
-  const std::size_t read = std::fread(text.get(), 1, size, file);
+  constexpr std::size_t BlockBytes = std::size_t(8) << 20;
+  SetProgressStage(0.0, 0.3);
+  std::size_t read = 0;
+  while (read < size && !ProgressPoint(read, size))
+  {
+    const std::size_t count =
+      std::fread(text.get() + read, 1, std::min(BlockBytes, size - read), file);
+    read += count;
+    if (count == 0)
+    {
+      break;
+    }
+  }
   const bool failed = std::ferror(file) != 0;
   std::fclose(file);
+  if (ProgressStopAsked())
+  {
+    return AbortedMessage;
+  }
   if (failed || read != size)
   {
     return path + ": read error";
   }
+  SetProgressStage(0.3, 1.0);
   return ParsePointCloudTextPiece(text.get(), size, hasNormals, path, piece, pieces, table);
 }
 
@@ -513,6 +539,10 @@ bool WriteLines(std::FILE* file, const PointCloudTable& table, bool withNormals)
   bool ok = true;
   for (std::size_t first = 0; first < blockCount && ok; first += BlocksAtOnce)
   {
+    if (ProgressPoint(first, blockCount))
+    {
+      return false;
+    }
     const auto count = static_cast<std::int64_t>(std::min(BlocksAtOnce, blockCount - first));
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::int64_t b = 0; b < count; ++b)
@@ -546,7 +576,8 @@ std::string WritePointCloudText(const std::string& path, const PointCloudTable& 
   const std::string header = MakeHeaderLine(table, withNormals);
   bool ok = std::fwrite(header.data(), 1, header.size(), file) == header.size();
   ok = ok && WriteLines(file, table, withNormals);
-  return output.Commit(ok);
+  const std::string problem = output.Commit(ok);
+  return ProgressStopAsked() ? AbortedMessage : problem; // (the file is not written then)
 }
 
 struct PointCloudTextStream::Internals

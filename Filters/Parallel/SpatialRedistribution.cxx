@@ -14,7 +14,7 @@ namespace pcbilateral
 {
 namespace
 {
-using Buffers = std::vector<std::vector<double>>;
+using Buffers = ExchangedBuffers;
 
 /// Below MPI's smallest guaranteed tag bound (32767), and used by nothing else here.
 constexpr int ExchangeTag = 2727;
@@ -22,52 +22,6 @@ constexpr int ExchangeTag = 2727;
 constexpr std::size_t MessageLength = std::size_t(1) << 26;
 /// The histogram's resolution: the regions' counts differ by at most one bin's points.
 constexpr long long HistogramBins = 1LL << 18;
-
-/// Collective: outgoing[p] goes to process p (outgoing[self] stays); returns what each process
-/// sent here, by process. Each outgoing buffer is freed once sent.
-Buffers ExchangeBuffers(vtkMPIController* controller, Buffers outgoing)
-{
-  const int processes = controller->GetNumberOfProcesses();
-  const int self = controller->GetLocalProcessId();
-  std::vector<vtkIdType> lengths(processes),
-    allLengths(static_cast<std::size_t>(processes) * static_cast<std::size_t>(processes));
-  for (int p = 0; p < processes; ++p)
-  {
-    lengths[p] = static_cast<vtkIdType>(outgoing[p].size());
-  }
-  controller->AllGather(lengths.data(), allLengths.data(), processes);
-  Buffers incoming(processes);
-  incoming[self] = std::move(outgoing[self]);
-  for (int round = 1; round < processes; ++round)
-  {
-    const int to = (self + round) % processes;
-    const int from = (self - round + processes) % processes;
-    const std::vector<double>& data = outgoing[to];
-    std::vector<vtkMPICommunicator::Request> requests(
-      (data.size() + MessageLength - 1) / MessageLength);
-    for (std::size_t offset = 0, k = 0; offset < data.size(); offset += MessageLength, ++k)
-    {
-      const int length = static_cast<int>(std::min(MessageLength, data.size() - offset));
-      controller->NoBlockSend(data.data() + offset, length, to, ExchangeTag, requests[k]);
-    }
-    std::vector<double>& received = incoming[from];
-    received.resize(static_cast<std::size_t>(
-      allLengths[static_cast<std::size_t>(from) * static_cast<std::size_t>(processes) +
-                 static_cast<std::size_t>(self)]));
-    for (std::size_t offset = 0; offset < received.size(); offset += MessageLength)
-    {
-      const vtkIdType length =
-        static_cast<vtkIdType>(std::min(MessageLength, received.size() - offset));
-      controller->Receive(received.data() + offset, length, from, ExchangeTag);
-    }
-    if (!requests.empty())
-    {
-      controller->WaitAll(static_cast<int>(requests.size()), requests.data());
-    }
-    std::vector<double>().swap(outgoing[to]);
-  }
-  return incoming;
-}
 
 /// For each point of the share, the process whose slab holds it (non-finite points: this one).
 std::vector<int> AssignRegions(vtkMPIController* controller,
@@ -142,6 +96,50 @@ bool AnyProcess(vtkMPIController* controller, bool here)
   return any != 0;
 }
 } // namespace
+
+ExchangedBuffers ExchangeBuffers(vtkMPIController* controller, ExchangedBuffers outgoing)
+{
+  const int processes = controller->GetNumberOfProcesses();
+  const int self = controller->GetLocalProcessId();
+  std::vector<vtkIdType> lengths(processes),
+    allLengths(static_cast<std::size_t>(processes) * static_cast<std::size_t>(processes));
+  for (int p = 0; p < processes; ++p)
+  {
+    lengths[p] = static_cast<vtkIdType>(outgoing[p].size());
+  }
+  controller->AllGather(lengths.data(), allLengths.data(), processes);
+  ExchangedBuffers incoming(processes);
+  incoming[self] = std::move(outgoing[self]);
+  for (int round = 1; round < processes; ++round)
+  {
+    const int to = (self + round) % processes;
+    const int from = (self - round + processes) % processes;
+    const std::vector<double>& data = outgoing[to];
+    std::vector<vtkMPICommunicator::Request> requests(
+      (data.size() + MessageLength - 1) / MessageLength);
+    for (std::size_t offset = 0, k = 0; offset < data.size(); offset += MessageLength, ++k)
+    {
+      const int length = static_cast<int>(std::min(MessageLength, data.size() - offset));
+      controller->NoBlockSend(data.data() + offset, length, to, ExchangeTag, requests[k]);
+    }
+    std::vector<double>& received = incoming[from];
+    received.resize(static_cast<std::size_t>(
+      allLengths[static_cast<std::size_t>(from) * static_cast<std::size_t>(processes) +
+                 static_cast<std::size_t>(self)]));
+    for (std::size_t offset = 0; offset < received.size(); offset += MessageLength)
+    {
+      const vtkIdType length =
+        static_cast<vtkIdType>(std::min(MessageLength, received.size() - offset));
+      controller->Receive(received.data() + offset, length, from, ExchangeTag);
+    }
+    if (!requests.empty())
+    {
+      controller->WaitAll(static_cast<int>(requests.size()), requests.data());
+    }
+    std::vector<double>().swap(outgoing[to]);
+  }
+  return incoming;
+}
 
 SpatialRedistribution::SpatialRedistribution(vtkMPIController* controller,
   const PointCloudView& share,

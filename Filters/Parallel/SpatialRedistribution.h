@@ -16,6 +16,13 @@ class vtkMPIController;
 namespace pcbilateral
 {
 
+/// One buffer of doubles per process.
+using ExchangedBuffers = std::vector<std::vector<double>>;
+
+/// Collective: outgoing[p] goes to process p (outgoing[self] stays); returns what each process
+/// sent here, by process. Each outgoing buffer is freed once sent.
+ExchangedBuffers ExchangeBuffers(vtkMPIController* controller, ExchangedBuffers outgoing);
+
 /**
  * The points of this process's region, moved there from the processes that hold them in the
  * input, and the way back for the run's result.

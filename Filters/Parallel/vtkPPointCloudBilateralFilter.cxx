@@ -29,16 +29,9 @@
 #include "SpatialRedistribution.h"
 
 #include "vtkCommunicator.h"
-#include "vtkDistributedPointCloudFilter.h"
-#include "vtkDoubleArray.h"
-#include "vtkIntArray.h"
 #include "vtkMPIController.h"
 #include "vtkMultiProcessController.h"
-#include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkPointData.h"
-#include "vtkPoints.h"
-#include "vtkPolyData.h"
 
 #include <algorithm>
 #include <limits>
@@ -53,10 +46,6 @@ namespace
 using pcbilateral::BilateralResult;
 using pcbilateral::BilateralStatus;
 using pcbilateral::CloudExtent;
-
-/// Names of the arrays the ghost exchange carries; vtkPoints travel as float.
-constexpr const char* PositionArrayName = "vtkPointCloudBilateralPosition";
-constexpr const char* ProcessArrayName = "vtkPointCloudBilateralProcess";
 
 /// The whole cloud's extent (finite points only), and whether any process failed to prepare.
 CloudExtent ShareExtent(vtkMultiProcessController* controller,
@@ -112,69 +101,55 @@ void ShareTotals(vtkMultiProcessController* controller, BilateralResult& result)
 }
 
 /**
- * The current positions of the other processes' points within this process's reach box,
- * fetched with VTK's vtkDistributedPointCloudFilter::GetPointsInsideBounds. `own` holds this
- * process's points that others may need. The positions travel in a double array: the exchanged
- * vtkPoints are float, and ghosts rounded to float would change the sums.
+ * The current positions of the other processes' points within this process's reach boxes
+ * (BilateralRun::GetGhostReaches: one per radius band, 6 doubles each). `own` holds this
+ * process's points that others may need. Every process learns every process's boxes and sends
+ * each the points of `own` inside any of its boxes. One box per process (VTK's
+ * vtkDistributedPointCloudFilter::GetPointsInsideBounds) would be grown by the largest band's
+ * reach and, on a cloud whose density varies, bring a sparse part most of a dense part's
+ * points. Positions travel as doubles: ghosts rounded to float would change the sums.
  */
 std::vector<double> FetchGhosts(vtkMPIController* controller,
   const std::vector<double>& own,
-  const double box[6])
+  const std::vector<double>& reach)
 {
   const int processes = controller->GetNumberOfProcesses();
   const int self = controller->GetLocalProcessId();
-  std::vector<double> boxes(6 * static_cast<std::size_t>(processes));
-  controller->AllGather(box, boxes.data(), 6);
-
-  // Only the points some other process reaches are offered: GetPointsInsideBounds also sends a
-  // process its own points within its box, and most of those would be all of them.
-  vtkNew<vtkPoints> points;
-  points->SetDataType(VTK_DOUBLE);
-  vtkNew<vtkDoubleArray> positions;
-  positions->SetName(PositionArrayName);
-  positions->SetNumberOfComponents(3);
-  vtkNew<vtkIntArray> owner;
-  owner->SetName(ProcessArrayName);
-  for (std::size_t i = 0; i < own.size(); i += 3)
+  const vtkIdType reachLength = static_cast<vtkIdType>(reach.size());
+  std::vector<vtkIdType> lengths(processes), offsets(processes, 0);
+  controller->AllGather(&reachLength, lengths.data(), 1);
+  for (int p = 1; p < processes; ++p)
   {
-    const double* p = own.data() + i;
-    for (int other = 0; other < processes; ++other)
+    offsets[p] = offsets[p - 1] + lengths[p - 1];
+  }
+  std::vector<double> boxes(static_cast<std::size_t>(offsets.back() + lengths.back()));
+  controller->AllGatherV(reach.data(), boxes.data(), reachLength, lengths.data(), offsets.data());
+
+  pcbilateral::ExchangedBuffers outgoing(processes);
+  for (int other = 0; other < processes; ++other)
+  {
+    const double* first = boxes.data() + offsets[other];
+    const double* last = first + lengths[other];
+    for (std::size_t i = 0; other != self && i < own.size(); i += 3)
     {
-      if (other != self && pcbilateral::InsideBox(boxes.data() + 6 * other, p))
+      const double* p = own.data() + i;
+      for (const double* box = first; box != last; box += 6)
       {
-        points->InsertNextPoint(p);
-        positions->InsertNextTuple(p);
-        owner->InsertNextValue(self);
-        break;
+        if (pcbilateral::InsideBox(box, p))
+        {
+          outgoing[other].insert(outgoing[other].end(), p, p + 3);
+          break;
+        }
       }
     }
   }
-  vtkNew<vtkPolyData> offered;
-  offered->SetPoints(points);
-  offered->GetPointData()->AddArray(positions);
-  offered->GetPointData()->AddArray(owner);
-
-  vtkNew<vtkPolyData> received;
-  vtkDistributedPointCloudFilter::GetPointsInsideBounds(controller, offered, received, box);
-
+  pcbilateral::ExchangedBuffers incoming =
+    pcbilateral::ExchangeBuffers(controller, std::move(outgoing));
   std::vector<double> ghosts;
-  auto* receivedPositions =
-    vtkDoubleArray::SafeDownCast(received->GetPointData()->GetAbstractArray(PositionArrayName));
-  auto* receivedOwners =
-    vtkIntArray::SafeDownCast(received->GetPointData()->GetAbstractArray(ProcessArrayName));
-  if (!receivedPositions || !receivedOwners)
+  for (std::vector<double>& from : incoming)
   {
-    return ghosts; // nothing was received
-  }
-  const vtkIdType count = receivedPositions->GetNumberOfTuples();
-  ghosts.reserve(3 * static_cast<std::size_t>(count));
-  for (vtkIdType i = 0; i < count; ++i)
-  {
-    if (receivedOwners->GetValue(i) != self) // this process's own points come back too
-    {
-      const double* p = receivedPositions->GetPointer(3 * i);
-      ghosts.insert(ghosts.end(), p, p + 3);
-    }
+    ghosts.insert(ghosts.end(), from.begin(), from.end());
+    std::vector<double>().swap(from);
   }
   return ghosts;
 }
@@ -286,10 +261,8 @@ BilateralResult vtkPPointCloudBilateralFilter::RunRedistributed(vtkMPIController
   {
     while (run.HasNextIteration())
     {
-      double reach[6];
-      run.GetGhostReach(reach);
       const std::vector<double> ghosts =
-        FetchGhosts(controller, run.GetPositionsForOthers(), reach);
+        FetchGhosts(controller, run.GetPositionsForOthers(), run.GetGhostReaches());
       mostGhosts = std::max(mostGhosts, ghosts.size() / 3);
       const BilateralStatus status = ShareStatus(controller, run.Step(ghosts));
       if (status != BilateralStatus::Completed)

@@ -15,7 +15,7 @@
  * process with equal counts (so that a process whose input part spans the whole cloud, as a
  * reader's share of a file in random order does, never needs the whole cloud as neighbours);
  * before each iteration, the processes exchange the current positions of their points within
- * one radius of each other's slabs (with vtkDistributedPointCloudFilter::GetPointsInsideBounds),
+ * reach of each other's slabs (one box per radius band: a band reaches as far as its own radius),
  * which the core uses as neighbours only; the filtered positions go back to the processes that
  * hold the points in the input. Every process must update the filter together, as with VTK's other
  * parallel filters; a failure on one process (bad input, bad parameters) ends the update on all of
@@ -25,7 +25,7 @@
  * With no controller or a single process, it is vtkPointCloudBilateralFilter.
  *
  * @sa
- * vtkPointCloudBilateralFilter vtkDistributedPointCloudFilter
+ * vtkPointCloudBilateralFilter
  */
 #ifndef vtkPPointCloudBilateralFilter_h
 #define vtkPPointCloudBilateralFilter_h

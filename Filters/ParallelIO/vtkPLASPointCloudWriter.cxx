@@ -9,6 +9,7 @@
 
 #include "LASWriteParts.h"
 #include "LAZWriter.h"
+#include "ProgressCheck.h"
 #include "ReplacingPath.h"
 
 #include "vtkCommunicator.h"
@@ -402,12 +403,20 @@ std::string vtkPLASPointCloudWriter::WritePoints(const std::string& problem,
     return this->Superclass::WritePoints(
       problem, fileName, info, count, positions, columns, compressed);
   }
+  // An abort is agreed on first, where every process meets; the parts are then written whole
+  // (an abort within them would leave the other processes waiting).
+  if (AnyProcess(controller, this->GetAbortExecute() != 0))
+  {
+    return pcbilateral::AbortedMessage;
+  }
   if (AnyProcess(controller, !problem.empty()))
   {
     return problem.empty() ? fileName + ": another process could not write its part (see its "
                                         "error); no file was written"
                            : problem;
   }
+  pcbilateral::ProgressScope noAbortWithin(
+    [this](double fraction) { this->UpdateProgress(fraction); }, nullptr);
   if (!SameRecords(controller, info))
   {
     return fileName + ": the processes' points have different LAS point formats, record "

@@ -377,6 +377,11 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   pcbilateral::BilateralObserver observer;
   observer.Progress = [this](double fraction) { this->UpdateProgress(fraction); };
   observer.ShouldAbort = [this]() { return this->GetAbortExecute() != 0; };
+  observer.PhaseProgress = [this](const std::string& phase, double fraction)
+  {
+    this->ProgressPhase = phase;
+    this->PhaseFraction = fraction;
+  };
   observer.Warning = [this](const std::string& warning) { vtkWarningMacro(<< warning); };
   observer.ParametersChosen = [this](const pcbilateral::BilateralResult& chosen)
   {

@@ -316,6 +316,12 @@ public:
    */
   const char* GetLastRunSummary() const { return this->LastRunSummary.c_str(); }
 
+  /// In a ProgressEvent observer: the phase of the run ("measuring", "iteration 2 of 3") and
+  /// the fraction of it done, as pcbilateral's progress bar shows them (GetProgress() is the
+  /// whole run's fraction, 0 while measuring).
+  const char* GetProgressPhase() const { return this->ProgressPhase.c_str(); }
+  double GetPhaseProgress() const { return this->PhaseFraction; }
+
 protected:
   vtkPointCloudBilateralFilter();
   ~vtkPointCloudBilateralFilter() override;
@@ -365,6 +371,8 @@ protected:
   vtkIdType NumberOfNonFinitePoints = 0;
   vtkIdType NumberOfFilteredPoints = 0;
   std::string LastRunSummary = "not run yet";
+  std::string ProgressPhase;
+  double PhaseFraction = 0.0;
 
 private:
   struct InputCloud;

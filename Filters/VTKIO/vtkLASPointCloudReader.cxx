@@ -6,6 +6,7 @@
 #include "LAZReader.h"
 #include "PointPieces.h"
 #include "vtkLASPointCloudFieldData.h"
+#include "vtkPointCloudProgress.h"
 #include "vtkPointCloudVertices.h"
 
 #include "vtkDataArray.h"
@@ -74,6 +75,7 @@ int vtkLASPointCloudReader::RequestData(vtkInformation*,
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->ErrorMessage.clear();
+  vtkPointCloudProgress progress(this, this->AbortExecute);
   pcbilateral::LASFileBytes file;
   pcbilateral::LASFileInfo info;
   if (!this->FileName || !*this->FileName)
@@ -95,6 +97,8 @@ int vtkLASPointCloudReader::RequestData(vtkInformation*,
   pcbilateral::PointRange share;
   if (this->ErrorMessage.empty())
   {
+    // Decompressing takes most of a LAZ file's read.
+    progress.SetStage(0.0, pcbilateral::IsLAZ(file.Data(), file.Size()) ? 0.8 : 0.0);
     this->ErrorMessage = this->ReadShare(file,
       info,
       outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()),
@@ -106,11 +110,20 @@ int vtkLASPointCloudReader::RequestData(vtkInformation*,
   }
   if (this->ErrorMessage.empty())
   {
+    progress.SetStage(pcbilateral::IsLAZ(file.Data(), file.Size()) ? 0.8 : 0.0, 1.0);
     this->ErrorMessage = this->DecodePoints(info, records, count, output);
   }
   if (this->ErrorMessage.empty())
   {
     this->ErrorMessage = this->AddDisplayColours(file.Data(), file.Size(), info, share, output);
+  }
+  if (progress.StopAsked())
+  {
+    // Aborted: an empty output and no error event; GetErrorMessage() says "aborted", which a
+    // distributed read takes as this piece's failure, so that every process stops.
+    output->Initialize();
+    this->ErrorMessage = pcbilateral::AbortedMessage;
+    return 1;
   }
   if (!this->ErrorMessage.empty())
   {
@@ -144,8 +157,11 @@ std::string vtkLASPointCloudReader::DecodePoints(const pcbilateral::LASFileInfo&
     arrays.push_back(array);
     columns.push_back(array->GetVoidPointer(0));
   }
-  pcbilateral::DecodeLASPoints(
-    info, records, static_cast<std::size_t>(count), positions->GetPointer(0), columns.data());
+  if (!pcbilateral::DecodeLASPoints(
+        info, records, static_cast<std::size_t>(count), positions->GetPointer(0), columns.data()))
+  {
+    return pcbilateral::AbortedMessage;
+  }
 
   vtkNew<vtkPoints> points;
   points->SetData(positions);

@@ -2,6 +2,7 @@
 
 #include "LASWriter.h"
 #include "vtkLASPointCloudFieldData.h"
+#include "vtkPointCloudProgress.h"
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -243,6 +244,7 @@ std::string vtkLASPointCloudWriter::WritePoints(const std::string& problem,
 
 void vtkLASPointCloudWriter::WriteData()
 {
+  vtkPointCloudProgress progress(this, this->AbortExecute);
   vtkPointSet* input = vtkPointSet::SafeDownCast(this->GetInput());
   std::string problem;
   if (!this->FileName || !*this->FileName)
@@ -293,7 +295,14 @@ void vtkLASPointCloudWriter::WriteData()
     positions ? static_cast<const double*>(positions->GetVoidPointer(0)) : none,
     columns.data(),
     compressed);
-  if (!this->ErrorMessage.empty())
+  if (progress.StopAsked() || this->ErrorMessage == pcbilateral::AbortedMessage)
+  {
+    // Aborted (here, or in another process of a parallel write): no file (the formats write beside
+    // it and rename), no error event.
+    this->ErrorMessage = pcbilateral::AbortedMessage;
+    this->SetErrorCode(vtkErrorCode::UserError);
+  }
+  else if (!this->ErrorMessage.empty())
   {
     vtkErrorMacro(<< this->ErrorMessage);
     this->SetErrorCode(

@@ -2,6 +2,7 @@
 
 #include "PCDFile.h"
 #include "vtkPCDPointCloudFieldData.h"
+#include "vtkPointCloudProgress.h"
 #include "vtkPointCloudVertices.h"
 
 #include "vtkDataArray.h"
@@ -135,6 +136,7 @@ int vtkPCDPointCloudReader::RequestData(vtkInformation*,
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->ErrorMessage.clear();
+  vtkPointCloudProgress progress(this, this->AbortExecute);
   this->NumberOfDroppedPoints = 0;
   if (!this->FileName || !*this->FileName)
   {
@@ -149,6 +151,14 @@ int vtkPCDPointCloudReader::RequestData(vtkInformation*,
     outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES());
   pcbilateral::PCDCloud cloud;
   this->ErrorMessage = pcbilateral::ReadPCD(this->FileName, options, cloud);
+  if (progress.StopAsked())
+  {
+    // Aborted: an empty output and no error event; GetErrorMessage() says "aborted", which a
+    // distributed read takes as this piece's failure, so that every process stops.
+    output->Initialize();
+    this->ErrorMessage = pcbilateral::AbortedMessage;
+    return 1;
+  }
   if (!this->ErrorMessage.empty())
   {
     vtkErrorMacro(<< this->ErrorMessage);

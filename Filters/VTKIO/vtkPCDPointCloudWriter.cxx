@@ -4,6 +4,7 @@
 #include "PCDValues.h"
 #include "vtkLASPointCloudFieldData.h"
 #include "vtkPCDPointCloudFieldData.h"
+#include "vtkPointCloudProgress.h"
 
 #include "vtkDataArray.h"
 #include "vtkErrorCode.h"
@@ -237,6 +238,7 @@ int vtkPCDPointCloudWriter::FillInputPortInformation(int, vtkInformation* info)
 void vtkPCDPointCloudWriter::WriteData()
 {
   this->ErrorMessage.clear();
+  vtkPointCloudProgress progress(this, this->AbortExecute);
   auto* input = vtkPointSet::SafeDownCast(this->GetInput());
   if (!this->FileName || !*this->FileName)
   {
@@ -272,7 +274,11 @@ void vtkPCDPointCloudWriter::WriteData()
     encoding = static_cast<pcbilateral::PCDEncoding>(this->DataEncoding);
   }
   this->ErrorMessage = pcbilateral::WritePCD(this->FileName, builder.Cloud, encoding);
-  if (!this->ErrorMessage.empty())
+  if (progress.StopAsked())
+  {
+    this->SetErrorCode(vtkErrorCode::UserError); // aborted: no file, no error message
+  }
+  else if (!this->ErrorMessage.empty())
   {
     vtkErrorMacro(<< this->ErrorMessage);
     this->SetErrorCode(vtkErrorCode::CannotOpenFileError);

@@ -192,6 +192,17 @@ std::string NotHeldByPLY(vtkPolyData* data, vtkPLYWriter* ply)
   return notHeld;
 }
 
+/// Passes the algorithm's progress events on as `files`' own, for whoever watches the reads and
+/// writes (pcbilateral's progress bar).
+void ForwardProgress(vtkAlgorithm* algorithm, vtkObject* files)
+{
+  vtkNew<vtkCallbackCommand> forward;
+  forward->SetClientData(files);
+  forward->SetCallback([](vtkObject*, unsigned long, void* client, void* callData)
+    { static_cast<vtkObject*>(client)->InvokeEvent(vtkCommand::ProgressEvent, callData); });
+  algorithm->AddObserver(vtkCommand::ProgressEvent, forward);
+}
+
 /// Runs a writer of NewWriter(): whether it reported success.
 bool RunWriter(vtkAlgorithm* writer)
 {
@@ -399,6 +410,7 @@ bool vtkPointCloudFileIO::Read(const char* path, vtkPolyData* output)
   MessageCatcher messages;
   messages.Path = path;
   messages.Observe(reader);
+  ForwardProgress(reader, this);
   reader->Update();
   auto* cloud = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
   if (messages.Error.empty() && !cloud)
@@ -429,6 +441,7 @@ bool vtkPointCloudFileIO::Write(vtkPolyData* data, const char* path)
   MessageCatcher messages;
   messages.Path = name;
   messages.Observe(writer);
+  ForwardProgress(writer, this);
   vtkSmartPointer<vtkPolyData> input = data;
   if (auto* text = vtkPointCloudTextWriter::SafeDownCast(writer))
   {

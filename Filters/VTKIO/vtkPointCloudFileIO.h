@@ -20,6 +20,9 @@
  * Write() writes under a temporary name and renames (pcbilateral::ReplacingPath), so a failed
  * write leaves no file.
  *
+ * Read() and Write() pass their reader's and writer's ProgressEvents on as this object's own
+ * (the call data is the fraction done), for a program that shows the progress of each phase.
+ *
  * @sa
  * vtkLASPointCloudReader vtkPointCloudTextReader
  */

@@ -1,4 +1,5 @@
 #include "vtkPointCloudTextReader.h"
+#include "vtkPointCloudProgress.h"
 #include "vtkPointCloudVertices.h"
 
 #include "PointCloudText.h"
@@ -125,6 +126,7 @@ int vtkPointCloudTextReader::RequestData(vtkInformation*,
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->ErrorMessage.clear();
+  vtkPointCloudProgress progress(this, this->AbortExecute);
   if (!this->FileName || !*this->FileName)
   {
     this->ErrorMessage = "no file name was given";
@@ -137,6 +139,14 @@ int vtkPointCloudTextReader::RequestData(vtkInformation*,
     table,
     outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()),
     outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()));
+  if (progress.StopAsked())
+  {
+    // Aborted: an empty output and no error event; GetErrorMessage() says "aborted", which a
+    // distributed read takes as this piece's failure, so that every process stops.
+    output->Initialize();
+    this->ErrorMessage = pcbilateral::AbortedMessage;
+    return 1;
+  }
   if (!this->ErrorMessage.empty())
   {
     vtkErrorMacro(<< this->ErrorMessage);

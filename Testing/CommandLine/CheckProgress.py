@@ -1,8 +1,10 @@
 """What pcbilateral prints while it runs (issue 27, item 6):
 - on a terminal (run under `script`, which gives it one), each summary line as soon as it is
-  known: the parameters before the filtering's progress bar reaches the end; the bar shows the
-  percentage and the time left, and is erased before the next line;
-- not on a terminal: the same lines, no bar, no carriage return or escape;
+  known: the parameters before the iterations' progress bars reach the end; a bar per phase
+  (reading, measuring, each iteration, writing) shows the percentage and the time left, and is
+  erased before the next line;
+- not on a terminal: the same lines and a line as each phase ends (reading, measuring,
+  iteration k of N, writing), no bar, no carriage return or escape;
 - with --quiet: nothing on the standard output, the same output file.
 
     CheckProgress.py PCBILATERAL SAMPLE SCRATCH
@@ -29,7 +31,12 @@ def main(program, sample, scratch):
     # (Bytes: text mode would turn the bar's carriage returns into new lines.)
     on_terminal = subprocess.run(["script", "-qec", command, "/dev/null"], capture_output=True,
                                  env=dict(os.environ, TERM="xterm")).stdout.decode()
-    bars = [m.start() for m in re.finditer(r"\rfiltering: +\[[#.]+\] +\d+%", on_terminal)]
+    bars = [m.start() for m in
+            re.finditer(r"\riteration \d+ of 12: *\[[#.]+\] +\d+%", on_terminal)]
+    phases = [phase for phase in ("reading", "measuring", "iteration 1 of 12", "iteration 12 of 12",
+                                  "writing")
+              if re.search("\r" + phase + r": *\[[#.]+\] +\d+%", on_terminal)]
+    check(len(phases) == 5, f"on a terminal: bars for {phases}")
     left = re.search(r"\] +\d+%, \d+ s left", on_terminal)
     radius = on_terminal.find("radius:")
     finished = on_terminal.find("filtering:     ", bars[-1] + 1 if bars else 0)
@@ -45,6 +52,10 @@ def main(program, sample, scratch):
     check(plain.returncode == 0 and "\r" not in plain.stdout and "\033" not in plain.stdout and
           "radius:" in plain.stdout and "output:" in plain.stdout,
           "not on a terminal: plain lines only")
+    ended = re.findall(r"^(reading|measuring|iteration \d+ of 12|writing): +done, [0-9.]+ s$",
+                       plain.stdout, re.MULTILINE)
+    check(ended == ["reading", "measuring"] + [f"iteration {k} of 12" for k in range(1, 13)] +
+          ["writing"], f"not on a terminal: a line as each phase ends: {ended}")
     quiet = subprocess.run([program] + arguments + ["--quiet"], capture_output=True, text=True)
     check(quiet.returncode == 0 and quiet.stdout == "" and
           os.path.getsize(os.path.join(scratch, "out.ply")) > 0,

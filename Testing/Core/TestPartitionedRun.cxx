@@ -11,7 +11,6 @@
 #include "TestClouds.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -109,16 +108,16 @@ pcbilateral::CloudScales MeasureSharedScales(const Partition& partition,
 }
 
 /// One iteration of every part: the ghost exchange hands each part the other parts' points
-/// within its reach box (the ranks' exchange, without MPI), then the part steps.
+/// within its reach boxes (the ranks' exchange, without MPI), then the part steps.
 void ExchangeGhostsAndStep(const std::vector<std::unique_ptr<pcbilateral::BilateralRun>>& runs)
 {
   const int parts = static_cast<int>(runs.size());
   std::vector<std::vector<double>> offered(parts);
-  std::vector<std::array<double, 6>> reach(parts);
+  std::vector<std::vector<double>> reach(parts);
   for (int k = 0; k < parts; ++k)
   {
     offered[k] = runs[k]->GetPositionsForOthers();
-    runs[k]->GetGhostReach(reach[k].data());
+    reach[k] = runs[k]->GetGhostReaches();
   }
   for (int k = 0; k < parts; ++k)
   {
@@ -129,9 +128,13 @@ void ExchangeGhostsAndStep(const std::vector<std::unique_ptr<pcbilateral::Bilate
       for (std::size_t i = 0; other != k && i < offered[other].size(); i += 3)
       {
         const double* p = &offered[other][i];
-        if (pcbilateral::InsideBox(reach[k].data(), p))
+        for (std::size_t b = 0; b < reach[k].size(); b += 6)
         {
-          ghosts.insert(ghosts.end(), p, p + 3);
+          if (pcbilateral::InsideBox(&reach[k][b], p))
+          {
+            ghosts.insert(ghosts.end(), p, p + 3);
+            break;
+          }
         }
       }
     }

@@ -93,10 +93,15 @@ def make_cloud():
 
 total = make_cloud()
 # The most a rank may hold, as a fraction of the cloud: its 1/N and two border layers (0.56 at
-# 2 ranks, 0.44 at 3, 0.69 with the edge-aware mode's layers of 3 radii). Not checked where the
-# radius follows the density: a rank's layer is then as wide as the largest radius anywhere
-# (BilateralRun::GetGhostReach), 10 times the radius of the dense end's thin slab here.
-HELD_BOUND = 1.0 if args.density_ratio > 1.0 else 0.75
+# 2 ranks, 0.44 at 3, 0.69 with the edge-aware mode's layers of 3 radii). Where the radius
+# follows the density, each band's points reach as far as their own radius only
+# (BilateralRun::GetGhostReaches): 0.58 at 3 ranks (0.98 when the whole part reached as far as
+# its largest radius, 10 times the dense end's here). Not checked in the edge-aware mode there:
+# the sparse bands' points read 3 of their radii, the whole sheet.
+if args.density_ratio > 1.0:
+    HELD_BOUND = 1.0 if args.edge_aware else 0.7
+else:
+    HELD_BOUND = 0.75
 simple.LoadPlugin(args.plugin, remote=True, ns=vars(simple))
 # Before any filter object reaches Python, or VTK wraps it as its base class for good.
 from pointcloudbilateral import vtkPointCloudBilateralFilter  # noqa: E402

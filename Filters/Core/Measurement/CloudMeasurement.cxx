@@ -31,6 +31,7 @@
 #include "LocalSurfaceFit.h"
 #include "MeasurementSelection.h"
 #include "PointGrid.h"
+#include "ProgressCheck.h"
 #include "Threads.h"
 
 #include <algorithm>
@@ -181,17 +182,31 @@ public:
 
   CloudScales Measure()
   {
-    if (!(this->CheckCloud() && this->SortIntoLevels() && this->GuessDensity() &&
-          this->BuildGrids() && this->ChooseSamples()))
+    // Progress and abort between the steps (ProgressPoint): the whole cloud's selection was the
+    // first half of the measurement when there was one, these steps are the rest.
+    const std::uint64_t total = this->PointKeys != nullptr ? 20 : 10;
+    const std::uint64_t done = total - 10;
+    const auto stopped = [&](std::uint64_t step)
+    {
+      if (ProgressPoint(done + step, total))
+      {
+        this->Scales.Problem = AbortedMessage;
+        return true;
+      }
+      return false;
+    };
+    if (!(this->CheckCloud() && !stopped(0) && this->SortIntoLevels() && !stopped(1) &&
+          this->GuessDensity() && !stopped(2) && this->BuildGrids() && !stopped(3) &&
+          this->ChooseSamples() && !stopped(4)))
     {
       return this->Scales;
     }
     this->MeasureNeighbourDistances();
-    if (this->FindNoise() && this->MeasureSpacing())
+    if (!stopped(5) && this->FindNoise() && !stopped(7) && this->MeasureSpacing() && !stopped(8))
     {
       this->MeasureFlatness();
       this->CheckStructuredNoise();
-      this->Scales.Valid = true;
+      this->Scales.Valid = !stopped(10);
     }
     return this->Scales;
   }

@@ -2,6 +2,7 @@
 
 #include "BitOperations.h"
 #include "CloudMeasurement.h"
+#include "ProgressCheck.h"
 
 #include <algorithm>
 #include <cmath>
@@ -83,17 +84,29 @@ std::vector<double> SelectWithKeys(const PointCloudView& cloud,
   std::vector<double> selection(3 * slots);
   std::vector<std::uint64_t> selectedKeys(slots);
   std::size_t count = 0;
-  for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
+  // In blocks, between which the run's progress is reported and an abort asked (ProgressPoint;
+  // the selection reads every point of a large cloud: the first half of the measurement).
+  constexpr std::size_t Block = 16384;
+  for (std::size_t first = 0; first < cloud.NumberOfPoints; first += Block)
   {
-    const double* p = cloud.Positions + 3 * i;
-    const std::uint64_t key = MeasurementKey(p);
-    std::copy_n(p, 3, &selection[3 * count]);
-    selectedKeys[count] = key;
-    count += IsFinitePoint(p) & (everyPoint | (SelectionKey(key) < bound));
-    if (count == selectedKeys.size())
+    if (ProgressPoint(first, 2 * static_cast<std::uint64_t>(cloud.NumberOfPoints)))
     {
-      selection.resize(2 * selection.size());
-      selectedKeys.resize(2 * selectedKeys.size());
+      count = 0; // stopped: the caller asks too
+      break;
+    }
+    const std::size_t end = std::min(cloud.NumberOfPoints, first + Block);
+    for (std::size_t i = first; i < end; ++i)
+    {
+      const double* p = cloud.Positions + 3 * i;
+      const std::uint64_t key = MeasurementKey(p);
+      std::copy_n(p, 3, &selection[3 * count]);
+      selectedKeys[count] = key;
+      count += IsFinitePoint(p) & (everyPoint | (SelectionKey(key) < bound));
+      if (count == selectedKeys.size())
+      {
+        selection.resize(2 * selection.size());
+        selectedKeys.resize(2 * selectedKeys.size());
+      }
     }
   }
   selection.resize(3 * count);

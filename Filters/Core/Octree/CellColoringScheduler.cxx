@@ -465,8 +465,13 @@ bool CellColoringScheduler::RunIteration(PointState& state)
       static_cast<std::uint32_t>(cell));
   }
 
+  this->PollObserver(); // (the set-up above and the caller's: Compact, the estimate)
   for (const auto& cells : classes)
   {
+    if (this->Aborted.load())
+    {
+      return false;
+    }
     const auto cellCount = static_cast<std::int64_t>(cells.size());
     std::atomic<std::int64_t> cellsDone{ 0 };
 #pragma omp parallel num_threads(this->NumberOfThreads)

@@ -330,6 +330,10 @@ bool ProcessingOctree::Load(const double* positions,
   std::vector<std::uint64_t> cellMasks(cells, 0);
   for (std::size_t i = 0; i < n; ++i)
   {
+    if ((i & 0xFFFFF) == 0 && this->EndIfStopped()) // (as the first pass)
+    {
+      return false;
+    }
     ++cellCounts[static_cast<std::size_t>(this->NextLink[i])];
     cellMasks[static_cast<std::size_t>(this->NextLink[i])] |= std::uint64_t{ 1 }
                                                               << this->NextLeaf[i];
@@ -361,8 +365,9 @@ bool ProcessingOctree::Load(const double* positions,
     return false;
   }
   this->FinishCells(kept, n, numberOfThreads);
+  const bool stopped = this->EndIfStopped(); // (FinishCells asks too)
   this->Stop = nullptr;
-  return true;
+  return !stopped;
 }
 
 bool ProcessingOctree::EndIfStopped()
@@ -427,12 +432,17 @@ void ProcessingOctree::AssignCellsAndLeaves(const double* positions, int numberO
   constexpr std::size_t SampleStep = 16;
   for (std::size_t i = 0; i < n; i += SampleStep)
   {
+    if (i % (SampleStep << 16) == 0 && this->StopAsked())
+    {
+      return; // Load sees it
+    }
     this->FindOrCreateCell(CellOfLeaf(this->LeafOf(positionOf(i))));
   }
-  // In blocks, so that a stop asked of the load is seen within one.
+  // In blocks, so that a stop asked of the load is seen within one; taken one at a time, so
+  // that the calling thread, which asks, never waits long for the others at the loop's end.
   constexpr std::size_t Block = std::size_t(1) << 16;
   const auto blocks = static_cast<std::int64_t>((n + Block - 1) / Block);
-#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(numberOfThreads)
   for (std::int64_t block = 0; block < blocks; ++block)
   {
     if (this->StopAsked())
@@ -501,7 +511,9 @@ void ProcessingOctree::ScatterToBuckets(const double* positions,
   constexpr std::size_t Chunks = 64;
   std::vector<std::uint32_t> cursors(Chunks * buckets.Count, 0);
   auto chunkBegin = [n](std::size_t chunk) { return chunk * n / Chunks; };
-#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
+  // Chunks taken one at a time (here and below): the calling thread, which asks whether to stop,
+  // then never waits long for the others at the loop's end (seconds on a busy machine).
+#pragma omp parallel for schedule(dynamic, 1) num_threads(numberOfThreads)
   for (std::int64_t chunk = 0; chunk < static_cast<std::int64_t>(Chunks); ++chunk)
   {
     if (this->StopAsked())
@@ -532,7 +544,7 @@ void ProcessingOctree::ScatterToBuckets(const double* positions,
   this->X.resize(n);
   this->Y.resize(n);
   this->Z.resize(n);
-#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(numberOfThreads)
   for (std::int64_t chunk = 0; chunk < static_cast<std::int64_t>(Chunks); ++chunk)
   {
     if (this->StopAsked())
@@ -739,11 +751,21 @@ void ProcessingOctree::FinishCells(const std::vector<std::int32_t>& kept,
   this->NextHead.clear();
   this->NextHead.reserve(room);
   this->NextHead.resize(newCellCount, -1);
+  // (Asked between these: each is a first touch of up to 160 MB, seconds on a busy machine.)
+  if (this->StopAsked())
+  {
+    return;
+  }
   this->NextLink.assign(pointCount, -1);
   this->NextLeaf.assign(pointCount, 0);
-  this->MovedX.resize(pointCount);
-  this->MovedY.resize(pointCount);
-  this->MovedZ.resize(pointCount);
+  for (PointArray<double>* moved : { &this->MovedX, &this->MovedY, &this->MovedZ })
+  {
+    if (this->StopAsked())
+    {
+      return;
+    }
+    moved->resize(pointCount);
+  }
 }
 
 void ProcessingOctree::Compact(int numberOfThreads)

@@ -4,6 +4,7 @@
 #include "LASBinary.h"
 #include "LASBitFields.h"
 #include "LASScaledFields.h"
+#include "ProgressCheck.h"
 
 #include <algorithm>
 #include <cstring>
@@ -183,7 +184,7 @@ private:
 };
 } // namespace
 
-void DecodeLASPoints(const LASFileInfo& info,
+bool DecodeLASPoints(const LASFileInfo& info,
   const std::uint8_t* records,
   std::size_t count,
   double* positions,
@@ -205,12 +206,20 @@ void DecodeLASPoints(const LASFileInfo& info,
   // Each thread decodes one contiguous range of blocks, so it is the first to touch (and
   // place) the memory it writes.
   const BlockDecoder decoder(info, positions, columns);
+  ParallelProgress progress(count);
 #pragma omp parallel for schedule(static)
   for (std::int64_t b = 0; b < blocks; ++b)
   {
+    if (progress.StopAsked())
+    {
+      continue;
+    }
     const std::size_t first = static_cast<std::size_t>(b) * PointsPerDecodedBlock;
-    decoder.Decode(records + first * stride, first, std::min(PointsPerDecodedBlock, count - first));
+    const std::size_t points = std::min(PointsPerDecodedBlock, count - first);
+    decoder.Decode(records + first * stride, first, points);
+    progress.Done(points);
   }
+  return !progress.StopAsked();
 }
 
 } // namespace pcbilateral

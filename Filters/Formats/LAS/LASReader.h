@@ -20,9 +20,10 @@ namespace pcbilateral
  * `info.Dimensions` into `columns[d]` (Components values of the dimension's ColumnType per
  * point; a null column is skipped). Parallel (OpenMP); each thread first touches the part of
  * the outputs it writes, and the outputs are expected to be fresh memory (large ones are
- * advised to the kernel as huge pages).
+ * advised to the kernel as huge pages). Reports progress and stops when asked (ProgressPoint);
+ * returns false when stopped (the outputs are then partly written).
  */
-void DecodeLASPoints(const LASFileInfo& info,
+bool DecodeLASPoints(const LASFileInfo& info,
   const std::uint8_t* records,
   std::size_t count,
   double* positions,

@@ -1,4 +1,5 @@
 #include "LASWritePoints.h"
+#include "ProgressCheck.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -174,7 +175,7 @@ bool WritePointsInChunks(std::FILE* file,
   bool inRange = true;
   for (std::size_t c = 0; c < chunkCount && inRange; ++c)
   {
-    if (!handOver.WaitForSlot(c))
+    if (!handOver.WaitForSlot(c) || ProgressPoint(c, chunkCount))
     {
       break;
     }
@@ -188,7 +189,7 @@ bool WritePointsInChunks(std::FILE* file,
   writer.join();
   const int failure = handOver.WriteError();
   errno = failure ? failure : errno;
-  return inRange && failure == 0;
+  return inRange && failure == 0 && !ProgressStopAsked();
 }
 
 } // namespace las

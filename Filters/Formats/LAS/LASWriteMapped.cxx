@@ -1,4 +1,5 @@
 #include "LASWritePoints.h"
+#include "ProgressCheck.h"
 
 #include <cerrno>
 #include <cstdlib>
@@ -66,14 +67,20 @@ MappedWrite WritePointsMapped(std::FILE* file,
   }
   std::uint8_t* records = static_cast<std::uint8_t*>(mapping) + (offset - start);
   const auto blocks = static_cast<std::int64_t>(encoder.Blocks());
+  ParallelProgress progress(encoder.Blocks());
   // Each thread encodes one contiguous part of the file, and takes the page faults of its part.
 #pragma omp parallel for schedule(static)
   for (std::int64_t b = 0; b < blocks; ++b)
   {
+    if (progress.StopAsked())
+    {
+      continue;
+    }
     const auto block = static_cast<std::size_t>(b);
     summaries[block] = encoder.Encode(block, records + encoder.Bytes(0, block));
+    progress.Done(1);
   }
-  if (munmap(mapping, length) != 0 ||
+  if (munmap(mapping, length) != 0 || progress.StopAsked() ||
       std::fseek(file, static_cast<long>(offset + bytes), SEEK_SET) != 0)
   {
     return MappedWrite::Failed;

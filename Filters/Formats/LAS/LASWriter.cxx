@@ -1,5 +1,6 @@
 #include "LASWriter.h"
 
+#include "FileBytes.h"
 #include "LASBinary.h"
 #include "LASHeaderBytes.h"
 #include "LASPointEncoder.h"
@@ -85,6 +86,11 @@ std::string WriteLAS(const std::string& path,
     ok = WritePoints(file, written.OffsetToPointData, encoder, summaries);
     failure = ok ? 0 : errno;
   }
+  if (ProgressStopAsked())
+  {
+    output.Commit(false);
+    return AbortedMessage;
+  }
   if (AnyOutOfRange(summaries))
   {
     return path + ": " + OutOfRangeMessage;
@@ -118,9 +124,15 @@ std::vector<std::uint8_t> EncodeAllRecords(const BlockEncoder& encoder,
 {
   std::vector<std::uint8_t> records(count * recordLength, 0);
   const auto blocks = static_cast<std::int64_t>(summaries.size());
+  ParallelProgress progress(summaries.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t b = 0; b < blocks; ++b)
   {
+    if (progress.StopAsked())
+    {
+      continue;
+    }
+    progress.Done(1);
     summaries[static_cast<std::size_t>(b)] = encoder.Encode(static_cast<std::size_t>(b),
       records.data() + static_cast<std::size_t>(b) * PointsPerBlock * recordLength);
   }
@@ -166,13 +178,24 @@ std::string WriteLAZ(const std::string& path,
 
   const BlockEncoder encoder(info, count, positions, columns);
   std::vector<BlockSummary> summaries(encoder.Blocks());
+  SetProgressStage(0.0, 0.1);
   const std::vector<std::uint8_t> raw = EncodeAllRecords(encoder, count, h.RecordLength, summaries);
+  if (ProgressStopAsked())
+  {
+    return AbortedMessage;
+  }
   if (AnyOutOfRange(summaries))
   {
     return path + ": " + OutOfRangeMessage;
   }
+  SetProgressStage(0.1, 0.9);
   const std::vector<std::uint8_t> points =
     CompressLAZPoints(raw.data(), count, h.RecordLength, parameters, written.OffsetToPointData);
+  if (ProgressStopAsked())
+  {
+    return AbortedMessage;
+  }
+  SetProgressStage(0.9, 1.0);
   SumBlocks(summaries, written);
   std::vector<std::uint8_t> bytes = EncodeHeader(written,
     records.VLRCount,
@@ -191,7 +214,12 @@ std::string WriteLAZ(const std::string& path,
   {
     return output.OpenError();
   }
-  const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
+  const bool ok = WriteInBlocks(file, bytes.data(), bytes.size());
+  if (ProgressStopAsked())
+  {
+    output.Commit(false);
+    return AbortedMessage;
+  }
   return output.Commit(ok, ok ? 0 : errno);
 }
 

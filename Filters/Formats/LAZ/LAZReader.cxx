@@ -4,6 +4,7 @@
 #include "LAZFormat.h"
 #include "LAZItemDecoders.h"
 #include "LAZLayeredDecoder.h"
+#include "ProgressCheck.h"
 
 #include <algorithm>
 #include <cstring>
@@ -97,9 +98,14 @@ std::string DecodeChunks(const std::uint8_t* data,
 {
   std::vector<std::string> problems(lastChunk + 1 - firstChunk);
   const auto total = static_cast<std::int64_t>(problems.size());
+  ParallelProgress progress(count);
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::int64_t k = 0; k < total; ++k)
   {
+    if (progress.StopAsked())
+    {
+      continue;
+    }
     const LAZChunk& chunk = chunks[firstChunk + static_cast<std::size_t>(k)];
     const std::uint64_t begin = std::max(first, chunk.FirstPoint);
     const std::uint64_t end = std::min(first + count, chunk.FirstPoint + chunk.Points);
@@ -123,6 +129,11 @@ std::string DecodeChunks(const std::uint8_t* data,
       problem = "chunk " + Str(firstChunk + k + 1) + " of " + Str(chunks.size()) + " (" +
                 Str(chunk.Points) + " points at byte " + Str(chunk.Offset) + "): " + problem;
     }
+    progress.Done(end - begin);
+  }
+  if (progress.StopAsked())
+  {
+    return AbortedMessage;
   }
   for (const std::string& problem : problems)
   {
@@ -203,9 +214,14 @@ std::string DecompressLAZChunks(const std::uint8_t* data,
   }
   std::vector<std::string> problems(chunks.size());
   const auto total = static_cast<std::int64_t>(chunks.size());
+  ParallelProgress progress(starts.back());
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::int64_t k = 0; k < total; ++k)
   {
+    if (progress.StopAsked())
+    {
+      continue;
+    }
     const auto index = static_cast<std::size_t>(k);
     const LAZChunk& chunk = chunks[index];
     problems[index] = DecodeChunk(
@@ -215,6 +231,11 @@ std::string DecompressLAZChunks(const std::uint8_t* data,
       problems[index] = sourceName + ": the chunk of " + Str(chunk.Points) + " points at byte " +
                         Str(chunk.Offset) + ": " + problems[index];
     }
+    progress.Done(chunk.Points);
+  }
+  if (progress.StopAsked())
+  {
+    return AbortedMessage;
   }
   for (const std::string& message : problems)
   {

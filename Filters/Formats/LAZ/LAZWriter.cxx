@@ -4,6 +4,7 @@
 #include "LAZEntropyEncoder.h"
 #include "LAZItemEncoders.h"
 #include "LAZLayeredEncoder.h"
+#include "ProgressCheck.h"
 
 #include <algorithm>
 #include <memory>
@@ -174,13 +175,19 @@ std::vector<std::uint8_t> CompressLAZPoints(const std::uint8_t* records,
   const std::size_t chunkSize = parameters.ChunkSize;
   const std::size_t chunkCount = (count + chunkSize - 1) / chunkSize;
   std::vector<std::vector<std::uint8_t>> chunks(chunkCount);
+  ParallelProgress progress(chunkCount);
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::int64_t c = 0; c < static_cast<std::int64_t>(chunkCount); ++c)
   {
+    if (progress.StopAsked())
+    {
+      continue; // (the caller asks too, and writes nothing)
+    }
     const std::size_t first = static_cast<std::size_t>(c) * chunkSize;
     const std::uint8_t* chunk = records + first * recordLength;
     const std::size_t points = std::min(chunkSize, count - first);
     chunks[static_cast<std::size_t>(c)] = CompressLAZChunk(chunk, points, recordLength, parameters);
+    progress.Done(1);
   }
   std::size_t total = 8;
   std::vector<std::uint64_t> chunkPoints, chunkBytes;

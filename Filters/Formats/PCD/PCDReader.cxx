@@ -1,5 +1,6 @@
 // Decoding a PCD file's data: every field into a column, then x y z as doubles and, unless
 // asked to keep them, the points without coordinates (NaN) left out.
+#include "FileBytes.h"
 #include "LASReader.h"
 #include "PCDFile.h"
 #include "PCDValues.h"
@@ -91,14 +92,21 @@ std::string DecodeBinary(const std::uint8_t* data,
   columns = EmptyColumns(header, share.Count);
   const std::uint8_t* records = data + share.First * stride;
   std::size_t offset = 0;
+  std::size_t done = 0;
   for (PCDColumn& column : columns)
   {
     const std::size_t bytes = column.Field.Bytes();
     for (std::size_t i = 0; i < share.Count; ++i)
     {
+      if (i % PointsPerProgressPoint == 0 &&
+          ProgressPoint(done + i, columns.size() * static_cast<std::uint64_t>(share.Count)))
+      {
+        return AbortedMessage;
+      }
       std::memcpy(column.Bytes.data() + i * bytes, records + i * stride + offset, bytes);
     }
     offset += bytes;
+    done += share.Count;
   }
   return std::string();
 }
@@ -156,6 +164,10 @@ std::string DecodeASCII(const char* data,
   // Every line is found (the count is the whole file's), only the share's are parsed.
   for (std::size_t line = 0; line < count; ++line)
   {
+    if (line % PointsPerProgressPoint == 0 && ProgressPoint(line, count))
+    {
+      return AbortedMessage;
+    }
     if (!cursor.NextLine())
     {
       return "the ascii data holds " + std::to_string(line) + " points, the header announces " +
@@ -308,16 +320,14 @@ std::string ReadPCD(const std::string& path, const PCDReadOptions& options, PCDC
     return DecodePCD(
       reinterpret_cast<const char*>(mapped.Data()), mapped.Size(), path, options, cloud);
   }
-  std::ifstream file(path, std::ios::binary);
-  if (!file)
+  std::string bytes;
+  SetProgressStage(0.0, 0.3);
+  const std::string problem = ReadFileInBlocks(path, bytes);
+  if (!problem.empty())
   {
-    return path + ": cannot be opened";
+    return problem;
   }
-  const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  if (file.bad())
-  {
-    return path + ": cannot be read";
-  }
+  SetProgressStage(0.3, 1.0);
   return DecodePCD(bytes.data(), bytes.size(), path, options, cloud);
 }
 

@@ -1,4 +1,5 @@
 // Writing a PCD file in one of its three encodings, and PCL's packed colours both ways.
+#include "FileBytes.h"
 #include "PCDFile.h"
 #include "PCDValues.h"
 
@@ -82,12 +83,16 @@ std::vector<std::uint8_t> Interleave(const std::vector<PCDColumn>& columns, std:
   }
   std::vector<std::uint8_t> records(stride * count);
   std::size_t offset = 0;
-  for (const PCDColumn& column : columns)
+  for (std::size_t c = 0; c < columns.size(); ++c)
   {
-    const std::size_t bytes = column.Field.Bytes();
+    const std::size_t bytes = columns[c].Field.Bytes();
     for (std::size_t i = 0; i < count; ++i)
     {
-      std::copy_n(column.Bytes.data() + i * bytes, bytes, records.data() + i * stride + offset);
+      if (i % PointsPerProgressPoint == 0 && ProgressPoint(c * count + i, columns.size() * count))
+      {
+        return records; // (the caller asks too, and writes nothing)
+      }
+      std::copy_n(columns[c].Bytes.data() + i * bytes, bytes, records.data() + i * stride + offset);
     }
     offset += bytes;
   }
@@ -99,6 +104,10 @@ std::string FormatASCII(const std::vector<PCDColumn>& columns, std::size_t count
   std::string text;
   for (std::size_t i = 0; i < count; ++i)
   {
+    if (i % PointsPerProgressPoint == 0 && ProgressPoint(i, count))
+    {
+      return std::string(); // (the caller asks too, and writes nothing)
+    }
     bool first = true;
     for (const PCDColumn& column : columns)
     {
@@ -224,10 +233,16 @@ std::string WritePCD(const std::string& path, const PCDCloud& cloud, PCDEncoding
   std::vector<PCDColumn> columns;
   std::vector<std::uint8_t> data;
   std::string problem = GatherColumns(cloud, columns);
+  SetProgressStage(0.0, 0.6);
   if (problem.empty())
   {
     problem = EncodeData(columns, cloud.NumberOfPoints, encoding, data);
   }
+  if (ProgressStopAsked())
+  {
+    return AbortedMessage;
+  }
+  SetProgressStage(0.6, 1.0);
   if (!problem.empty())
   {
     return path + ": " + problem;
@@ -240,8 +255,9 @@ std::string WritePCD(const std::string& path, const PCDCloud& cloud, PCDEncoding
     return file.OpenError();
   }
   bool written = std::fwrite(header.data(), 1, header.size(), file.Get()) == header.size();
-  written = written && std::fwrite(data.data(), 1, data.size(), file.Get()) == data.size();
-  return file.Commit(written);
+  written = written && WriteInBlocks(file.Get(), data.data(), data.size());
+  const std::string committed = file.Commit(written);
+  return ProgressStopAsked() ? AbortedMessage : committed; // (no file then)
 }
 
 std::string WritePCDCompressedFields(const std::string& path,
