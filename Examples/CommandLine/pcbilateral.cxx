@@ -96,7 +96,7 @@ const char* const UsageTail =
   "  --memory-limit SIZE  filter the file in slabs within SIZE of memory (e.g. 512M, 2G),\n"
   "                     temporary files in TMPDIR or beside the output; the same output\n"
   "                     file as in memory. LAS or LAZ into LAS, LAZ, text or PCD, text\n"
-  "                     into text; --edge-aware, --remove-isolated and -R too.\n"
+  "                     into text, PCD into PCD; --edge-aware, --remove-isolated, -R.\n"
   "                     Default: in memory, or streamed within 80% of the available\n"
   "                     memory when the cloud needs more (said)\n"
   "  -q, --quiet        print nothing but warnings and errors (default: what was read,\n"
@@ -160,6 +160,15 @@ public:
   void DisplayText(const char*) override {}
 };
 vtkStandardNewMacro(QuietOutputWindow);
+
+/// The "input:" line of the points without coordinates a PCD reader left out.
+void SayDropped(unsigned long long dropped)
+{
+  if (dropped > 0)
+  {
+    Say("input:         dropped %llu points without coordinates (NaN)\n", dropped);
+  }
+}
 
 /// Prints the filter's errors and warnings as one line each, as they arise.
 struct ReportMessages
@@ -485,11 +494,7 @@ void ReadInput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData* 
   {
     Fail(options.Input + ": contains no points");
   }
-  if (files->GetNumberOfDroppedPoints() > 0)
-  {
-    Say("input:         dropped %lld points without coordinates (NaN)\n",
-      static_cast<long long>(files->GetNumberOfDroppedPoints()));
-  }
+  SayDropped(static_cast<unsigned long long>(files->GetNumberOfDroppedPoints()));
 }
 
 void ConfigureFilter(vtkPointCloudBilateralFilter* filter, const Options& options)
@@ -630,16 +635,11 @@ void WriteOutput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData
 /// Why the streamed run (--memory-limit) cannot run with these files and options, or empty.
 std::string StreamingUnsupported(const Options& options)
 {
-  const std::string& out = options.Output;
-  const bool pcdOutput = out.size() > 4 && out.compare(out.size() - 4, 4, ".pcd") == 0;
-  if (options.COPCLevel != -1 || options.COPCUseBounds ||
-      (!options.Classes.empty() &&
-        (pcdOutput || vtkPointCloudFileIO::IsTextFormat(options.Input.c_str()))))
-  {
-    return "streaming does not take the --copc options, or --classes with text input or PCD "
-           "output, yet";
-  }
-  return pcbilateral::StreamingFormatsProblem(options.Input, options.Output);
+  return pcbilateral::StreamingProblem(options.Input,
+    options.Output,
+    options.COPCLevel != -1 || options.COPCUseBounds,
+    !options.Classes.empty(),
+    options.KeepNaNPoints);
 }
 
 /// The streamed run's progress: a bar per phase on a terminal, a line per slab otherwise.
@@ -713,6 +713,7 @@ std::string RunStreamed(const Options& options, std::uint64_t limit)
     return problem;
   }
   pcbilateral::StreamedFile& input = *file;
+  SayDropped(input.GetNumberOfDroppedPoints());
   Say("input:         %s, %llu points, streamed within %s of memory\n",
     options.Input.c_str(),
     static_cast<unsigned long long>(input.GetNumberOfPoints()),

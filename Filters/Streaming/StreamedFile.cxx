@@ -2,6 +2,7 @@
 
 #include "PointCloudText.h"
 #include "StreamedLAS.h"
+#include "StreamedPCD.h"
 
 #include <algorithm>
 #include <cctype>
@@ -140,8 +141,32 @@ std::string StreamingFormatsProblem(const std::string& input, const std::string&
   {
     return std::string();
   }
-  return "streaming reads .las or .laz into .las, .laz, .txt, .xyz or .pcd, and .txt or .xyz "
-         "into .txt or .xyz (not yet PCD input, PLY or VTP, nor text into LAS or PCD)";
+  if (EndsWith(input, ".pcd") && EndsWith(output, ".pcd"))
+  {
+    return std::string();
+  }
+  return "streaming reads .las or .laz into .las, .laz, .txt, .xyz or .pcd, .txt or .xyz "
+         "into .txt or .xyz, and .pcd into .pcd (not yet PCD into LAS or text, PLY or VTP, nor "
+         "text into LAS or PCD)";
+}
+
+std::string StreamingProblem(const std::string& input,
+  const std::string& output,
+  bool copc,
+  bool classes,
+  bool keepNaN)
+{
+  if (copc || (classes && (EndsWith(output, ".pcd") || IsText(input))))
+  {
+    return "streaming does not take the --copc options, or --classes with text input or PCD "
+           "output, yet";
+  }
+  if (keepNaN && EndsWith(input, ".pcd"))
+  {
+    return "streaming does not take --keep-nan yet (it drops a PCD file's points without "
+           "coordinates, as the run in memory does by default)";
+  }
+  return StreamingFormatsProblem(input, output);
 }
 
 std::size_t StreamedRangePoints()
@@ -167,6 +192,12 @@ std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,
     auto las = std::make_unique<LASPointSource>();
     problem = las->Open(input);
     return problem.empty() ? std::move(las) : nullptr;
+  }
+  if (EndsWith(input, ".pcd"))
+  {
+    auto pcd = std::make_unique<PCDPointSource>();
+    problem = pcd->Open(input);
+    return problem.empty() ? std::move(pcd) : nullptr;
   }
   auto text = std::make_unique<TextPointSource>();
   problem = text->Open(input, orientedNormals);

@@ -37,6 +37,10 @@ public:
     return std::string();
   }
 
+  /// Points without coordinates the run in memory's reader leaves out (PCD input), said as it
+  /// says them.
+  virtual std::uint64_t GetNumberOfDroppedPoints() const { return 0; }
+
   /// --classes: filter only the points whose integer dimension `name` holds one of `classes`,
   /// the others left alone (GetNumberOfPointsLeftAlone). An empty string, or the run in
   /// memory's one-line error; a file that has no such dimensions says it is not streamed.
@@ -51,6 +55,15 @@ public:
 /// Why `input` cannot be streamed into `output` (by their extensions), or empty: LAS or LAZ into
 /// LAS or LAZ, text (.txt, .xyz) into text.
 std::string StreamingFormatsProblem(const std::string& input, const std::string& output);
+
+/// Why pcbilateral's options cannot be streamed with these files, or empty: the --copc options
+/// (`copc`), --classes (`classes`) with text input or PCD output, --keep-nan (`keepNaN`) with
+/// PCD input, then StreamingFormatsProblem.
+std::string StreamingProblem(const std::string& input,
+  const std::string& output,
+  bool copc,
+  bool classes,
+  bool keepNaN);
 
 /// The points of a range read and written at a time: 2^18, or PCB_STREAMING_RANGE_POINTS from
 /// the environment (tests).

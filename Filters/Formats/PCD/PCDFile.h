@@ -138,9 +138,9 @@ std::string ReadPCD(const std::string& path, const PCDReadOptions& options, PCDC
 std::string WritePCD(const std::string& path, const PCDCloud& cloud, PCDEncoding encoding);
 
 /**
- * WritePCD in the binary encoding a range of points at a time: the same bytes as WritePCD given
- * every point at once. Open writes the header of `header`'s fields for `count` points (WIDTH and
- * HEIGHT as WritePCD sets them); each Append takes a cloud of those fields (its Positions and
+ * WritePCD in the binary or ascii encoding a range of points at a time: the same bytes as WritePCD
+ * given every point at once. Open writes the header of `header`'s fields for `count` points (WIDTH
+ * and HEIGHT as WritePCD sets them); each Append takes a cloud of those fields (its Positions and
  * Columns, as WritePCD reads them); Close checks that `count` points came and moves the file
  * onto the path (no file is left after a failure). Each returns an empty string or one line.
  */
@@ -152,7 +152,12 @@ public:
   PCDBinaryStreamWriter(const PCDBinaryStreamWriter&) = delete;
   PCDBinaryStreamWriter& operator=(const PCDBinaryStreamWriter&) = delete;
 
-  std::string Open(const std::string& path, const PCDHeader& header, std::size_t count);
+  /// `encoding`: binary, or ascii (the same text as WritePCD's); binary_compressed is one block
+  /// and is refused.
+  std::string Open(const std::string& path,
+    const PCDHeader& header,
+    std::size_t count,
+    PCDEncoding encoding = PCDEncoding::Binary);
   std::string Append(const PCDCloud& range);
   std::string Close();
 
@@ -160,6 +165,28 @@ private:
   struct Internals;
   std::unique_ptr<Internals> Impl;
 };
+
+/**
+ * The data block of a binary_compressed file (after its header): its two sizes checked against
+ * the header's `count` points and the block's `size`, then decompressed into `fields` (every
+ * field's values for every point, one field after another). An empty string or DecodePCD's
+ * message (without the file's name).
+ */
+std::string DecompressPCDFields(const std::uint8_t* data,
+  std::size_t size,
+  const PCDHeader& header,
+  std::size_t count,
+  std::vector<std::uint8_t>& fields);
+
+/**
+ * WritePCD in binary_compressed from the fields already laid out one after another (`fields`:
+ * `count` points, header.PointBytes() bytes each, as DecompressPCDFields gives them): the same
+ * bytes as WritePCD given the same values as columns, without copying them.
+ */
+std::string WritePCDCompressedFields(const std::string& path,
+  const PCDHeader& header,
+  std::size_t count,
+  const std::uint8_t* fields);
 
 /// Whether a field holds packed colours: a 4-byte field named rgb or rgba.
 bool IsPCDPackedColour(const PCDField& field);

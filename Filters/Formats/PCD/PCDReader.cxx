@@ -22,6 +22,47 @@ namespace
 /// LZF turns at most 3 bytes into 264 (a long back-reference): data that announces more than
 /// this many times its compressed size lies.
 constexpr std::uint64_t LZFMaximumRatio = 88;
+} // namespace
+
+std::string DecompressPCDFields(const std::uint8_t* data,
+  std::size_t size,
+  const PCDHeader& header,
+  std::size_t count,
+  std::vector<std::uint8_t>& fields)
+{
+  if (size < 8)
+  {
+    return "the compressed data has no sizes";
+  }
+  std::uint32_t compressed = 0, uncompressed = 0;
+  std::memcpy(&compressed, data, 4);
+  std::memcpy(&uncompressed, data + 4, 4);
+  const std::size_t stride = header.PointBytes();
+  if (stride != 0 && count > std::numeric_limits<std::uint32_t>::max() / stride)
+  {
+    return "the header announces more points than compressed data can hold";
+  }
+  if (uncompressed != count * stride)
+  {
+    return "the compressed data announces " + std::to_string(uncompressed) +
+           " bytes, the header's points take " + std::to_string(count * stride);
+  }
+  if (compressed > size - 8 || uncompressed > LZFMaximumRatio * compressed + 8)
+  {
+    return "the compressed data's sizes (" + std::to_string(compressed) + " bytes to " +
+           std::to_string(uncompressed) + ") do not match the file";
+  }
+  fields.assign(uncompressed, 0);
+  if (uncompressed != 0 &&
+      lzf_decompress(data + 8, compressed, fields.data(), uncompressed) != uncompressed)
+  {
+    return "the compressed data is damaged (it does not decompress to its announced size)";
+  }
+  return std::string();
+}
+
+namespace
+{
 
 /// The columns of every field (padding too), sized for `count` points.
 std::vector<PCDColumn> EmptyColumns(const PCDHeader& header, std::size_t count)
@@ -78,33 +119,11 @@ std::string DecodeCompressed(const std::uint8_t* data,
   const PointRange& share,
   std::vector<PCDColumn>& columns)
 {
-  if (size < 8)
+  std::vector<std::uint8_t> fields;
+  const std::string problem = DecompressPCDFields(data, size, header, count, fields);
+  if (!problem.empty())
   {
-    return "the compressed data has no sizes";
-  }
-  std::uint32_t compressed = 0, uncompressed = 0;
-  std::memcpy(&compressed, data, 4);
-  std::memcpy(&uncompressed, data + 4, 4);
-  const std::size_t stride = header.PointBytes();
-  if (stride != 0 && count > std::numeric_limits<std::uint32_t>::max() / stride)
-  {
-    return "the header announces more points than compressed data can hold";
-  }
-  if (uncompressed != count * stride)
-  {
-    return "the compressed data announces " + std::to_string(uncompressed) +
-           " bytes, the header's points take " + std::to_string(count * stride);
-  }
-  if (compressed > size - 8 || uncompressed > LZFMaximumRatio * compressed + 8)
-  {
-    return "the compressed data's sizes (" + std::to_string(compressed) + " bytes to " +
-           std::to_string(uncompressed) + ") do not match the file";
-  }
-  std::vector<std::uint8_t> fields(uncompressed);
-  if (uncompressed != 0 &&
-      lzf_decompress(data + 8, compressed, fields.data(), uncompressed) != uncompressed)
-  {
-    return "the compressed data is damaged (it does not decompress to its announced size)";
+    return problem;
   }
   // One LZF block: decompressed whole, then only the share's values kept.
   columns = EmptyColumns(header, share.Count);

@@ -124,26 +124,23 @@ std::string FormatASCII(const std::vector<PCDColumn>& columns, std::size_t count
   return text;
 }
 
-/// The two sizes and the LZF data of the fields one after another; an error when too large.
-std::string Compress(const std::vector<PCDColumn>& columns, std::vector<std::uint8_t>& block)
+/// The two sizes and the LZF data of `size` bytes of fields; an error when too large.
+std::string CompressFields(const std::uint8_t* fields,
+  std::size_t size,
+  std::vector<std::uint8_t>& block)
 {
-  std::vector<std::uint8_t> fields;
-  for (const PCDColumn& column : columns)
-  {
-    fields.insert(fields.end(), column.Bytes.begin(), column.Bytes.end());
-  }
-  if (fields.size() > std::numeric_limits<std::uint32_t>::max() / 2)
+  if (size > std::numeric_limits<std::uint32_t>::max() / 2)
   {
     return "too large for binary_compressed (over 2 GB of fields): write binary";
   }
   // LZF never grows data by more than about 1/32: the room given covers it.
-  block.resize(8 + fields.size() + fields.size() / 16 + 64);
-  const auto uncompressed = static_cast<std::uint32_t>(fields.size());
+  block.resize(8 + size + size / 16 + 64);
+  const auto uncompressed = static_cast<std::uint32_t>(size);
   std::uint32_t compressed = 0;
   if (uncompressed > 0)
   {
-    compressed = lzf_compress(
-      fields.data(), uncompressed, block.data() + 8, static_cast<unsigned>(block.size() - 8));
+    compressed =
+      lzf_compress(fields, uncompressed, block.data() + 8, static_cast<unsigned>(block.size() - 8));
     if (compressed == 0)
     {
       return "LZF compression failed";
@@ -153,6 +150,17 @@ std::string Compress(const std::vector<PCDColumn>& columns, std::vector<std::uin
   std::memcpy(block.data() + 4, &uncompressed, 4);
   block.resize(8 + compressed);
   return std::string();
+}
+
+/// The fields one after another, compressed.
+std::string Compress(const std::vector<PCDColumn>& columns, std::vector<std::uint8_t>& block)
+{
+  std::vector<std::uint8_t> fields;
+  for (const PCDColumn& column : columns)
+  {
+    fields.insert(fields.end(), column.Bytes.begin(), column.Bytes.end());
+  }
+  return CompressFields(fields.data(), fields.size(), block);
 }
 
 std::string EncodeData(const std::vector<PCDColumn>& columns,
@@ -252,6 +260,28 @@ std::string WritePCD(const std::string& path, const PCDCloud& cloud, PCDEncoding
   return ProgressStopAsked() ? AbortedMessage : committed; // (no file then)
 }
 
+std::string WritePCDCompressedFields(const std::string& path,
+  const PCDHeader& header,
+  std::size_t count,
+  const std::uint8_t* fields)
+{
+  std::vector<std::uint8_t> data;
+  const std::string problem = CompressFields(fields, count * header.PointBytes(), data);
+  if (!problem.empty())
+  {
+    return path + ": " + problem;
+  }
+  const std::string text = FormatHeader(header, count, PCDEncoding::BinaryCompressed);
+  ReplacingFile file(path);
+  if (!file.Get())
+  {
+    return file.OpenError();
+  }
+  bool written = std::fwrite(text.data(), 1, text.size(), file.Get()) == text.size();
+  written = written && std::fwrite(data.data(), 1, data.size(), file.Get()) == data.size();
+  return file.Commit(written);
+}
+
 struct PCDBinaryStreamWriter::Internals
 {
   std::string Path;
@@ -259,6 +289,7 @@ struct PCDBinaryStreamWriter::Internals
   std::size_t Expected = 0;
   std::size_t Appended = 0;
   std::unique_ptr<ReplacingFile> Output;
+  PCDEncoding Encoding = PCDEncoding::Binary;
   bool Ok = false;
 };
 
@@ -271,9 +302,15 @@ PCDBinaryStreamWriter::~PCDBinaryStreamWriter() = default;
 
 std::string PCDBinaryStreamWriter::Open(const std::string& path,
   const PCDHeader& header,
-  std::size_t count)
+  std::size_t count,
+  PCDEncoding encoding)
 {
   Internals& w = *this->Impl;
+  if (encoding == PCDEncoding::BinaryCompressed)
+  {
+    return path + ": binary_compressed is one block, not written a range at a time";
+  }
+  w.Encoding = encoding;
   w.Path = path;
   w.Header = header;
   w.Expected = count;
@@ -282,7 +319,7 @@ std::string PCDBinaryStreamWriter::Open(const std::string& path,
   {
     return w.Output->OpenError();
   }
-  const std::string text = FormatHeader(header, count, PCDEncoding::Binary);
+  const std::string text = FormatHeader(header, count, encoding);
   w.Ok = std::fwrite(text.data(), 1, text.size(), w.Output->Get()) == text.size();
   return std::string();
 }
@@ -307,7 +344,8 @@ std::string PCDBinaryStreamWriter::Append(const PCDCloud& range)
     w.Ok = false;
     return w.Path + ": " + problem;
   }
-  const std::vector<std::uint8_t> records = Interleave(columns, range.NumberOfPoints);
+  std::vector<std::uint8_t> records;
+  EncodeData(columns, range.NumberOfPoints, w.Encoding, records);
   w.Ok = w.Ok && std::fwrite(records.data(), 1, records.size(), w.Output->Get()) == records.size();
   w.Appended += range.NumberOfPoints;
   return std::string();

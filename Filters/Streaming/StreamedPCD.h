@@ -1,0 +1,108 @@
+// PCD files (ascii and binary) read a range of points at a time, and the filtered cloud written
+// back as PCD a range at a time, for the out-of-core run (OutOfCoreRun.h). Plain C++17 over
+// Formats.
+#ifndef pcbilateral_StreamedPCD_h
+#define pcbilateral_StreamedPCD_h
+
+#include "PCDFile.h"
+#include "StreamedFile.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace pcbilateral
+{
+
+/**
+ * A PCD file, mapped without being read in (binary_compressed: its one LZF block decompressed
+ * whole). Open checks the whole file as
+ * the run in memory's reader does (the same one-line errors, in the same order) and counts its
+ * points with coordinates; the points without (NaN) are left out, as the run in memory leaves
+ * them out by default, so the points are numbered as in memory. A checkpoint every 4096
+ * records (the record, its place in the file, the points kept before it) lets a range of kept
+ * points be found without reading the file from its start.
+ */
+class PCDPointSource : public StreamedFile
+{
+public:
+  PCDPointSource() = default;
+  ~PCDPointSource() override;
+  PCDPointSource(const PCDPointSource&) = delete;
+  PCDPointSource& operator=(const PCDPointSource&) = delete;
+
+  /// Maps and checks the file; an empty string or the run in memory's one-line message.
+  std::string Open(const std::string& path);
+  std::uint64_t GetNumberOfPoints() const override { return this->Kept; }
+  std::uint64_t GetNumberOfDroppedPoints() const override
+  {
+    return this->Header.NumberOfPoints - this->Kept;
+  }
+  std::string ReadPositions(std::uint64_t first, std::size_t count, double* positions) override;
+  /// As pcbilateral's run in memory writes a PCD file's cloud into PCD (vtkPCDPointCloudReader
+  /// then vtkPCDPointCloudWriter): the input's fields, WIDTH, HEIGHT and VIEWPOINT, its
+  /// encoding, packed `rgb` unpacked and packed again (alpha 255), normals gathered and
+  /// scattered, padding as zeros.
+  std::string WriteFiltered(OutOfCoreRun& run,
+    const std::string& path,
+    std::size_t pointsPerRange,
+    const std::function<void(double)>& progress) override;
+
+private:
+  struct Checkpoint
+  {
+    std::uint64_t Record = 0;
+    std::uint64_t KeptBefore = 0;
+    /// ascii: where the record's line may start (after the previous record's line), and the
+    /// line number there.
+    std::size_t Offset = 0;
+    std::size_t Line = 0;
+  };
+  void FindCoordinates();
+  /// The data's size against the header's points, as DecodePCD checks it first; then the
+  /// binary_compressed block decompressed.
+  std::string CheckSize();
+  std::string CheckData();
+  /// binary_compressed: the block checked and decompressed into Fields.
+  std::string Decompress();
+  /// Record `record` (binary layout) into `out`, from the mapped file or, binary_compressed,
+  /// from the decompressed fields.
+  void CopyRecord(std::uint64_t record, std::uint8_t* out) const;
+  /// binary_compressed: the filtered values written into the decompressed fields in place,
+  /// the points kept moved to the front field by field, then compressed as one block.
+  std::string WriteCompressed(OutOfCoreRun& run,
+    const std::string& path,
+    std::size_t pointsPerRange,
+    const std::function<void(double)>& progress);
+  /// The records (binary layout, `Stride` bytes each) of the kept points [first, first + count).
+  std::string ReadRecords(std::uint64_t first,
+    std::size_t count,
+    std::vector<std::uint8_t>& records);
+  bool IsKept(const std::uint8_t* record) const;
+  void Release();
+
+  std::string Path;
+  const std::uint8_t* Data = nullptr;
+  std::size_t Size = 0;
+  PCDHeader Header;
+  std::size_t Stride = 0;
+  std::size_t FirstLine = 1;
+  std::size_t CoordinateOffsets[3] = { 0, 0, 0 };
+  PCDField CoordinateFields[3];
+  std::vector<Checkpoint> Checkpoints;
+  /// binary_compressed: every field's values, one field after another (one LZF block,
+  /// decompressed whole when opened; counted in the memory the run holds before its slabs),
+  /// and where each field starts.
+  std::vector<std::uint8_t> Fields;
+  std::vector<std::size_t> FieldStarts;
+  std::uint64_t Kept = 0;
+};
+
+/// Why a PCD file's layout is not streamed into PCD (fields whose names the run in memory's VTK
+/// arrays would mix up: RGB, RGBA, Colors, Normals, vtkOriginalPointIds), or empty.
+std::string PCDLayoutProblem(const PCDHeader& header);
+
+} // namespace pcbilateral
+
+#endif
