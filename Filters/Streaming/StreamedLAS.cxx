@@ -7,14 +7,8 @@
 #include "PCDFile.h"
 #include "PointCloudText.h"
 
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -81,50 +75,23 @@ bool IsTextName(const std::string& path)
 }
 } // namespace
 
-LASPointSource::~LASPointSource()
-{
-  if (this->Data != nullptr && this->Size > 0)
-  {
-    ::munmap(const_cast<std::uint8_t*>(this->Data), this->Size);
-  }
-}
-
 std::string LASPointSource::Open(const std::string& path)
 {
   this->Path = path;
-  const int descriptor = ::open(path.c_str(), O_RDONLY);
-  struct stat status;
-  if (descriptor < 0 || ::fstat(descriptor, &status) != 0)
+  const std::string mapped = this->Mapped.Open(path);
+  if (!mapped.empty())
   {
-    const std::string problem = path + ": " + std::strerror(errno);
-    if (descriptor >= 0)
-    {
-      ::close(descriptor);
-    }
-    return problem;
+    return path + ": " + mapped;
   }
-  this->Size = static_cast<std::size_t>(status.st_size);
-  // Mapped, not populated: only the pages of the ranges read come in (Release gives them back).
-  void* mapped = this->Size > 0 ? ::mmap(nullptr, this->Size, PROT_READ, MAP_PRIVATE, descriptor, 0)
-                                : MAP_FAILED;
-  ::close(descriptor);
-  if (mapped == MAP_FAILED)
-  {
-    this->Size = 0;
-    return path + ": cannot be mapped for reading (" + std::strerror(errno) + ")";
-  }
-  this->Data = static_cast<const std::uint8_t*>(mapped);
-  const std::string problem = ParseLASHeader(this->Data, this->Size, path, this->Info, true);
+  const std::string problem =
+    ParseLASHeader(this->Mapped.Data(), this->Mapped.Size(), path, this->Info, true);
   this->Release();
   return problem;
 }
 
 void LASPointSource::Release()
 {
-  if (this->Data != nullptr && this->Size > 0)
-  {
-    ::madvise(const_cast<std::uint8_t*>(this->Data), this->Size, MADV_DONTNEED);
-  }
+  this->Mapped.Release();
   std::vector<std::uint8_t>().swap(this->Decompressed);
 }
 
@@ -202,8 +169,14 @@ std::string LASPointSource::ReadPoints(std::uint64_t first,
   void* const* columns)
 {
   const std::uint8_t* records = nullptr;
-  const std::string problem = UncompressedLASRecordRange(
-    this->Data, this->Size, this->Info, this->Path, first, count, this->Decompressed, records);
+  const std::string problem = UncompressedLASRecordRange(this->Mapped.Data(),
+    this->Mapped.Size(),
+    this->Info,
+    this->Path,
+    first,
+    count,
+    this->Decompressed,
+    records);
   if (problem.empty())
   {
     DecodeLASPoints(this->Info, records, count, positions, columns);
@@ -250,8 +223,13 @@ std::string LASPointSource::WriteWarning(const std::string& path) const
 
 std::string LASPointSource::ColoursFitEightBits(bool& fit)
 {
-  const std::string problem = LASColoursFitEightBits(
-    this->Data, this->Size, this->Info, this->Path, 0, this->GetNumberOfPoints(), fit);
+  const std::string problem = LASColoursFitEightBits(this->Mapped.Data(),
+    this->Mapped.Size(),
+    this->Info,
+    this->Path,
+    0,
+    this->GetNumberOfPoints(),
+    fit);
   this->Release();
   return problem;
 }

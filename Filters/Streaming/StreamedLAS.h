@@ -4,6 +4,7 @@
 #define pcbilateral_StreamedLAS_h
 
 #include "LASHeader.h"
+#include "MappedInput.h"
 #include "OutOfCoreRun.h"
 #include "StreamedFile.h"
 
@@ -24,7 +25,6 @@ class LASPointSource : public StreamedFile
 {
 public:
   LASPointSource() = default;
-  ~LASPointSource() override;
   LASPointSource(const LASPointSource&) = delete;
   LASPointSource& operator=(const LASPointSource&) = delete;
 
@@ -55,8 +55,7 @@ private:
   void Release();
   std::string Path;
   LASFileInfo Info;
-  const std::uint8_t* Data = nullptr;
-  std::size_t Size = 0;
+  MappedInput Mapped;
   std::vector<std::uint8_t> Decompressed;
   /// --classes: the class dimension's index (or none), the classes, and the points left alone
   /// so far (counted on the first pass: ranges before CountedUpTo were counted).

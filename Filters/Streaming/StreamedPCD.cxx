@@ -2,13 +2,7 @@
 
 #include "PCDValues.h"
 
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -146,20 +140,9 @@ std::string PCDLayoutProblem(const PCDHeader& header)
   return std::string();
 }
 
-PCDPointSource::~PCDPointSource()
-{
-  if (this->Data != nullptr)
-  {
-    ::munmap(const_cast<std::uint8_t*>(this->Data), this->Size);
-  }
-}
-
 void PCDPointSource::Release()
 {
-  if (this->Data != nullptr && this->Size > 0)
-  {
-    ::madvise(const_cast<std::uint8_t*>(this->Data), this->Size, MADV_DONTNEED);
-  }
+  this->Mapped.Release();
 }
 
 bool PCDPointSource::IsKept(const std::uint8_t* record) const
@@ -178,30 +161,12 @@ bool PCDPointSource::IsKept(const std::uint8_t* record) const
 std::string PCDPointSource::Open(const std::string& path)
 {
   this->Path = path;
-  const int descriptor = ::open(path.c_str(), O_RDONLY);
-  struct stat status;
-  if (descriptor < 0 || ::fstat(descriptor, &status) != 0)
+  if (!this->Mapped.Open(path).empty())
   {
-    const std::string problem = path + ": cannot be opened";
-    if (descriptor >= 0)
-    {
-      ::close(descriptor);
-    }
-    return problem;
+    return path + ": cannot be opened";
   }
-  this->Size = static_cast<std::size_t>(status.st_size);
-  void* mapped = this->Size > 0 ? ::mmap(nullptr, this->Size, PROT_READ, MAP_PRIVATE, descriptor, 0)
-                                : MAP_FAILED;
-  ::close(descriptor);
-  if (mapped == MAP_FAILED)
-  {
-    this->Size = 0;
-    static const char nothing = 0;
-    return ParsePCDHeader(&nothing, 0, path, this->Header);
-  }
-  this->Data = static_cast<const std::uint8_t*>(mapped);
-  std::string problem =
-    ParsePCDHeader(reinterpret_cast<const char*>(this->Data), this->Size, path, this->Header);
+  std::string problem = ParsePCDHeader(
+    reinterpret_cast<const char*>(this->Mapped.Data()), this->Mapped.Size(), path, this->Header);
   if (problem.empty() && this->Header.NumberOfPoints > std::numeric_limits<std::size_t>::max() / 64)
   {
     problem = path + ": the header announces more points than the file can hold";
@@ -235,7 +200,7 @@ void PCDPointSource::FindCoordinates()
 
 std::string PCDPointSource::CheckSize()
 {
-  const std::size_t blockSize = this->Size - this->Header.DataOffset;
+  const std::size_t blockSize = this->Mapped.Size() - this->Header.DataOffset;
   const std::uint64_t count = this->Header.NumberOfPoints;
   if (this->Header.Encoding == PCDEncoding::Binary && count > blockSize / this->Stride)
   {
@@ -267,11 +232,11 @@ std::string PCDPointSource::CheckSize()
 std::string PCDPointSource::CheckData()
 {
   this->FindCoordinates();
-  const auto* block = reinterpret_cast<const char*>(this->Data) + this->Header.DataOffset;
-  const std::size_t blockSize = this->Size - this->Header.DataOffset;
+  const auto* block = reinterpret_cast<const char*>(this->Mapped.Data()) + this->Header.DataOffset;
+  const std::size_t blockSize = this->Mapped.Size() - this->Header.DataOffset;
   const std::uint64_t count = this->Header.NumberOfPoints;
-  this->FirstLine = 1 + static_cast<std::size_t>(
-                          std::count(reinterpret_cast<const char*>(this->Data), block, '\n'));
+  this->FirstLine = 1 + static_cast<std::size_t>(std::count(
+                          reinterpret_cast<const char*>(this->Mapped.Data()), block, '\n'));
   const std::string problem = this->CheckSize();
   if (!problem.empty())
   {
@@ -337,8 +302,8 @@ std::string PCDPointSource::CheckData()
 std::string PCDPointSource::Decompress()
 {
   const std::uint64_t count = this->Header.NumberOfPoints;
-  const std::uint8_t* block = this->Data + this->Header.DataOffset;
-  const std::size_t blockSize = this->Size - this->Header.DataOffset;
+  const std::uint8_t* block = this->Mapped.Data() + this->Header.DataOffset;
+  const std::size_t blockSize = this->Mapped.Size() - this->Header.DataOffset;
   const std::string problem = DecompressPCDFields(
     block, blockSize, this->Header, static_cast<std::size_t>(count), this->Fields);
   this->Release(); // (the compressed pages: the decompressed fields are what the run holds)
@@ -359,7 +324,8 @@ void PCDPointSource::CopyRecord(std::uint64_t record, std::uint8_t* out) const
 {
   if (this->Header.Encoding == PCDEncoding::Binary)
   {
-    std::copy_n(this->Data + this->Header.DataOffset + record * this->Stride, this->Stride, out);
+    std::copy_n(
+      this->Mapped.Data() + this->Header.DataOffset + record * this->Stride, this->Stride, out);
     return;
   }
   for (std::size_t f = 0; f < this->Header.Fields.size(); ++f)
@@ -385,8 +351,8 @@ std::string PCDPointSource::ReadRecords(std::uint64_t first,
   const Checkpoint& start = *(after - 1);
   // Binary search lands on the last checkpoint with KeptBefore <= first; earlier checkpoints
   // with the same count (all their points NaN) hold none of the range.
-  const auto* block = reinterpret_cast<const char*>(this->Data) + this->Header.DataOffset;
-  const std::size_t blockSize = this->Size - this->Header.DataOffset;
+  const auto* block = reinterpret_cast<const char*>(this->Mapped.Data()) + this->Header.DataOffset;
+  const std::size_t blockSize = this->Mapped.Size() - this->Header.DataOffset;
   PCDTextCursor cursor{ block + start.Offset, block + blockSize, start.Line };
   std::uint64_t kept = start.KeptBefore;
   std::size_t filled = 0;

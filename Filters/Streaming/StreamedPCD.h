@@ -4,6 +4,7 @@
 #ifndef pcbilateral_StreamedPCD_h
 #define pcbilateral_StreamedPCD_h
 
+#include "MappedInput.h"
 #include "PCDFile.h"
 #include "StreamedFile.h"
 
@@ -28,7 +29,6 @@ class PCDPointSource : public StreamedFile
 {
 public:
   PCDPointSource() = default;
-  ~PCDPointSource() override;
   PCDPointSource(const PCDPointSource&) = delete;
   PCDPointSource& operator=(const PCDPointSource&) = delete;
 
@@ -83,8 +83,7 @@ private:
   void Release();
 
   std::string Path;
-  const std::uint8_t* Data = nullptr;
-  std::size_t Size = 0;
+  MappedInput Mapped;
   PCDHeader Header;
   std::size_t Stride = 0;
   std::size_t FirstLine = 1;

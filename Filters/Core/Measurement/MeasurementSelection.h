@@ -20,9 +20,9 @@ std::uint64_t MeasurementKey(const double* p);
 /// The selection's bound for a fraction in (0, 1): a point is selected when a second hash of its
 /// MeasurementKey is below it, exactly the keys whose value as a double is below fraction x 2^64
 /// (the conversion to double never decreases as the key grows, so those keys are all the keys
-/// below one bound); 0 (nothing) for a fraction not above 0, the largest key for 1 and more. Keys are compared as integers:
-/// without an instruction for it (before AVX-512), converting a 64-bit unsigned key to double
-/// branches on its top bit, a branch mispredicted for half the points.
+/// below one bound); 0 (nothing) for a fraction not above 0, the largest key for 1 and more. Keys
+/// are compared as integers: without an instruction for it (before AVX-512), converting a 64-bit
+/// unsigned key to double branches on its top bit, a branch mispredicted for half the points.
 std::uint64_t SelectionBound(double fraction);
 
 /// SelectMeasurementPoints, and the selected points' MeasurementKey when keys is not null.
