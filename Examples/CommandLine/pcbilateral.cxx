@@ -481,7 +481,7 @@ Options ParseArguments(int argc, char* argv[])
 void ReadInput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData* input)
 {
   const bool read = files->Read(options.Input.c_str(), input);
-  Screen().EndPhase();
+  Screen().EndPhase(read);
   if (!read)
   {
     Fail(files->GetErrorMessage());
@@ -618,7 +618,7 @@ void WriteOutput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData
     output->GetPointData()->RemoveArray("vtkOriginalPointIds");
   }
   const bool written = files->Write(output, options.Output.c_str());
-  Screen().EndPhase();
+  Screen().EndPhase(written);
   if (!written)
   {
     Fail(files->GetErrorMessage());
@@ -935,7 +935,7 @@ int main(int argc, char* argv[])
   ShowProgress(filter, nullptr);
   const auto start = std::chrono::steady_clock::now();
   filter->Update();
-  Screen().EndPhase();
+  Screen().EndPhase(!messages.ErrorSeen);
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (messages.ErrorSeen)

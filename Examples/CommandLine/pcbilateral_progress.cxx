@@ -92,14 +92,14 @@ void ProgressLines::Phase(const std::string& phase, double fraction)
   }
 }
 
-void ProgressLines::EndPhase()
+void ProgressLines::EndPhase(bool completed)
 {
   if (this->Current.empty())
   {
     return;
   }
   this->ClearBar();
-  if (!this->ShowBar && !this->Quiet)
+  if (completed && !this->ShowBar && !this->Quiet)
   {
     const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - this->Start).count();

@@ -23,8 +23,9 @@ public:
 
   /// `fraction` of `phase` ("reading", "iteration 2 of 3") done. A new phase ends the last one.
   void Phase(const std::string& phase, double fraction);
-  /// Ends the current phase (its plain line, or its bar erased), if any.
-  void EndPhase();
+  /// Ends the current phase (its plain line, or its bar erased), if any; a phase that did not
+  /// complete (a file that could not be read or written) gets no "done" line.
+  void EndPhase(bool completed = true);
   /// Erases the bar, if shown (before a line is printed).
   void ClearBar();
 

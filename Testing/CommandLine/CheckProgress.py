@@ -56,6 +56,14 @@ def main(program, sample, scratch):
                        plain.stdout, re.MULTILINE)
     check(ended == ["reading", "measuring"] + [f"iteration {k} of 12" for k in range(1, 13)] +
           ["writing"], f"not on a terminal: a line as each phase ends: {ended}")
+    # A phase that fails says so, not "done": a file that is not LAS.
+    damaged = os.path.join(scratch, "not-las.las")
+    with open(damaged, "w") as stream:
+        stream.write("1 2 3\n")
+    failed = subprocess.run([program, damaged, os.path.join(scratch, "failed.las")],
+                            capture_output=True, text=True)
+    check(failed.returncode == 1 and "done" not in failed.stdout and "not a LAS file" in
+          failed.stderr, f"a read that failed is not said done: {failed.stdout!r}")
     quiet = subprocess.run([program] + arguments + ["--quiet"], capture_output=True, text=True)
     check(quiet.returncode == 0 and quiet.stdout == "" and
           os.path.getsize(os.path.join(scratch, "out.ply")) > 0,
