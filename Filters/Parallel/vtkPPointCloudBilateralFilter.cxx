@@ -100,6 +100,29 @@ void ShareTotals(vtkMultiProcessController* controller, BilateralResult& result)
   controller->AllReduce(&depth, &result.ProcessingDepth, 1, vtkCommunicator::MAX_OP);
 }
 
+/// Collective: every process's `own` values, concatenated in process order; `offsets` (when
+/// given) gets where each process's values begin, one more entry than processes.
+std::vector<double> GatherFromAll(vtkMultiProcessController* controller,
+  const std::vector<double>& own,
+  std::vector<vtkIdType>* offsets = nullptr)
+{
+  const int processes = controller->GetNumberOfProcesses();
+  const vtkIdType ownLength = static_cast<vtkIdType>(own.size());
+  std::vector<vtkIdType> lengths(processes), starts(processes + 1, 0);
+  controller->AllGather(&ownLength, lengths.data(), 1);
+  for (int p = 0; p < processes; ++p)
+  {
+    starts[p + 1] = starts[p] + lengths[p];
+  }
+  std::vector<double> all(static_cast<std::size_t>(starts.back()));
+  controller->AllGatherV(own.data(), all.data(), ownLength, lengths.data(), starts.data());
+  if (offsets != nullptr)
+  {
+    *offsets = std::move(starts);
+  }
+  return all;
+}
+
 /**
  * The current positions of the other processes' points within this process's reach boxes
  * (BilateralRun::GetGhostReaches: one per radius band, 6 doubles each). `own` holds this
@@ -115,21 +138,14 @@ std::vector<double> FetchGhosts(vtkMPIController* controller,
 {
   const int processes = controller->GetNumberOfProcesses();
   const int self = controller->GetLocalProcessId();
-  const vtkIdType reachLength = static_cast<vtkIdType>(reach.size());
-  std::vector<vtkIdType> lengths(processes), offsets(processes, 0);
-  controller->AllGather(&reachLength, lengths.data(), 1);
-  for (int p = 1; p < processes; ++p)
-  {
-    offsets[p] = offsets[p - 1] + lengths[p - 1];
-  }
-  std::vector<double> boxes(static_cast<std::size_t>(offsets.back() + lengths.back()));
-  controller->AllGatherV(reach.data(), boxes.data(), reachLength, lengths.data(), offsets.data());
+  std::vector<vtkIdType> offsets;
+  const std::vector<double> boxes = GatherFromAll(controller, reach, &offsets);
 
   pcbilateral::ExchangedBuffers outgoing(processes);
   for (int other = 0; other < processes; ++other)
   {
     const double* first = boxes.data() + offsets[other];
-    const double* last = first + lengths[other];
+    const double* last = boxes.data() + offsets[other + 1];
     for (std::size_t i = 0; other != self && i < own.size(); i += 3)
     {
       const double* p = own.data() + i;
@@ -166,17 +182,8 @@ pcbilateral::CloudScales ShareScales(vtkMultiProcessController* controller,
   int threads)
 {
   const double fraction = pcbilateral::MeasuredFraction(whole.NumberOfFinitePoints);
-  const std::vector<double> own = pcbilateral::SelectMeasurementPoints(cloud, fraction);
-  const int processes = controller->GetNumberOfProcesses();
-  const vtkIdType ownLength = static_cast<vtkIdType>(own.size());
-  std::vector<vtkIdType> lengths(processes), offsets(processes, 0);
-  controller->AllGather(&ownLength, lengths.data(), 1);
-  for (int p = 1; p < processes; ++p)
-  {
-    offsets[p] = offsets[p - 1] + lengths[p - 1];
-  }
-  std::vector<double> selection(static_cast<std::size_t>(offsets.back() + lengths.back()));
-  controller->AllGatherV(own.data(), selection.data(), ownLength, lengths.data(), offsets.data());
+  const std::vector<double> selection =
+    GatherFromAll(controller, pcbilateral::SelectMeasurementPoints(cloud, fraction));
   return pcbilateral::MeasureSelection(selection, fraction, threads);
 }
 } // namespace

@@ -263,6 +263,14 @@ LASFileInfo LASInfoAsWritten(const LASFileInfo& info)
 
 namespace
 {
+/// Whether the file's points have colours (the RGB dimension).
+bool HasRGB(const LASFileInfo& info)
+{
+  return std::any_of(info.Dimensions.begin(),
+    info.Dimensions.end(),
+    [](const LASDimension& dimension) { return dimension.Name == "RGB"; });
+}
+
 /// Moves the records of the points not `removed` (--remove-isolated) to the front of the
 /// positions and columns, in order; returns how many there are.
 std::size_t LeaveOutRemoved(const LASFileInfo& info,
@@ -450,9 +458,7 @@ std::string WriteStreamedLASAsText(LASPointSource& input,
   const std::function<void(double)>& progress)
 {
   const LASFileInfo& info = input.GetInfo();
-  const bool colours = std::any_of(info.Dimensions.begin(),
-    info.Dimensions.end(),
-    [](const LASDimension& dimension) { return dimension.Name == "RGB"; });
+  const bool colours = HasRGB(info);
   bool eightBit = false;
   std::string problem = input.ColoursFitEightBits(eightBit);
   PointCloudTable table = LASTextHeader(info, colours);
@@ -591,9 +597,7 @@ std::string WriteStreamedLASAsPCD(LASPointSource& input,
   const std::function<void(double)>& progress)
 {
   const LASFileInfo& info = input.GetInfo();
-  const bool colours = std::any_of(info.Dimensions.begin(),
-    info.Dimensions.end(),
-    [](const LASDimension& dimension) { return dimension.Name == "RGB"; });
+  const bool colours = HasRGB(info);
   bool eightBit = false;
   std::string problem = input.ColoursFitEightBits(eightBit);
   const std::uint64_t total = input.GetNumberOfPoints();
