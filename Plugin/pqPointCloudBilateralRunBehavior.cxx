@@ -15,6 +15,7 @@
 #include "vtkOutputWindow.h"
 #include "vtkPVDataInformation.h"
 #include "vtkPVRepresentedArrayListSettings.h"
+#include "vtkSMBoundsDomain.h"
 #include "vtkSMProperty.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMProxy.h"
@@ -164,6 +165,31 @@ void ShowFilterMessage(vtkObject*, unsigned long event, void*, void* callData)
   else
   {
     vtkOutputWindow::GetInstance()->DisplayWarningText(shown.c_str());
+  }
+}
+/// A display shown while the filter's output was empty (a first Apply with a bad value) took its
+/// Point Gaussian radius from empty bounds (-0.01): the points of every later run would be
+/// invisible. Once there are points, such a radius is set again from the data's bounds, as a
+/// display made then would have it.
+void SizePointsToData(pqPipelineSource* source)
+{
+  for (pqDataRepresentation* display : source->getRepresentations(nullptr))
+  {
+    vtkSMProxy* proxy = display->getProxy();
+    vtkSMProperty* radius = proxy->GetProperty("GaussianRadius");
+    vtkPVDataInformation* information = display->getInputDataInformation();
+    if (!radius || !information || information->GetNumberOfPoints() == 0 ||
+        vtkSMPropertyHelper(radius).GetAsDouble() > 0.0)
+    {
+      continue;
+    }
+    if (auto* bounds = radius->FindDomain<vtkSMBoundsDomain>())
+    {
+      bounds->Update(nullptr); // (from the output's bounds now)
+    }
+    radius->ResetToDomainDefaults();
+    proxy->UpdateVTKObjects();
+    display->renderViewEventually();
   }
 }
 }
@@ -340,6 +366,7 @@ void pqPointCloudBilateralRunBehavior::onRunEnded(vtkObject* algorithm)
       if (source)
       {
         source->getProxy()->UpdatePropertyInformation();
+        SizePointsToData(source);
       }
     });
   if (algorithm == this->Running)
