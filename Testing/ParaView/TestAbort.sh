@@ -102,8 +102,6 @@ check(ours == {"Point Cloud Bilateral Filter"},
 again = [line[2] for line in lines if line[1] == "again"]
 check(again == ["40000", "40000"], f"the two Applies after the abort ran to the end ({again})")
 check(len(progress) > 3 and max(gaps) < 2.0, "progress reaches the GUI while the run goes on")
-radius = [float(line[2]) for line in lines if line[1] == "radius"]
-check(radius and radius[0] > 0, f"the points of the runs after the abort are drawn (radius {radius})")
 check(warning < clicked, "the warning about the radius arrived while the run went on")
 sys.exit(1 if failures else 0)
 PYTHON
