@@ -134,13 +134,18 @@ void Measurement()
   }
   // A cloud larger than the measured selection: the selection (a pass over every point) asks
   // per block of points.
+  // (Counted from the measurement's start: the cloud's extent, before it, asks too.)
   const std::vector<double> large = pcbilateral_testing::NoisyCube(600000, 0.001, 3);
   int polls = 0;
   double reached = 0.0;
-  bool chosen = false;
-  observer.ShouldAbort = [&polls] { return ++polls == 3; };
+  bool chosen = false, started = false;
+  observer.ShouldAbort = [&] { return started && ++polls == 3; };
   observer.ParametersChosen = [&chosen](const BilateralResult&) { chosen = true; };
-  observer.PhaseProgress = [&reached](const std::string&, double fraction) { reached = fraction; };
+  observer.PhaseProgress = [&](const std::string&, double fraction)
+  {
+    started = true;
+    reached = fraction;
+  };
   const BilateralResult result =
     pcbilateral::RunBilateralFilter(pcbilateral_testing::ViewOf(large), automatic, observer);
   PCB_CHECK(result.Status == BilateralStatus::Aborted && polls == 3 && !chosen && reached > 0.0 &&
