@@ -8,10 +8,9 @@ VTK class itself, then:
   4. saved to a .laz file (a writer made by the writer factory, as by File > Save Data, which
      registers no pipeline source): Abort during the write;
   5. saved again, to the end, and read back.
-Each line of PCB_LOG is "<absolute time> <what> [values]", flushed at once so that the driving
-script can follow the run and click Abort:
+Logged (AbortLog.py):
   start NAME         an abortable phase starts (TestAbort.sh clicks Abort in each, at 5 %)
-  progress P T       the session's progress handler (the progress bar) reported P percent, text T
+  progress P T       the progress bar showed P percent and the text T
   returned NAME      the reader or writer returned (aborted or not)
   aborted-message K  the plugin's message after an aborted run (K: Reader or Writer)
   end NAME N [F]     the phase ended with N points read (a write: N 1 if the file exists, and F
@@ -19,42 +18,25 @@ script can follow the run and click Abort:
   again NAME N       a run after the aborts ended with N points (read back, for the write)
   points N           the generated file's number of points"""
 import os
-import time
+import sys
 
 import numpy
-from paraview import servermanager, simple
+from paraview import simple
 from pointcloudbilateral import vtkLASPointCloudReader, vtkLASPointCloudWriter
-from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import numpy_to_vtk
-from vtkmodules.util.vtkConstants import VTK_STRING
-from vtkmodules.vtkCommonCore import vtkOutputWindow, vtkPoints
+from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 
-log = open(os.environ["PCB_LOG"], "w")
+sys.path.insert(0, os.path.join(os.environ["PCB_SOURCE_DIR"], "Testing", "ParaView"))
+from AbortLog import log, note, follow_progress_and_warnings  # noqa: E402
+
 scratch = os.path.dirname(os.path.abspath(os.environ["PCB_LOG"]))
-
-
-def note(what):
-    log.write(f"{time.time():.3f} {what}\n")
-    log.flush()
-
-
-handler = servermanager.ActiveConnection.Session.GetProgressHandler()
-handler.AddObserver("ProgressEvent", lambda caller, event: note(
-    f"progress {caller.GetLastProgress()} {caller.GetLastProgressText()}"))
-
-
-@calldata_type(VTK_STRING)
-def on_warning(caller, event, text):
-    if "aborted" in text:
-        note("aborted-message " + ("Writer" if "Writer" in text else "Reader"))
-
-
-vtkOutputWindow.GetInstance().AddObserver("WarningEvent", on_warning)
+follow_progress_and_warnings(lambda text: "aborted-message " + (
+    "Writer" if "Writer" in text else "Reader") if "aborted" in text else None)
 
 
 def write_cloud(path, count):
-    """A terrain-like cloud (a smooth surface with noise, GPS time), written by the VTK class."""
+    """A terrain-like cloud (a smooth surface with noise), written by the VTK class."""
     generator = numpy.random.default_rng(28)
     xy = generator.random((count, 2)) * 1000.0
     z = 20.0 * numpy.sin(xy[:, 0] / 90.0) * numpy.cos(xy[:, 1] / 70.0) + generator.random(count)

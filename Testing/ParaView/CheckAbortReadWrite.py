@@ -35,9 +35,11 @@ for run, clicked in zip(("read", "reload", "write"), clicks):
     returned = first("returned", run, clicked)
     progress = [float(line[0]) for line in lines
                 if line[1] == "progress" and start <= float(line[0]) <= clicked]
+    gaps = [b - a for a, b in zip([start] + progress, progress)]
     print(f"measured: {run}: the {'writer' if run == 'write' else 'reader'} returned "
           f"{returned - clicked:.3f} s after the click, {clicked - start:.2f} s after its start; "
-          f"{len(progress)} progress events before the click")
+          f"{len(progress)} progress events before the click, largest gap "
+          f"{max(gaps, default=0):.3f} s")
     check(start < clicked < first("end", run), f"Abort was clicked during the {run}")
     check(returned - clicked < 5.0,
           f"the {run} returned {returned - clicked:.3f} s after Abort was clicked")
@@ -45,7 +47,8 @@ for run, clicked in zip(("read", "reload", "write"), clicks):
 messages = [line[2] for line in lines if line[1] == "aborted-message"]
 check(messages == ["Reader", "Reader", "Writer"],
       f"the Output Messages window says each run was aborted ({messages})")
-check(values("end", "read") == [["0"]], f"the aborted read's output is empty ({values('end', 'read')})")
+check(values("end", "read") == [["0"]],
+      f"the aborted read's output is empty ({values('end', 'read')})")
 check(values("end", "reload") == [["0"]],
       f"the aborted reload's output is empty ({values('end', 'reload')})")
 check(values("again", "read") == [[str(total)]],
