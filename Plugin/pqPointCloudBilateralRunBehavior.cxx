@@ -8,6 +8,7 @@
 #include "pqRepresentation.h"
 #include "pqServer.h"
 #include "pqServerManagerModel.h"
+#include "pqView.h"
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCollection.h"
@@ -235,10 +236,33 @@ void ShowFilterMessage(vtkObject*, unsigned long event, void*, void* callData)
     vtkOutputWindow::GetInstance()->DisplayWarningText(shown.c_str());
   }
 }
-/// A display shown while the filter's output was empty (a first Apply with a bad value) took its
-/// Point Gaussian radius from empty bounds (-0.01): the points of every later run would be
-/// invisible. Once there are points, such a radius is set again from the data's bounds, as a
-/// display made then would have it.
+/// Whether no display of the view but `display` shows any point.
+bool AloneInView(pqDataRepresentation* display)
+{
+  pqView* view = display->getView();
+  if (!view)
+  {
+    return false;
+  }
+  for (pqRepresentation* other : view->getRepresentations())
+  {
+    auto* data = qobject_cast<pqDataRepresentation*>(other);
+    vtkPVDataInformation* information = data ? data->getInputDataInformation() : nullptr;
+    if (data && data != display && data->isVisible() && information &&
+        information->GetNumberOfPoints() > 0)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// A display shown while the filter's or reader's output was empty (a first Apply with a bad
+/// value, an aborted read) took its Point Gaussian radius from empty bounds (-0.01): the points
+/// of every later run would be invisible. Once there are points, such a radius is set again from
+/// the data's bounds, as a display made then would have it; and when nothing else is shown, the
+/// camera, fitted to nothing then, is fitted to the points (after an aborted read and Reload
+/// Files, the cloud was off screen).
 void SizePointsToData(pqPipelineSource* source)
 {
   for (pqDataRepresentation* display : source->getRepresentations(nullptr))
@@ -257,6 +281,10 @@ void SizePointsToData(pqPipelineSource* source)
     }
     radius->ResetToDomainDefaults();
     proxy->UpdateVTKObjects();
+    if (AloneInView(display))
+    {
+      display->getView()->resetDisplay();
+    }
     display->renderViewEventually();
   }
 }

@@ -37,7 +37,10 @@
  *
  * After each run it refreshes the filter's information properties (Radius Used, Normal Radius
  * Used): the Properties panel reads them when Apply pushes the properties, before the run, so
- * they showed the previous run's values.
+ * they showed the previous run's values. And once a filter's or reader's output has points
+ * again after a display was first shown on an empty one (a bad first Apply, an aborted read),
+ * it sizes the Point Gaussian points to the data and, when the view shows nothing else, fits
+ * the camera to them (both were fitted to empty bounds).
  *
  * It gives the filter's long errors and warnings a short first line: the Output Messages window
  * sums a VTK message up by its whole text in one row, cut at the window's width, and any other

@@ -16,7 +16,8 @@ Logged (AbortLog.py):
   end NAME N [F]     the phase ended with N points read (a write: N 1 if the file exists, and F
                      the files left in the output folder)
   again NAME N       a run after the aborts ended with N points (read back, for the write)
-  points N           the generated file's number of points"""
+  points N           the generated file's number of points
+  camera X Y         the view's focal point after the reload (the cloud spans 0-1000 in x and y)"""
 import os
 import sys
 
@@ -99,6 +100,10 @@ note("start write")
 writer.UpdatePipeline()
 left = ",".join(sorted(os.listdir(saved_folder))) or "-"
 note(f"end write {int(os.path.exists(saved))} {left}")
+# The display, first shown on the aborted read's empty output, had the camera fitted to nothing;
+# once the reload had points, the plugin fitted it to them (a call queued at the reload's end,
+# made when the write above let events through, before its Abort).
+note("camera {:.0f} {:.0f}".format(*simple.GetActiveCamera().GetFocalPoint()[:2]))
 del writer
 simple.SaveData(saved, proxy=reader)
 note(f"again write {read_back(saved) if os.path.exists(saved) else 0}")

@@ -57,4 +57,7 @@ check(values("end", "write") == [["0", "-"]],
       f"the aborted write left no file, complete or partial ({values('end', 'write')})")
 check(values("again", "write") == [[str(total)]],
       f"the next save wrote all {total} points ({values('again', 'write')})")
+camera = [[float(value) for value in line[2:4]] for line in lines if line[1] == "camera"]
+check(len(camera) == 1 and all(400 < value < 600 for value in camera[0]),
+      f"after the reload the camera looks at the cloud's middle ({camera}; 500 500)")
 sys.exit(1 if failures else 0)
