@@ -467,6 +467,12 @@ void pqPointCloudBilateralRunBehavior::ObserveWatchedObjects()
 void pqPointCloudBilateralRunBehavior::Observe(WatchedProxy& watched, vtkAlgorithm* algorithm)
 {
   watched.Observed = algorithm;
+  // The progress bar names a run by its algorithm's progress text, or else by its class
+  // ("vtkPLASPointCloudReader"): give it the label the menus and the panel show.
+  if (const char* label = watched.Proxy->GetXMLLabel())
+  {
+    algorithm->SetProgressText(label);
+  }
   if (watched.Kind == RunKind::Filter)
   {
     vtkNew<vtkCallbackCommand> showMessage;

@@ -20,7 +20,9 @@
  *   flag, which it polls from its calling thread; the run stops, a filter's or reader's output is
  *   empty, and a writer leaves no file (it writes beside the file and renames once complete).
  *   A message in the Output Messages window says how to run it again (change a property and
- *   Apply; Reload Files; save again).
+ *   Apply; Reload Files; save again);
+ * - the progress bar names each of them by its label in the menus ("LAS Point Cloud Reader"),
+ *   not by its class.
  * A writer is no pipeline source: ParaView's Save Data creates its proxy through the writer
  * factory and never registers it. So the behavior watches the session's remote objects as they
  * are registered (vtkPVSessionBase::RegisterRemoteObjectEvent), keeps this plugin's proxies, and

@@ -44,6 +44,11 @@ for run, clicked in zip(("read", "reload", "write"), clicks):
     check(returned - clicked < 5.0,
           f"the {run} returned {returned - clicked:.3f} s after Abort was clicked")
     check(len(progress) >= 1, f"the progress bar moved during the {run} ({len(progress)} events)")
+# The progress bar names each run by its reader's or writer's label, not its class.
+texts = {" ".join(line[3:]) for line in lines if line[1] == "progress"}
+ours = {text for text in texts if "LAS" in text}
+check(ours == {"LAS Point Cloud Reader", "LAS Point Cloud Writer"},
+      f"the progress bar names the reader and the writer by their labels ({sorted(texts)})")
 messages = [line[2] for line in lines if line[1] == "aborted-message"]
 check(messages == ["Reader", "Reader", "Writer"],
       f"the Output Messages window says each run was aborted ({messages})")
