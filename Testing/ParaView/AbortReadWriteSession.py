@@ -17,7 +17,9 @@ Logged (AbortLog.py):
                      the files left in the output folder)
   again NAME N       a run after the aborts ended with N points (read back, for the write)
   points N           the generated file's number of points
-  camera X Y         the view's focal point after the reload (the cloud spans 0-1000 in x and y)"""
+  camera X Y         the view's focal point after the reload (the cloud spans 0-1000 in x and y)
+  radius R           the display's Point Gaussian radius then (set from empty bounds, -0.01, when
+                     the display was first shown on the aborted read's empty output)"""
 import os
 import sys
 
@@ -104,6 +106,7 @@ note(f"end write {int(os.path.exists(saved))} {left}")
 # once the reload had points, the plugin fitted it to them (a call queued at the reload's end,
 # made when the write above let events through, before its Abort).
 note("camera {:.0f} {:.0f}".format(*simple.GetActiveCamera().GetFocalPoint()[:2]))
+note(f"radius {simple.GetDisplayProperties(reader).GaussianRadius}")
 del writer
 simple.SaveData(saved, proxy=reader)
 note(f"again write {read_back(saved) if os.path.exists(saved) else 0}")

@@ -65,4 +65,7 @@ check(values("again", "write") == [[str(total)]],
 camera = [[float(value) for value in line[2:4]] for line in lines if line[1] == "camera"]
 check(len(camera) == 1 and all(400 < value < 600 for value in camera[0]),
       f"after the reload the camera looks at the cloud's middle ({camera}; 500 500)")
+radius = [float(line[2]) for line in lines if line[1] == "radius"]
+check(len(radius) == 1 and radius[0] > 0,
+      f"after the reload the points have a size to be drawn with ({radius}; -0.01 was none)")
 sys.exit(1 if failures else 0)
