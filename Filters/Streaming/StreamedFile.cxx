@@ -234,7 +234,7 @@ std::string StreamingProblem(const std::string& input,
   // (--classes with text input: the run in memory's error, from ChooseClasses.)
   if (copc || (classes && EndsWith(output, ".pcd") && !IsText(input)))
   {
-    return "streaming does not take the --copc options, or --classes into PCD, yet";
+    return "streaming does not take the --copc options, or --classes with PCD output, yet";
   }
   return StreamingFormatsProblem(input, output);
 }

@@ -529,6 +529,31 @@ std::string PCDPointSource::WriteFiltered(OutOfCoreRun& run,
   return problem.empty() ? writer.Close() : problem;
 }
 
+std::size_t PCDPointSource::MoveToFront(const std::vector<bool>& written)
+{
+  // Field by field: a field's values move only to places before their own, and after the
+  // fields already moved, so nothing unread is overwritten.
+  const auto count = static_cast<std::size_t>(std::count(written.begin(), written.end(), true));
+  const std::vector<PCDField>& fields = this->Header.Fields;
+  std::size_t outStart = 0;
+  for (std::size_t f = 0; f < fields.size(); ++f)
+  {
+    const std::size_t bytes = fields[f].Bytes();
+    std::size_t k = 0;
+    for (std::size_t r = 0; r < written.size(); ++r)
+    {
+      if (written[r])
+      {
+        std::memmove(this->Fields.data() + outStart + k++ * bytes,
+          this->Fields.data() + this->FieldStarts[f] + r * bytes,
+          bytes);
+      }
+    }
+    outStart += count * bytes;
+  }
+  return count;
+}
+
 std::string PCDPointSource::WriteCompressed(OutOfCoreRun& run,
   const std::string& path,
   std::size_t pointsPerRange,
@@ -543,19 +568,16 @@ std::string PCDPointSource::WriteCompressed(OutOfCoreRun& run,
   std::uint64_t first = 0;
   for (std::uint64_t next = 0; next < total || !records.empty();)
   {
-    for (; next < total && records.size() < pointsPerRange; ++next)
+    // (The positions as read: with --keep-nan the points without coordinates pass through.)
+    for (positions.clear(); next < total && records.size() < pointsPerRange; ++next)
     {
       this->CopyRecord(next, record.data());
       if (this->IsKept(record.data()))
       {
         records.push_back(next);
+        positions.resize(positions.size() + 3);
+        this->RecordPosition(record.data(), &positions[positions.size() - 3]);
       }
-    }
-    positions.resize(3 * records.size());
-    for (std::size_t i = 0; i < records.size(); ++i)
-    {
-      this->CopyRecord(records[i], record.data());
-      this->RecordPosition(record.data(), &positions[3 * i]);
     }
     removed.assign(records.size(), 0);
     std::string problem = run.ReadFiltered(first, records.size(), positions.data(), removed.data());
@@ -591,25 +613,7 @@ std::string PCDPointSource::WriteCompressed(OutOfCoreRun& run,
       progress(0.9 * static_cast<double>(next) / static_cast<double>(total));
     }
   }
-  // The points written to the front, field by field: a field's values move only to places
-  // before their own, and after the fields already moved, so nothing unread is overwritten.
-  const auto count = static_cast<std::size_t>(std::count(written.begin(), written.end(), true));
-  std::size_t outStart = 0;
-  for (std::size_t f = 0; f < fields.size(); ++f)
-  {
-    const std::size_t bytes = fields[f].Bytes();
-    std::size_t k = 0;
-    for (std::size_t r = 0; r < written.size(); ++r)
-    {
-      if (written[r])
-      {
-        std::memmove(this->Fields.data() + outStart + k++ * bytes,
-          this->Fields.data() + this->FieldStarts[f] + r * bytes,
-          bytes);
-      }
-    }
-    outStart += count * bytes;
-  }
+  const std::size_t count = this->MoveToFront(written);
   const std::string problem =
     WritePCDCompressedFields(path, this->Header, count, this->Fields.data());
   if (progress)

@@ -81,6 +81,9 @@ private:
     const std::string& path,
     std::size_t pointsPerRange,
     const std::function<void(double)>& progress);
+  /// binary_compressed: the points `written` moved to the front of the decompressed fields;
+  /// their number.
+  std::size_t MoveToFront(const std::vector<bool>& written);
   /// The records (binary layout, `Stride` bytes each) of the kept points [first, first + count).
   std::string ReadRecords(std::uint64_t first,
     std::size_t count,

@@ -86,7 +86,7 @@ def frame(seed, shuffled):
 def check_refused_and_damaged(c, binary, ascii_file):
     output = os.path.join(c.scratch, "refused.pcd")
     # (--keep-nan and PCD into LAS or text are streamed: CheckStreamingFormats.py.)
-    for arguments, words in (([binary, output, "--classes", "1"], "LAS and LAZ input only"),
+    for arguments, words in (([binary, output, "--classes", "1"], "--classes"),
                              ([binary, os.path.join(c.scratch, "o.ply")], "not yet PLY")):
         result = c.run(arguments + ["--memory-limit", "1G", "-r", "1"])
         c.check(result.returncode == 1 and words in result.stderr and
