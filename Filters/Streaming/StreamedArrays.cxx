@@ -49,6 +49,25 @@ void StreamedArrays::LeaveOutRemoved(const std::vector<std::uint8_t>& removed)
   }
 }
 
+std::string ForEachRange(std::uint64_t total,
+  std::size_t pointsPerRange,
+  const std::function<void(double)>& progress,
+  const std::function<std::string(std::uint64_t first, std::size_t count)>& range)
+{
+  std::string problem;
+  for (std::uint64_t first = 0; first < total && problem.empty(); first += pointsPerRange)
+  {
+    const auto count =
+      static_cast<std::size_t>(std::min<std::uint64_t>(pointsPerRange, total - first));
+    problem = range(first, count);
+    if (progress)
+    {
+      progress(static_cast<double>(first + count) / static_cast<double>(total));
+    }
+  }
+  return problem;
+}
+
 bool HasExtension(const std::string& path, const char* suffix)
 {
   const std::size_t n = std::strlen(suffix);
@@ -59,23 +78,18 @@ bool HasExtension(const std::string& path, const char* suffix)
            [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
 }
 
+bool IsLASPath(const std::string& path)
+{
+  return HasExtension(path, ".las") || HasExtension(path, ".laz");
+}
+
+bool IsTextPath(const std::string& path)
+{
+  return HasExtension(path, ".txt") || HasExtension(path, ".xyz");
+}
+
 namespace
 {
-bool EndsWith(const std::string& path, const char* suffix)
-{
-  return HasExtension(path, suffix);
-}
-
-bool IsLASName(const std::string& path)
-{
-  return EndsWith(path, ".las") || EndsWith(path, ".laz");
-}
-
-bool IsTextName(const std::string& path)
-{
-  return EndsWith(path, ".txt") || EndsWith(path, ".xyz");
-}
-
 /// The first array named `name` (vtkFieldData::GetArray), or null.
 const StreamedArray* FindArray(const StreamedArrays& arrays, const std::string& name)
 {
@@ -89,42 +103,58 @@ const StreamedArray* FindArray(const StreamedArrays& arrays, const std::string& 
   return nullptr;
 }
 
+/// What the writers read: the input, the run's results, the points of a range, the progress.
+struct FilteredInput
+{
+  StreamedFile& Input;
+  OutOfCoreRun& Run;
+  std::size_t PointsPerRange;
+  const std::function<void(double)>& Progress;
+
+  /// The points written: the input's less the removed ones.
+  std::size_t Written() const
+  {
+    return static_cast<std::size_t>(
+      this->Input.GetNumberOfPoints() - this->Run.GetNumberOfRemovedPoints());
+  }
+};
+
 /**
- * Each range of `input` at its filtered positions, the removed points left out:
- * `append(range)` gets each and returns an empty string or a problem, which ends the loop.
+ * Each range of `input` at its filtered positions, the removed points left out, given to
+ * `append(range)` (an empty string or a problem, which ends the loop), then `writer` closed:
+ * an empty string or the first problem (`opened`: the writer's Open).
  */
-template<typename Append>
-std::string ForEachFilteredArrays(StreamedFile& input,
-  OutOfCoreRun& run,
-  std::size_t pointsPerRange,
-  const std::function<void(double)>& progress,
+template<typename Writer, typename Append>
+std::string WriteFilteredRanges(const FilteredInput& from,
+  Writer& writer,
+  std::string opened,
   Append&& append)
 {
-  const std::uint64_t total = input.GetNumberOfPoints();
-  std::string problem;
+  StreamedFile& input = from.Input;
+  if (!opened.empty())
+  {
+    return opened;
+  }
   StreamedArrays range;
   std::vector<std::uint8_t> removed;
-  for (std::uint64_t first = 0; first < total && problem.empty(); first += pointsPerRange)
-  {
-    const auto count =
-      static_cast<std::size_t>(std::min<std::uint64_t>(pointsPerRange, total - first));
-    removed.assign(count, 0);
-    problem = input.ReadArrays(first, count, range);
-    if (problem.empty())
+  const std::string problem = ForEachRange(input.GetNumberOfPoints(),
+    from.PointsPerRange,
+    from.Progress,
+    [&](std::uint64_t first, std::size_t count)
     {
-      problem = run.ReadFiltered(first, count, range.Positions.data(), removed.data());
-    }
-    if (problem.empty())
-    {
+      removed.assign(count, 0);
+      std::string read = input.ReadArrays(first, count, range);
+      read = read.empty()
+               ? from.Run.ReadFiltered(first, count, range.Positions.data(), removed.data())
+               : read;
+      if (!read.empty())
+      {
+        return read;
+      }
       range.LeaveOutRemoved(removed);
-      problem = append(range);
-    }
-    if (progress)
-    {
-      progress(static_cast<double>(first + count) / static_cast<double>(total));
-    }
-  }
-  return problem;
+      return append(range);
+    });
+  return problem.empty() ? writer.Close() : problem;
 }
 
 /// A LAS column type as a PCD type and size (the types StreamedArray uses).
@@ -211,42 +241,31 @@ LASFileInfo DefaultInfoFor(const StreamedArrays& layout, std::size_t count, OutO
 }
 
 template<typename Writer>
-std::string WriteArraysAsLAS(StreamedFile& input,
-  OutOfCoreRun& run,
+std::string WriteArraysAsLAS(const FilteredInput& from,
+  const StreamedArrays& layout,
   Writer& writer,
-  const std::string& path,
-  std::size_t pointsPerRange,
-  const std::function<void(double)>& progress)
+  const std::string& path)
 {
-  StreamedArrays layout;
-  std::string problem = input.ReadArrays(0, 0, layout);
-  const auto count =
-    static_cast<std::size_t>(input.GetNumberOfPoints() - run.GetNumberOfRemovedPoints());
-  const LASFileInfo info = DefaultInfoFor(layout, count, run);
-  problem = problem.empty() ? writer.Open(path, info, count) : problem;
+  const LASFileInfo info = DefaultInfoFor(layout, from.Written(), from.Run);
+  const std::string problem = writer.Open(path, info, from.Written());
   std::vector<std::vector<std::uint8_t>> columns(info.Dimensions.size());
   std::vector<const void*> pointers(info.Dimensions.size(), nullptr);
-  if (problem.empty())
-  {
-    problem = ForEachFilteredArrays(input,
-      run,
-      pointsPerRange,
-      progress,
-      [&](const StreamedArrays& range)
+  return WriteFilteredRanges(from,
+    writer,
+    problem,
+    [&](const StreamedArrays& range)
+    {
+      const std::vector<const StreamedArray*> arrays = LASDimensionArrays(info, range);
+      for (std::size_t d = 0; d < arrays.size(); ++d)
       {
-        const std::vector<const StreamedArray*> arrays = LASDimensionArrays(info, range);
-        for (std::size_t d = 0; d < arrays.size(); ++d)
+        if (arrays[d])
         {
-          if (arrays[d])
-          {
-            LASColumn(*arrays[d], info.Dimensions[d], range.NumberOfPoints, columns[d]);
-          }
-          pointers[d] = arrays[d] ? columns[d].data() : nullptr;
+          LASColumn(*arrays[d], info.Dimensions[d], range.NumberOfPoints, columns[d]);
         }
-        return writer.Append(range.NumberOfPoints, range.Positions.data(), pointers.data());
-      });
-  }
-  return problem.empty() ? writer.Close() : problem;
+        pointers[d] = arrays[d] ? columns[d].data() : nullptr;
+      }
+      return writer.Append(range.NumberOfPoints, range.Positions.data(), pointers.data());
+    });
 }
 
 /// The normals array the text writer writes as columns 4-6 (-R), or null.
@@ -297,33 +316,23 @@ void FillTextTable(const StreamedArrays& range, bool withNormals, PointCloudTabl
   }
 }
 
-std::string WriteArraysAsText(StreamedFile& input,
-  OutOfCoreRun& run,
+std::string WriteArraysAsText(const FilteredInput& from,
+  const StreamedArrays& layout,
   const std::string& path,
-  bool withNormals,
-  std::size_t pointsPerRange,
-  const std::function<void(double)>& progress)
+  bool withNormals)
 {
-  StreamedArrays layout;
-  std::string problem = input.ReadArrays(0, 0, layout);
   PointCloudTable table;
   FillTextTable(layout, withNormals, table);
   PointCloudTextStreamWriter writer;
-  problem = problem.empty() ? writer.Open(path, table, TextNormals(layout, withNormals) != nullptr)
-                            : problem;
-  if (problem.empty())
-  {
-    problem = ForEachFilteredArrays(input,
-      run,
-      pointsPerRange,
-      progress,
-      [&](const StreamedArrays& range)
-      {
-        FillTextTable(range, withNormals, table);
-        return writer.Append(table);
-      });
-  }
-  return problem.empty() ? writer.Close() : problem;
+  const std::string problem = writer.Open(path, table, TextNormals(layout, withNormals) != nullptr);
+  return WriteFilteredRanges(from,
+    writer,
+    problem,
+    [&](const StreamedArrays& range)
+    {
+      FillTextTable(range, withNormals, table);
+      return writer.Append(table);
+    });
 }
 
 /// A field of a PCD output: the index of the array it comes from, and the component it takes
@@ -417,40 +426,30 @@ void FillPCDRange(const StreamedArrays& range,
   }
 }
 
-std::string WriteArraysAsPCD(StreamedFile& input,
-  OutOfCoreRun& run,
-  const std::string& path,
-  std::size_t pointsPerRange,
-  const std::function<void(double)>& progress)
+std::string WriteArraysAsPCD(const FilteredInput& from,
+  const StreamedArrays& layout,
+  const std::string& path)
 {
-  StreamedArrays layout;
-  std::string problem = input.ReadArrays(0, 0, layout);
-  const auto count =
-    static_cast<std::size_t>(input.GetNumberOfPoints() - run.GetNumberOfRemovedPoints());
   std::vector<PCDSource> sources;
   PCDCloud cloud;
-  cloud.Header = ArraysPCDHeader(layout, run.AreFilteredPositionsFloats(), count, sources);
+  cloud.Header =
+    ArraysPCDHeader(layout, from.Run.AreFilteredPositionsFloats(), from.Written(), sources);
   PCDBinaryStreamWriter writer;
-  problem = problem.empty() ? writer.Open(path, cloud.Header, count) : problem;
-  if (problem.empty())
-  {
-    problem = ForEachFilteredArrays(input,
-      run,
-      pointsPerRange,
-      progress,
-      [&](const StreamedArrays& range)
-      {
-        FillPCDRange(range, sources, cloud);
-        return writer.Append(cloud);
-      });
-  }
-  return problem.empty() ? writer.Close() : problem;
+  const std::string problem = writer.Open(path, cloud.Header, from.Written());
+  return WriteFilteredRanges(from,
+    writer,
+    problem,
+    [&](const StreamedArrays& range)
+    {
+      FillPCDRange(range, sources, cloud);
+      return writer.Append(cloud);
+    });
 }
 } // namespace
 
 bool IsArraysOutput(const std::string& path)
 {
-  return IsLASName(path) || IsTextName(path) || EndsWith(path, ".pcd");
+  return IsLASPath(path) || IsTextPath(path) || HasExtension(path, ".pcd");
 }
 
 std::string WriteStreamedArrays(StreamedFile& input,
@@ -460,26 +459,33 @@ std::string WriteStreamedArrays(StreamedFile& input,
   std::size_t pointsPerRange,
   const std::function<void(double)>& progress)
 {
-  if (IsTextName(path))
+  StreamedArrays layout;
+  const std::string problem = input.ReadArrays(0, 0, layout);
+  const FilteredInput from{ input, run, pointsPerRange, progress };
+  if (!problem.empty())
   {
-    return WriteArraysAsText(input, run, path, withNormals, pointsPerRange, progress);
+    return problem;
   }
-  if (EndsWith(path, ".pcd"))
+  if (IsTextPath(path))
   {
-    return WriteArraysAsPCD(input, run, path, pointsPerRange, progress);
+    return WriteArraysAsText(from, layout, path, withNormals);
   }
-  if (EndsWith(path, ".laz"))
+  if (HasExtension(path, ".pcd"))
+  {
+    return WriteArraysAsPCD(from, layout, path);
+  }
+  if (HasExtension(path, ".laz"))
   {
     LAZStreamWriter writer;
-    return WriteArraysAsLAS(input, run, writer, path, pointsPerRange, progress);
+    return WriteArraysAsLAS(from, layout, writer, path);
   }
   LASStreamWriter writer;
-  return WriteArraysAsLAS(input, run, writer, path, pointsPerRange, progress);
+  return WriteArraysAsLAS(from, layout, writer, path);
 }
 
 std::string StreamedArraysWarning(const StreamedArrays& layout, const std::string& path)
 {
-  if (!IsLASName(path))
+  if (!IsLASPath(path))
   {
     return std::string();
   }

@@ -47,8 +47,21 @@ struct StreamedArrays
   void LeaveOutRemoved(const std::vector<std::uint8_t>& removed);
 };
 
+/**
+ * Calls `range(first, count)` for the ranges of `pointsPerRange` points of `total`, in order,
+ * until one returns a problem (returned), with the progress after each (0 to 1).
+ */
+std::string ForEachRange(std::uint64_t total,
+  std::size_t pointsPerRange,
+  const std::function<void(double)>& progress,
+  const std::function<std::string(std::uint64_t first, std::size_t count)>& range);
+
 /// Whether `path` ends in `suffix` (lower case), in any case.
 bool HasExtension(const std::string& path, const char* suffix);
+
+/// Whether `path` names a LAS or LAZ file (.las, .laz), or a text file (.txt, .xyz).
+bool IsLASPath(const std::string& path);
+bool IsTextPath(const std::string& path);
 
 /// Whether `path` is written through WriteStreamedArrays (.las, .laz, .txt, .xyz, .pcd).
 bool IsArraysOutput(const std::string& path);

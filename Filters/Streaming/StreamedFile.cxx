@@ -16,22 +16,7 @@ namespace
 {
 bool EndsWith(const std::string& name, const char* suffix)
 {
-  const std::size_t n = std::strlen(suffix);
-  return name.size() >= n &&
-         std::equal(name.end() - static_cast<std::ptrdiff_t>(n),
-           name.end(),
-           suffix,
-           [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
-}
-
-bool IsLAS(const std::string& name)
-{
-  return EndsWith(name, ".las") || EndsWith(name, ".laz");
-}
-
-bool IsText(const std::string& name)
-{
-  return EndsWith(name, ".txt") || EndsWith(name, ".xyz");
+  return HasExtension(name, suffix);
 }
 
 /// Moves the rows of the points not `removed` (--remove-isolated) to the front, in order, and
@@ -184,7 +169,7 @@ std::string TextPointSource::WriteFiltered(OutOfCoreRun& run,
   std::size_t pointsPerRange,
   const std::function<void(double)>& progress)
 {
-  if (!IsText(path))
+  if (!IsTextPath(path))
   {
     return WriteStreamedArrays(*this, run, path, this->WithNormals, pointsPerRange, progress);
   }
@@ -218,7 +203,7 @@ std::string TextPointSource::WriteFiltered(OutOfCoreRun& run,
 
 std::string StreamingFormatsProblem(const std::string& input, const std::string& output)
 {
-  if ((IsLAS(input) || IsText(input) || EndsWith(input, ".pcd")) && IsArraysOutput(output))
+  if ((IsLASPath(input) || IsTextPath(input) || EndsWith(input, ".pcd")) && IsArraysOutput(output))
   {
     return std::string();
   }
@@ -232,7 +217,7 @@ std::string StreamingProblem(const std::string& input,
   bool classes)
 {
   // (--classes with text input: the run in memory's error, from ChooseClasses.)
-  if (copc || (classes && EndsWith(output, ".pcd") && !IsText(input)))
+  if (copc || (classes && EndsWith(output, ".pcd") && !IsTextPath(input)))
   {
     return "streaming does not take the --copc options, or --classes with PCD output, yet";
   }
@@ -258,7 +243,7 @@ std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,
   {
     return nullptr;
   }
-  if (IsLAS(input))
+  if (IsLASPath(input))
   {
     auto las = std::make_unique<LASPointSource>();
     problem = las->Open(input);
