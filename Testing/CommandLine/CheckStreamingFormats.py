@@ -60,13 +60,15 @@ def same_as_in_memory(c, name, source, extension, parameters, slab_sizes, range_
 
 
 def write_las_columns(path, points, seed):
-    """Text whose columns the LAS writer takes: Intensity, Classification, GpsTime, RGB."""
+    """Text whose columns the LAS writer takes: Intensity (halves), Classification, GpsTime,
+    RGB (beyond 65535: clamped)."""
     rng = np.random.default_rng(seed)
     with open(path, "w") as stream:
         stream.write("x y z Intensity Classification GpsTime RGB:0 RGB:1 RGB:2 other\n")
         for i, p in enumerate(points):
             rgb = rng.integers(0, 70000, 3)
-            stream.write(f"{p[0]:.6f} {p[1]:.6f} {p[2]:.6f} {i % 300} {i % 7} "
+            # (Halves: the LAS writer rounds them away from zero.)
+            stream.write(f"{p[0]:.6f} {p[1]:.6f} {p[2]:.6f} {i % 300 + 0.5} {i % 7} "
                          f"{1000 + i * 0.5} {rgb[0]} {rgb[1]} {rgb[2]} {rng.normal():.4f}\n")
 
 
