@@ -227,12 +227,11 @@ std::string vtkLASPointCloudReader::ReadShare(const pcbilateral::LASFileBytes& f
     query.MaxLevel = this->COPCMaxLevel;
     query.UseBounds = this->COPCUseBounds;
     std::copy(this->COPCBounds, this->COPCBounds + 6, query.Bounds);
-    std::uint64_t chosen = 0;
+    query.Piece = piece;
+    query.NumberOfPieces = pieces;
     const std::string problem = pcbilateral::ReadCOPCPoints(
-      file.Data(), file.Size(), info, this->FileName, query, decompressed, chosen);
-    const pcbilateral::PointRange part = pcbilateral::PieceOfPoints(chosen, piece, pieces);
-    records = decompressed.data() + part.First * info.Header.RecordLength;
-    count = part.Count;
+      file.Data(), file.Size(), info, this->FileName, query, decompressed, count);
+    records = decompressed.data();
     colourShare = pcbilateral::PointRange();
     return problem;
   }

@@ -10,6 +10,7 @@
 #include "LASReader.h"
 #include "LAZReader.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -237,6 +238,58 @@ void Bounds()
   }
 }
 
+/// Pieces of a distributed read decode whole nodes of their own: put end to end they are the
+/// one-piece read, record for record, and each chosen node is decoded by exactly one piece.
+void Pieces()
+{
+  const std::vector<std::uint8_t> bytes = FileBytes(COPCPath());
+  pcbilateral::LASFileInfo info;
+  const pcbilateral::COPCHierarchy hierarchy = Hierarchy(bytes, info);
+  pcbilateral::COPCQuery levelOne;
+  levelOne.MaxLevel = 1;
+  pcbilateral::COPCQuery box;
+  box.UseBounds = true;
+  const double corner[6] = { 637000, 638200.5, 850000, 852500, 420, 560 };
+  std::copy(corner, corner + 6, box.Bounds);
+  pcbilateral::COPCQuery deepest;
+  deepest.MaxLevel = 3;
+  for (pcbilateral::COPCQuery query : { levelOne, box, deepest })
+  {
+    const Read whole = ReadCOPC(bytes, query);
+    const std::vector<pcbilateral::COPCNode> chosen =
+      pcbilateral::SelectCOPCNodes(hierarchy, info.Header, query);
+    for (int pieces : { 2, 3, 7 })
+    {
+      std::vector<std::uint8_t> joined;
+      std::size_t decoded = 0;
+      std::size_t largest = 0;
+      for (int piece = 0; piece < pieces; ++piece)
+      {
+        query.Piece = piece;
+        query.NumberOfPieces = pieces;
+        const Read part = ReadCOPC(bytes, query);
+        PCB_CHECK(part.Error.empty(), "%s", part.Error.c_str());
+        joined.insert(joined.end(), part.Records.begin(), part.Records.end());
+        const std::size_t own = pcbilateral::COPCPieceOfNodes(chosen, piece, pieces).size();
+        decoded += own;
+        largest = std::max(largest, own);
+      }
+      std::printf("level %d, box %d, %d pieces: %llu points; %zu of %zu nodes decoded, at most "
+                  "%zu by one piece\n",
+        query.MaxLevel,
+        query.UseBounds ? 1 : 0,
+        pieces,
+        static_cast<unsigned long long>(whole.Count),
+        decoded,
+        chosen.size(),
+        largest);
+      PCB_CHECK(joined == whole.Records, "the pieces end to end are not the one-piece read");
+      PCB_CHECK(decoded == chosen.size(), "a node was decoded by more than one piece, or none");
+      PCB_CHECK(largest < chosen.size(), "one piece decoded every chosen node");
+    }
+  }
+}
+
 /// A damaged copy of the file gives one line naming it and the problem.
 void ExpectError(std::vector<std::uint8_t> bytes, const char* fragment)
 {
@@ -440,6 +493,7 @@ int main(int argc, char* argv[])
       { "all-points", AllPoints },
       { "levels", Levels },
       { "bounds", Bounds },
+      { "pieces", Pieces },
       { "damaged-hierarchy", Damaged },
       { "child-pages", ChildPages },
     });

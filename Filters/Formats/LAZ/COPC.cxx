@@ -2,6 +2,7 @@
 
 #include "LASBinary.h"
 #include "LAZReader.h"
+#include "PointPieces.h"
 
 #include <algorithm>
 #include <cmath>
@@ -353,6 +354,27 @@ std::vector<COPCNode> SelectCOPCNodes(const COPCHierarchy& hierarchy,
   return chosen;
 }
 
+std::vector<COPCNode> COPCPieceOfNodes(const std::vector<COPCNode>& chosen, int piece, int pieces)
+{
+  std::uint64_t total = 0;
+  for (const COPCNode& node : chosen)
+  {
+    total += node.Chunk.Points;
+  }
+  const PointRange share = PieceOfPoints(total, piece, pieces);
+  std::vector<COPCNode> own;
+  std::uint64_t first = 0;
+  for (const COPCNode& node : chosen)
+  {
+    if (first >= share.First && first - share.First < share.Count)
+    {
+      own.push_back(node);
+    }
+    first += node.Chunk.Points;
+  }
+  return own;
+}
+
 namespace
 {
 /// Keeps the records whose real coordinates lie inside the box, in order; returns their count.
@@ -401,7 +423,8 @@ std::string ReadCOPCPoints(const std::uint8_t* data,
     return problem;
   }
   std::vector<LAZChunk> chunks;
-  for (const COPCNode& node : SelectCOPCNodes(hierarchy, info.Header, query))
+  const std::vector<COPCNode> chosen = SelectCOPCNodes(hierarchy, info.Header, query);
+  for (const COPCNode& node : COPCPieceOfNodes(chosen, query.Piece, query.NumberOfPieces))
   {
     chunks.push_back(node.Chunk);
     count += node.Chunk.Points;

@@ -64,6 +64,10 @@ struct COPCQuery
   bool UseBounds = false;
   /// xmin, xmax, ymin, ymax, zmin, zmax in real coordinates; a point on a face is inside.
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  /// The share of a distributed read (VTK's pieces, one per MPI rank): piece Piece of
+  /// NumberOfPieces gets whole nodes (COPCPieceOfNodes); one piece is every chosen node.
+  int Piece = 0;
+  int NumberOfPieces = 1;
 };
 
 /// Whether a file ParseLASHeader accepted has a COPC info VLR (user "copc", record 1).
@@ -96,11 +100,20 @@ std::vector<COPCNode> SelectCOPCNodes(const COPCHierarchy& hierarchy,
   const COPCQuery& query);
 
 /**
- * Reads the points of a COPC file `query` asks for: ReadCOPCHierarchy, SelectCOPCNodes, then
- * only those nodes' chunks are decompressed (in parallel, DecompressLAZChunks), and with
- * UseBounds only the points whose real coordinates (integer times scale plus offset) lie inside
- * the box are kept. `records` gets the points' records in file order, `count` of them. Returns
- * an empty string or a one-line message starting with `sourceName`.
+ * Piece `piece` of `pieces` of the nodes `chosen` (in file order): the nodes whose first point,
+ * counted over `chosen`, lies in that piece's PieceOfPoints share of their points. Each piece
+ * decodes only its own nodes, contiguous and in file order, so that the pieces put end to end
+ * are the one-piece read; a node is not split, so the counts differ by up to a node's points.
+ */
+std::vector<COPCNode> COPCPieceOfNodes(const std::vector<COPCNode>& chosen, int piece, int pieces);
+
+/**
+ * Reads the points of a COPC file `query` asks for: ReadCOPCHierarchy, SelectCOPCNodes,
+ * COPCPieceOfNodes for the query's piece, then only those nodes' chunks are decompressed (in
+ * parallel, DecompressLAZChunks), and with UseBounds only the points whose real coordinates
+ * (integer times scale plus offset) lie inside the box are kept. `records` gets the points' records
+ * in file order, `count` of them. Returns an empty string or a one-line message starting with
+ * `sourceName`.
  */
 std::string ReadCOPCPoints(const std::uint8_t* data,
   std::size_t size,
