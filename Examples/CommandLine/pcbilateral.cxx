@@ -95,8 +95,8 @@ const char* const UsageTail =
   "                     xmin,xmax,ymin,ymax,zmin,zmax (the file's coordinates)\n"
   "  --memory-limit SIZE  filter the file in slabs within SIZE of memory (e.g. 512M, 2G),\n"
   "                     temporary files in TMPDIR or beside the output; the same output\n"
-  "                     file as in memory. LAS or LAZ into LAS, LAZ, text or PCD, text\n"
-  "                     into text, PCD into PCD; --edge-aware, --remove-isolated, -R.\n"
+  "                     file as in memory. LAS, LAZ, text or PCD into any of them;\n"
+  "                     --edge-aware, --remove-isolated, -R, --keep-nan.\n"
   "                     Default: in memory, or streamed within 80% of the available\n"
   "                     memory when the cloud needs more (said)\n"
   "  -q, --quiet        print nothing but warnings and errors (default: what was read,\n"
@@ -638,8 +638,7 @@ std::string StreamingUnsupported(const Options& options)
   return pcbilateral::StreamingProblem(options.Input,
     options.Output,
     options.COPCLevel != -1 || options.COPCUseBounds,
-    !options.Classes.empty(),
-    options.KeepNaNPoints);
+    !options.Classes.empty());
 }
 
 /// The streamed run's progress: a bar per phase on a terminal, a line per slab otherwise.
@@ -698,8 +697,8 @@ void SayWarnings(const std::vector<std::string>& warnings, std::size_t& said)
 std::string RunStreamed(const Options& options, std::uint64_t limit)
 {
   std::string problem;
-  const std::unique_ptr<pcbilateral::StreamedFile> file =
-    pcbilateral::OpenStreamedFile(options.Input, options.Output, options.OrientedNormals, problem);
+  const std::unique_ptr<pcbilateral::StreamedFile> file = pcbilateral::OpenStreamedFile(
+    options.Input, options.Output, options.OrientedNormals, options.KeepNaNPoints, problem);
   if (problem.empty() && file->GetNumberOfPoints() == 0)
   {
     problem = options.Input + ": contains no points";

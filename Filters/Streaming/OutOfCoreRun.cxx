@@ -126,6 +126,8 @@ struct OutOfCoreRun::Internals
   std::vector<std::string> WarningsSeen;
   /// Whether every filtered position kept is exactly a float (a PCD file's x y z are then F4).
   bool ResultsAreFloats = true;
+  /// The filtered positions kept: min x, y, z, then max x, y, z (a LAS header's bounds).
+  double ResultBounds[6] = { HUGE_VAL, HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
 
   Internals(StreamedPoints& points,
     const BilateralParameters& parameters,
@@ -537,9 +539,12 @@ std::string OutOfCoreRun::Internals::FilterSlab(std::size_t slab)
       ++this->Summary.NumberOfRemovedPoints;
       continue;
     }
-    for (const double value : points[i].Position)
+    for (int axis = 0; axis < 3; ++axis)
     {
+      const double value = points[i].Position[axis];
       this->ResultsAreFloats = this->ResultsAreFloats && static_cast<float>(value) == value;
+      this->ResultBounds[axis] = std::min(this->ResultBounds[axis], value);
+      this->ResultBounds[3 + axis] = std::max(this->ResultBounds[3 + axis], value);
     }
   }
   std::sort(points.begin(),
@@ -621,6 +626,11 @@ std::uint64_t OutOfCoreRun::GetDiskBytesNeeded() const
 bool OutOfCoreRun::AreFilteredPositionsFloats() const
 {
   return this->Impl->ResultsAreFloats;
+}
+
+void OutOfCoreRun::GetFilteredBounds(double bounds[6]) const
+{
+  std::copy_n(this->Impl->ResultBounds, 6, bounds);
 }
 
 std::uint64_t OutOfCoreRun::GetNumberOfRemovedPoints() const

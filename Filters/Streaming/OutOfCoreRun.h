@@ -123,6 +123,9 @@ public:
   std::uint64_t GetNumberOfRemovedPoints() const;
   /// Whether every filtered position of the points kept is exactly a float (after Filter).
   bool AreFilteredPositionsFloats() const;
+  /// The bounds of the filtered positions of the points kept (min x, y, z, max x, y, z; the
+  /// points without coordinates left out, as VTK's bounds leave NaN out), after Filter.
+  void GetFilteredBounds(double bounds[6]) const;
 
   /// Bytes of memory a slab takes per point (the run's arrays, the octree, the bins read).
   static constexpr std::uint64_t BytesPerSlabPoint = 160;

@@ -16,22 +16,7 @@ namespace
 {
 bool EndsWith(const std::string& name, const char* suffix)
 {
-  const std::size_t n = std::strlen(suffix);
-  return name.size() >= n &&
-         std::equal(name.end() - static_cast<std::ptrdiff_t>(n),
-           name.end(),
-           suffix,
-           [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
-}
-
-bool IsLAS(const std::string& name)
-{
-  return EndsWith(name, ".las") || EndsWith(name, ".laz");
-}
-
-bool IsText(const std::string& name)
-{
-  return EndsWith(name, ".txt") || EndsWith(name, ".xyz");
+  return HasExtension(name, suffix);
 }
 
 /// Moves the rows of the points not `removed` (--remove-isolated) to the front, in order, and
@@ -91,18 +76,103 @@ public:
     const std::string& path,
     std::size_t pointsPerRange,
     const std::function<void(double)>& progress) override;
+  std::string ReadArrays(std::uint64_t first, std::size_t count, StreamedArrays& range) override;
+  /// The run in memory's error: a text file's columns are doubles, never a class array.
+  std::string ChooseClasses(const std::string& name, const std::vector<long long>&) override
+  {
+    StreamedArrays layout;
+    this->AddArrays(this->Text.GetHeader(), layout);
+    for (const StreamedArray& array : layout.Arrays)
+    {
+      if (array.Name == name)
+      {
+        return "the class array '" + name + "' must hold one integer per point (it has " +
+               std::to_string(array.Type.Count) + " component(s) of type double)";
+      }
+    }
+    return "classes were chosen, but the input has no point array '" + name + "'";
+  }
+  std::string WriteWarning(const std::string& path) const override
+  {
+    StreamedArrays layout;
+    this->AddArrays(this->Text.GetHeader(), layout);
+    return StreamedArraysWarning(layout, path);
+  }
 
 private:
+  /// vtkPointCloudTextReader's arrays of `table`: the normals (-R), then the extra columns,
+  /// those named "name:0", "name:1"... one array of as many components.
+  void AddArrays(const PointCloudTable& table, StreamedArrays& range) const;
+
   PointCloudTextStream Text;
   PointCloudTable Range;
   bool WithNormals = false;
 };
+
+void TextPointSource::AddArrays(const PointCloudTable& table, StreamedArrays& range) const
+{
+  const std::size_t count = table.NumberOfPoints;
+  range.Arrays.clear();
+  const auto add = [&](const std::string& name, unsigned components, bool normals)
+  {
+    range.Arrays.push_back(StreamedArray{ name, PCDField{ "", 'F', 8, components }, normals, {} });
+    range.Arrays.back().Bytes.resize(count * components * sizeof(double));
+    return reinterpret_cast<double*>(range.Arrays.back().Bytes.data());
+  };
+  if (this->WithNormals)
+  {
+    std::copy_n(table.Normals.data(), 3 * count, add("Normals", 3, true));
+  }
+  const std::vector<std::string>& names = this->Text.GetHeader().ExtraColumnNames;
+  for (std::size_t column = 0; column < names.size();)
+  {
+    const std::string& first = names[column];
+    unsigned components = 1;
+    const bool numbered = first.size() > 2 && first.compare(first.size() - 2, 2, ":0") == 0;
+    const std::string base = numbered ? first.substr(0, first.size() - 1) : first;
+    while (numbered && column + components < names.size() &&
+           names[column + components] == base + std::to_string(components))
+    {
+      ++components;
+    }
+    double* values =
+      add(components == 1 ? first : first.substr(0, first.size() - 2), components, false);
+    for (unsigned c = 0; c < components && count > 0; ++c)
+    {
+      for (std::size_t i = 0; i < count; ++i)
+      {
+        values[i * components + c] = table.ExtraColumns[column + c][i];
+      }
+    }
+    column += components;
+  }
+}
+
+std::string TextPointSource::ReadArrays(std::uint64_t first,
+  std::size_t count,
+  StreamedArrays& range)
+{
+  const std::string problem = count > 0 ? this->Text.Read(first, count, this->Range) : "";
+  if (count == 0)
+  {
+    this->Range.NumberOfPoints = 0;
+    this->Range.Positions.clear();
+  }
+  range.NumberOfPoints = this->Range.NumberOfPoints;
+  range.Positions = this->Range.Positions;
+  this->AddArrays(this->Range, range);
+  return problem;
+}
 
 std::string TextPointSource::WriteFiltered(OutOfCoreRun& run,
   const std::string& path,
   std::size_t pointsPerRange,
   const std::function<void(double)>& progress)
 {
+  if (!IsTextPath(path))
+  {
+    return WriteStreamedArrays(*this, run, path, this->WithNormals, pointsPerRange, progress);
+  }
   PointCloudTextStreamWriter writer;
   std::string problem = writer.Open(path, this->Text.GetHeader(), this->WithNormals);
   const std::uint64_t total = this->GetNumberOfPoints();
@@ -133,38 +203,23 @@ std::string TextPointSource::WriteFiltered(OutOfCoreRun& run,
 
 std::string StreamingFormatsProblem(const std::string& input, const std::string& output)
 {
-  if (IsLAS(input) && (IsLAS(output) || IsText(output) || EndsWith(output, ".pcd")))
+  if ((IsLASPath(input) || IsTextPath(input) || EndsWith(input, ".pcd")) && IsArraysOutput(output))
   {
     return std::string();
   }
-  if (IsText(input) && IsText(output))
-  {
-    return std::string();
-  }
-  if (EndsWith(input, ".pcd") && EndsWith(output, ".pcd"))
-  {
-    return std::string();
-  }
-  return "streaming reads .las or .laz into .las, .laz, .txt, .xyz or .pcd, .txt or .xyz "
-         "into .txt or .xyz, and .pcd into .pcd (not yet PCD into LAS or text, PLY or VTP, nor "
-         "text into LAS or PCD)";
+  return "streaming reads .las, .laz, .txt, .xyz or .pcd into .las, .laz, .txt, .xyz or .pcd "
+         "(not yet PLY or VTP)";
 }
 
 std::string StreamingProblem(const std::string& input,
   const std::string& output,
   bool copc,
-  bool classes,
-  bool keepNaN)
+  bool classes)
 {
-  if (copc || (classes && (EndsWith(output, ".pcd") || IsText(input))))
+  // (--classes with text input: the run in memory's error, from ChooseClasses.)
+  if (copc || (classes && EndsWith(output, ".pcd") && !IsTextPath(input)))
   {
-    return "streaming does not take the --copc options, or --classes with text input or PCD "
-           "output, yet";
-  }
-  if (keepNaN && EndsWith(input, ".pcd"))
-  {
-    return "streaming does not take --keep-nan yet (it drops a PCD file's points without "
-           "coordinates, as the run in memory does by default)";
+    return "streaming does not take the --copc options, or --classes with PCD output, yet";
   }
   return StreamingFormatsProblem(input, output);
 }
@@ -180,6 +235,7 @@ std::size_t StreamedRangePoints()
 std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,
   const std::string& output,
   bool orientedNormals,
+  bool keepNaN,
   std::string& problem)
 {
   problem = StreamingFormatsProblem(input, output);
@@ -187,7 +243,7 @@ std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,
   {
     return nullptr;
   }
-  if (IsLAS(input))
+  if (IsLASPath(input))
   {
     auto las = std::make_unique<LASPointSource>();
     problem = las->Open(input);
@@ -196,7 +252,7 @@ std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,
   if (EndsWith(input, ".pcd"))
   {
     auto pcd = std::make_unique<PCDPointSource>();
-    problem = pcd->Open(input);
+    problem = pcd->Open(input, orientedNormals, keepNaN);
     return problem.empty() ? std::move(pcd) : nullptr;
   }
   auto text = std::make_unique<TextPointSource>();

@@ -4,6 +4,7 @@
 #define pcbilateral_StreamedFile_h
 
 #include "OutOfCoreRun.h"
+#include "StreamedArrays.h"
 
 #include <cstddef>
 #include <functional>
@@ -37,6 +38,17 @@ public:
     return std::string();
   }
 
+  /// Points [first, first + count) as the run in memory's reader's point arrays (the same
+  /// arrays, in the same order, for every range; count 0 gives them without values), for the
+  /// writers into another format (WriteStreamedArrays). An empty string or a one-line message.
+  virtual std::string ReadArrays(std::uint64_t first, std::size_t count, StreamedArrays& range)
+  {
+    (void)first;
+    (void)count;
+    (void)range;
+    return "--memory-limit: this input is not streamed into another format";
+  }
+
   /// Points without coordinates the run in memory's reader leaves out (PCD input), said as it
   /// says them.
   virtual std::uint64_t GetNumberOfDroppedPoints() const { return 0; }
@@ -52,28 +64,30 @@ public:
   }
 };
 
-/// Why `input` cannot be streamed into `output` (by their extensions), or empty: LAS or LAZ into
-/// LAS or LAZ, text (.txt, .xyz) into text.
+/// Why `input` cannot be streamed into `output` (by their extensions), or empty: LAS, LAZ, text
+/// (.txt, .xyz) or PCD into any of them.
 std::string StreamingFormatsProblem(const std::string& input, const std::string& output);
 
 /// Why pcbilateral's options cannot be streamed with these files, or empty: the --copc options
-/// (`copc`), --classes (`classes`) with text input or PCD output, --keep-nan (`keepNaN`) with
-/// PCD input, then StreamingFormatsProblem.
+/// (`copc`), --classes (`classes`) into PCD (but from text, whose error is the run in memory's),
+/// then StreamingFormatsProblem.
 std::string StreamingProblem(const std::string& input,
   const std::string& output,
   bool copc,
-  bool classes,
-  bool keepNaN);
+  bool classes);
 
 /// The points of a range read and written at a time: 2^18, or PCB_STREAMING_RANGE_POINTS from
 /// the environment (tests).
 std::size_t StreamedRangePoints();
 
 /// The input opened for streaming into `output`'s format, or null with `problem` set;
-/// `orientedNormals` (pcbilateral -R): a text file's columns 4-6 are normals, written back.
+/// `orientedNormals` (pcbilateral -R): a text file's columns 4-6 are normals, and normals are
+/// written as a text output's columns 4-6; `keepNaN` (--keep-nan): a PCD file's points without
+/// coordinates are kept in place (passed through, never neighbours), not left out.
 std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,
   const std::string& output,
   bool orientedNormals,
+  bool keepNaN,
   std::string& problem);
 
 } // namespace pcbilateral

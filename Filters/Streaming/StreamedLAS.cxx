@@ -56,12 +56,7 @@ double ColumnValue(LASValueType type, const std::uint8_t* column, std::size_t i)
 
 bool EndsWith(const std::string& path, const char* suffix)
 {
-  const std::size_t n = std::strlen(suffix);
-  return path.size() >= n &&
-         std::equal(path.end() - static_cast<std::ptrdiff_t>(n),
-           path.end(),
-           suffix,
-           [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
+  return HasExtension(path, suffix);
 }
 
 bool IsLAZName(const std::string& path)
@@ -314,37 +309,33 @@ std::string ForEachFilteredRange(LASPointSource& input,
 {
   const LASFileInfo& info = input.GetInfo();
   const std::uint64_t total = input.GetNumberOfPoints();
-  std::string problem;
   std::vector<double> positions;
   std::vector<std::vector<std::uint8_t>> columns(info.Dimensions.size());
   std::vector<void*> pointers(info.Dimensions.size());
   std::vector<std::uint8_t> removed(pointsPerRange);
-  for (std::uint64_t first = 0; first < total && problem.empty(); first += pointsPerRange)
-  {
-    const auto count =
-      static_cast<std::size_t>(std::min<std::uint64_t>(pointsPerRange, total - first));
-    positions.resize(3 * count);
-    for (std::size_t d = 0; d < columns.size(); ++d)
+  return ForEachRange(total,
+    pointsPerRange,
+    progress,
+    [&](std::uint64_t first, std::size_t count)
     {
-      columns[d].resize(count * LASColumnBytes(info.Dimensions[d]));
-      pointers[d] = columns[d].data();
-    }
-    problem = input.ReadPoints(first, count, positions.data(), pointers.data());
-    if (problem.empty())
-    {
-      problem = run.ReadFiltered(first, count, positions.data(), removed.data());
-    }
-    if (problem.empty())
-    {
-      const std::size_t kept = LeaveOutRemoved(info, removed, positions, columns);
-      problem = append(kept, positions, columns, pointers);
-    }
-    if (progress)
-    {
-      progress(static_cast<double>(first + count) / static_cast<double>(total));
-    }
-  }
-  return problem;
+      positions.resize(3 * count);
+      for (std::size_t d = 0; d < columns.size(); ++d)
+      {
+        columns[d].resize(count * LASColumnBytes(info.Dimensions[d]));
+        pointers[d] = columns[d].data();
+      }
+      std::string problem = input.ReadPoints(first, count, positions.data(), pointers.data());
+      if (problem.empty())
+      {
+        problem = run.ReadFiltered(first, count, positions.data(), removed.data());
+      }
+      if (problem.empty())
+      {
+        const std::size_t kept = LeaveOutRemoved(info, removed, positions, columns);
+        problem = append(kept, positions, columns, pointers);
+      }
+      return problem;
+    });
 }
 
 /// The records of `input` at their filtered positions into `writer` (a LASStreamWriter or a

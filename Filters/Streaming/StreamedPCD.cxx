@@ -122,7 +122,83 @@ PCDCloud RangeAsWritten(const PCDHeader& header,
   }
   return cloud;
 }
+/// vtkPCDPointCloudReader's arrays of `count` records (binary layout).
+void ArraysOfRecords(const PCDHeader& header,
+  const std::uint8_t* records,
+  std::size_t count,
+  std::vector<StreamedArray>& arrays)
+{
+  arrays.clear();
+  const std::size_t stride = header.PointBytes();
+  const auto column = [&](std::size_t offset, std::size_t bytes, std::uint8_t* out)
+  {
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      std::copy_n(records + i * stride + offset, bytes, out + i * bytes);
+    }
+  };
+  std::size_t offset = 0;
+  for (const PCDField& field : header.Fields)
+  {
+    if (IsGatheredNormal(header, field))
+    {
+      if (arrays.empty() || !arrays.front().IsNormals)
+      {
+        arrays.insert(arrays.begin(), StreamedArray{ "Normals", field, true, {} });
+        arrays.front().Type.Count = 3;
+        arrays.front().Bytes.resize(count * 3 * field.Size);
+      }
+      std::vector<std::uint8_t> values(count * field.Size);
+      column(offset, field.Size, values.data());
+      for (std::size_t i = 0; i < count; ++i)
+      {
+        std::copy_n(&values[i * field.Size],
+          field.Size,
+          &arrays.front().Bytes[(3 * i + (field.Name[7] - 'x')) * field.Size]);
+      }
+    }
+    else if (IsPCDPackedColour(field))
+    {
+      PCDColumn packed{ field, std::vector<std::uint8_t>(count * field.Bytes()) };
+      column(offset, field.Bytes(), packed.Bytes.data());
+      const bool alpha = field.Name == "rgba";
+      arrays.push_back(StreamedArray{
+        alpha ? "RGBA" : "RGB", PCDField{ "", 'U', 1, alpha ? 4u : 3u }, false, {} });
+      arrays.back().Bytes = UnpackPCDColours(packed);
+    }
+    else if (!field.IsCoordinate() && !field.IsPadding())
+    {
+      arrays.push_back(StreamedArray{ field.Name, field, false, {} });
+      arrays.back().Bytes.resize(count * field.Bytes());
+      column(offset, field.Bytes(), arrays.back().Bytes.data());
+    }
+    offset += field.Bytes();
+  }
+}
 } // namespace
+
+std::string PCDPointSource::ReadArrays(std::uint64_t first,
+  std::size_t count,
+  StreamedArrays& range)
+{
+  std::vector<std::uint8_t> records;
+  const std::string problem = this->ReadRecords(first, count, records);
+  range.NumberOfPoints = count;
+  range.Positions.resize(3 * count);
+  for (std::size_t i = 0; i < count && problem.empty(); ++i)
+  {
+    this->RecordPosition(records.data() + i * this->Stride, &range.Positions[3 * i]);
+  }
+  ArraysOfRecords(this->Header, records.data(), count, range.Arrays);
+  return problem;
+}
+
+std::string PCDPointSource::WriteWarning(const std::string& path) const
+{
+  StreamedArrays layout;
+  ArraysOfRecords(this->Header, nullptr, 0, layout.Arrays);
+  return StreamedArraysWarning(layout, path);
+}
 
 std::string PCDLayoutProblem(const PCDHeader& header)
 {
@@ -145,8 +221,21 @@ void PCDPointSource::Release()
   this->Mapped.Release();
 }
 
+void PCDPointSource::RecordPosition(const std::uint8_t* record, double* position) const
+{
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    position[axis] =
+      PCDValueAsDouble(this->CoordinateFields[axis], record + this->CoordinateOffsets[axis]);
+  }
+}
+
 bool PCDPointSource::IsKept(const std::uint8_t* record) const
 {
+  if (this->KeepNaN)
+  {
+    return true;
+  }
   for (int axis = 0; axis < 3; ++axis)
   {
     if (!std::isfinite(
@@ -158,9 +247,11 @@ bool PCDPointSource::IsKept(const std::uint8_t* record) const
   return true;
 }
 
-std::string PCDPointSource::Open(const std::string& path)
+std::string PCDPointSource::Open(const std::string& path, bool withNormals, bool keepNaN)
 {
   this->Path = path;
+  this->WithNormals = withNormals;
+  this->KeepNaN = keepNaN;
   if (!this->Mapped.Open(path).empty())
   {
     return path + ": cannot be opened";
@@ -385,11 +476,7 @@ std::string PCDPointSource::ReadPositions(std::uint64_t first, std::size_t count
   const std::string problem = this->ReadRecords(first, count, records);
   for (std::size_t i = 0; i < count && problem.empty(); ++i)
   {
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      positions[3 * i + axis] = PCDValueAsDouble(this->CoordinateFields[axis],
-        records.data() + i * this->Stride + this->CoordinateOffsets[axis]);
-    }
+    this->RecordPosition(records.data() + i * this->Stride, positions + 3 * i);
   }
   return problem;
 }
@@ -399,6 +486,10 @@ std::string PCDPointSource::WriteFiltered(OutOfCoreRun& run,
   std::size_t pointsPerRange,
   const std::function<void(double)>& progress)
 {
+  if (!HasExtension(path, ".pcd"))
+  {
+    return WriteStreamedArrays(*this, run, path, this->WithNormals, pointsPerRange, progress);
+  }
   if (this->Header.Encoding == PCDEncoding::BinaryCompressed)
   {
     return this->WriteCompressed(run, path, pointsPerRange, progress);
@@ -420,11 +511,7 @@ std::string PCDPointSource::WriteFiltered(OutOfCoreRun& run,
     problem = this->ReadRecords(first, count, records);
     for (std::size_t i = 0; i < count && problem.empty(); ++i)
     {
-      for (int axis = 0; axis < 3; ++axis)
-      {
-        positions[3 * i + axis] = PCDValueAsDouble(this->CoordinateFields[axis],
-          records.data() + i * this->Stride + this->CoordinateOffsets[axis]);
-      }
+      this->RecordPosition(records.data() + i * this->Stride, &positions[3 * i]);
     }
     if (problem.empty())
     {
@@ -442,6 +529,31 @@ std::string PCDPointSource::WriteFiltered(OutOfCoreRun& run,
   return problem.empty() ? writer.Close() : problem;
 }
 
+std::size_t PCDPointSource::MoveToFront(const std::vector<bool>& written)
+{
+  // Field by field: a field's values move only to places before their own, and after the
+  // fields already moved, so nothing unread is overwritten.
+  const auto count = static_cast<std::size_t>(std::count(written.begin(), written.end(), true));
+  const std::vector<PCDField>& fields = this->Header.Fields;
+  std::size_t outStart = 0;
+  for (std::size_t f = 0; f < fields.size(); ++f)
+  {
+    const std::size_t bytes = fields[f].Bytes();
+    std::size_t k = 0;
+    for (std::size_t r = 0; r < written.size(); ++r)
+    {
+      if (written[r])
+      {
+        std::memmove(this->Fields.data() + outStart + k++ * bytes,
+          this->Fields.data() + this->FieldStarts[f] + r * bytes,
+          bytes);
+      }
+    }
+    outStart += count * bytes;
+  }
+  return count;
+}
+
 std::string PCDPointSource::WriteCompressed(OutOfCoreRun& run,
   const std::string& path,
   std::size_t pointsPerRange,
@@ -456,15 +568,17 @@ std::string PCDPointSource::WriteCompressed(OutOfCoreRun& run,
   std::uint64_t first = 0;
   for (std::uint64_t next = 0; next < total || !records.empty();)
   {
-    for (; next < total && records.size() < pointsPerRange; ++next)
+    // (The positions as read: with --keep-nan the points without coordinates pass through.)
+    for (positions.clear(); next < total && records.size() < pointsPerRange; ++next)
     {
       this->CopyRecord(next, record.data());
       if (this->IsKept(record.data()))
       {
         records.push_back(next);
+        positions.resize(positions.size() + 3);
+        this->RecordPosition(record.data(), &positions[positions.size() - 3]);
       }
     }
-    positions.assign(3 * records.size(), 0.0);
     removed.assign(records.size(), 0);
     std::string problem = run.ReadFiltered(first, records.size(), positions.data(), removed.data());
     if (!problem.empty())
@@ -499,25 +613,7 @@ std::string PCDPointSource::WriteCompressed(OutOfCoreRun& run,
       progress(0.9 * static_cast<double>(next) / static_cast<double>(total));
     }
   }
-  // The points written to the front, field by field: a field's values move only to places
-  // before their own, and after the fields already moved, so nothing unread is overwritten.
-  const auto count = static_cast<std::size_t>(std::count(written.begin(), written.end(), true));
-  std::size_t outStart = 0;
-  for (std::size_t f = 0; f < fields.size(); ++f)
-  {
-    const std::size_t bytes = fields[f].Bytes();
-    std::size_t k = 0;
-    for (std::size_t r = 0; r < written.size(); ++r)
-    {
-      if (written[r])
-      {
-        std::memmove(this->Fields.data() + outStart + k++ * bytes,
-          this->Fields.data() + this->FieldStarts[f] + r * bytes,
-          bytes);
-      }
-    }
-    outStart += count * bytes;
-  }
+  const std::size_t count = this->MoveToFront(written);
   const std::string problem =
     WritePCDCompressedFields(path, this->Header, count, this->Fields.data());
   if (progress)

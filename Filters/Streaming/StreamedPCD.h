@@ -33,7 +33,9 @@ public:
   PCDPointSource& operator=(const PCDPointSource&) = delete;
 
   /// Maps and checks the file; an empty string or the run in memory's one-line message.
-  std::string Open(const std::string& path);
+  /// `withNormals` (-R): the normals are written as a text output's columns 4-6; `keepNaN`
+  /// (--keep-nan): the points without coordinates are kept in place, not left out.
+  std::string Open(const std::string& path, bool withNormals = false, bool keepNaN = false);
   std::uint64_t GetNumberOfPoints() const override { return this->Kept; }
   std::uint64_t GetNumberOfDroppedPoints() const override
   {
@@ -48,6 +50,10 @@ public:
     const std::string& path,
     std::size_t pointsPerRange,
     const std::function<void(double)>& progress) override;
+  /// vtkPCDPointCloudReader's arrays: the normals gathered from normal_x/y/z, then every other
+  /// field but x y z and padding, packed colours as 8-bit RGB or RGBA.
+  std::string ReadArrays(std::uint64_t first, std::size_t count, StreamedArrays& range) override;
+  std::string WriteWarning(const std::string& path) const override;
 
 private:
   struct Checkpoint
@@ -75,11 +81,16 @@ private:
     const std::string& path,
     std::size_t pointsPerRange,
     const std::function<void(double)>& progress);
+  /// binary_compressed: the points `written` moved to the front of the decompressed fields;
+  /// their number.
+  std::size_t MoveToFront(const std::vector<bool>& written);
   /// The records (binary layout, `Stride` bytes each) of the kept points [first, first + count).
   std::string ReadRecords(std::uint64_t first,
     std::size_t count,
     std::vector<std::uint8_t>& records);
   bool IsKept(const std::uint8_t* record) const;
+  /// The record's x y z as doubles.
+  void RecordPosition(const std::uint8_t* record, double* position) const;
   void Release();
 
   std::string Path;
@@ -96,6 +107,8 @@ private:
   std::vector<std::uint8_t> Fields;
   std::vector<std::size_t> FieldStarts;
   std::uint64_t Kept = 0;
+  bool WithNormals = false;
+  bool KeepNaN = false;
 };
 
 /// Why a PCD file's layout is not streamed into PCD (fields whose names the run in memory's VTK

@@ -288,7 +288,8 @@ def check_samples(c, las_dir):
 
 
 def check_laz_and_classes(c, points, shuffled, text):
-    """LAZ output with ranges that cut its chunks, --classes, and --classes refused for text."""
+    """LAZ output with ranges that cut its chunks, --classes, and --classes with text input
+    (the run in memory's error)."""
     # LAZ output: 60,000 points make a chunk of 50,000 and one of 10,000; ranges of 7,000 and
     # 50,000 points read and written at a time cut the chunks or fall on their boundary.
     for range_points in (7000, 50000, None):
@@ -302,10 +303,17 @@ def check_laz_and_classes(c, points, shuffled, text):
     check_classes(c, "classes-explicit", classified,
                   ["--classes", "2", "-r", "1.2", "-n", "0.1", "-N", "2"], ".las", 15000)
     check_classes(c, "classes-automatic-laz", classified, ["--classes", "6"], ".laz", 30000)
-    refused = c.run([text, os.path.join(c.scratch, "o.xyz"), "--classes", "2", "--memory-limit",
-                     "1G"])
-    c.check(refused.returncode != 0 and "--classes with text input" in refused.stderr,
-            f"--classes with text input is refused: {refused.stderr.strip()}")
+    # A text file's columns are doubles: the run in memory's error, streamed too.
+    output = os.path.join(c.scratch, "o.xyz")
+    for array in ("intensity", "Classification"):
+        arguments = [text, output, "--classes", "2", "--class-array", array]
+        memory = c.run(arguments)
+        streamed = c.run(arguments + ["--memory-limit", "1G"])
+        c.check(memory.returncode == 1 and streamed.returncode == 1 and
+                streamed.stderr == memory.stderr and len(streamed.stderr.splitlines()) == 1 and
+                not os.path.exists(output) and not c.temporary_left(),
+                f"--classes with text input, '{array}': the run in memory's error "
+                f"({streamed.stderr.strip()} / {memory.stderr.strip()})")
 
 
 def main(program, scratch, las_dir=None):
