@@ -408,9 +408,11 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     return 1;
   }
   this->RecordRunInformation(result);
-  this->LastRunSummary = result.Status == pcbilateral::BilateralStatus::Completed
-                           ? this->DescribeRun(result)
-                           : "aborted";
+  // An empty cloud completes with nothing chosen: "r 0, rn 0, N 1 (paper's rule)" misled.
+  this->LastRunSummary = result.Status != pcbilateral::BilateralStatus::Completed ? "aborted"
+                         : input->GetNumberOfPoints() == 0
+                           ? "nothing to filter: the input has no points"
+                           : this->DescribeRun(result);
   if (result.Status == pcbilateral::BilateralStatus::Completed)
   {
     this->BuildOutput(input, cloud, result, output); // an aborted run leaves it empty
