@@ -8,17 +8,22 @@
 #include "pqRepresentation.h"
 #include "pqServer.h"
 #include "pqServerManagerModel.h"
+#include "pqView.h"
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
+#include "vtkCollection.h"
 #include "vtkCommand.h"
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
 #include "vtkPVDataInformation.h"
+#include "vtkPVProgressHandler.h"
 #include "vtkPVRepresentedArrayListSettings.h"
+#include "vtkPVSessionBase.h"
 #include "vtkSMBoundsDomain.h"
 #include "vtkSMProperty.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMProxy.h"
+#include "vtkSMSession.h"
 #include "vtkSMSettings.h"
 #include "vtkSMStringListDomain.h"
 
@@ -40,6 +45,70 @@ namespace
 {
 /// Qt's events are processed at most this often during a run (ParaView's progress interval).
 constexpr qint64 EventsIntervalMs = 100;
+
+/// What the behavior does for a run of one of this plugin's proxies.
+enum class RunKind
+{
+  Filter,
+  Reader,
+  Writer
+};
+
+/// This plugin's proxies whose runs the behavior follows (PointCloudBilateral.xml.in).
+struct WatchedType
+{
+  const char* Group;
+  const char* Name;
+  RunKind Kind;
+};
+constexpr WatchedType WatchedTypes[] = {
+  { "filters", "PointCloudBilateralFilter", RunKind::Filter },
+  { "sources", "ASPRSLASPointCloudReader", RunKind::Reader },
+  { "sources", "PCDPointCloudReader", RunKind::Reader },
+  { "sources", "ASCIIPointCloudTextReader", RunKind::Reader },
+  { "writers", "LASPointCloudWriter", RunKind::Writer },
+  { "writers", "PCDPointCloudWriter", RunKind::Writer },
+  { "writers", "PointCloudTextWriter", RunKind::Writer },
+};
+
+/// The proxy's kind, or false when it is none of this plugin's proxies above.
+bool FindRunKind(vtkSMProxy* proxy, RunKind& kind)
+{
+  const char* group = proxy ? proxy->GetXMLGroup() : nullptr;
+  const char* name = proxy ? proxy->GetXMLName() : nullptr;
+  for (const WatchedType& type : WatchedTypes)
+  {
+    if (group && name && std::strcmp(group, type.Group) == 0 && std::strcmp(name, type.Name) == 0)
+    {
+      kind = type.Kind;
+      return true;
+    }
+  }
+  return false;
+}
+
+/// The Output Messages window's note after an aborted run: what is left, and how to run again
+/// (the pipeline takes an aborted filter's or reader's run as up to date, so Apply alone would
+/// not run it again; each Save Data makes a new writer).
+std::string AbortedNote(vtkSMProxy* proxy, RunKind kind)
+{
+  const std::string label = proxy->GetXMLLabel() ? proxy->GetXMLLabel() : proxy->GetXMLName();
+  switch (kind)
+  {
+    case RunKind::Filter:
+      return label +
+             ": aborted, the output is empty.\nChange a property and Apply to run it again.";
+    case RunKind::Reader:
+      return label + ": aborted, the output is empty.\nReload the file (File > Reload Files) to "
+                     "read it again.";
+    case RunKind::Writer:
+      break;
+  }
+  const char* fileName =
+    proxy->GetProperty("FileName") ? vtkSMPropertyHelper(proxy, "FileName").GetAsString() : nullptr;
+  return label + ": aborted, " + (fileName ? fileName : "the file") +
+         " was not written (nor any part of it).\nSave the data again to write it.";
+}
 
 /**
  * Installed on the application while events are processed during a run:
@@ -167,10 +236,33 @@ void ShowFilterMessage(vtkObject*, unsigned long event, void*, void* callData)
     vtkOutputWindow::GetInstance()->DisplayWarningText(shown.c_str());
   }
 }
-/// A display shown while the filter's output was empty (a first Apply with a bad value) took its
-/// Point Gaussian radius from empty bounds (-0.01): the points of every later run would be
-/// invisible. Once there are points, such a radius is set again from the data's bounds, as a
-/// display made then would have it.
+/// Whether no display of the view but `display` shows any point.
+bool AloneInView(pqDataRepresentation* display)
+{
+  pqView* view = display->getView();
+  if (!view)
+  {
+    return false;
+  }
+  for (pqRepresentation* other : view->getRepresentations())
+  {
+    auto* data = qobject_cast<pqDataRepresentation*>(other);
+    vtkPVDataInformation* information = data ? data->getInputDataInformation() : nullptr;
+    if (data && data != display && data->isVisible() && information &&
+        information->GetNumberOfPoints() > 0)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// A display shown while the filter's or reader's output was empty (a first Apply with a bad
+/// value, an aborted read) took its Point Gaussian radius from empty bounds (-0.01): the points
+/// of every later run would be invisible. Once there are points, such a radius is set again from
+/// the data's bounds, as a display made then would have it; and when nothing else is shown, the
+/// camera, fitted to nothing then, is fitted to the points (after an aborted read and Reload
+/// Files, the cloud was off screen).
 void SizePointsToData(pqPipelineSource* source)
 {
   for (pqDataRepresentation* display : source->getRepresentations(nullptr))
@@ -189,10 +281,22 @@ void SizePointsToData(pqPipelineSource* source)
     }
     radius->ResetToDomainDefaults();
     proxy->UpdateVTKObjects();
+    if (AloneInView(display))
+    {
+      display->getView()->resetDisplay();
+    }
     display->renderViewEventually();
   }
 }
 }
+
+struct pqPointCloudBilateralRunBehavior::WatchedProxy
+{
+  vtkWeakPointer<vtkSMProxy> Proxy;
+  RunKind Kind;
+  /// The proxy's VTK object the run slots are connected to (a reload makes a new one).
+  vtkWeakPointer<vtkAlgorithm> Observed;
+};
 
 pqPointCloudBilateralRunBehavior::pqPointCloudBilateralRunBehavior(QObject* parent)
   : Superclass(parent)
@@ -209,6 +313,14 @@ void pqPointCloudBilateralRunBehavior::startup()
     &pqServerManagerModel::sourceAdded,
     this,
     &pqPointCloudBilateralRunBehavior::onSourceAdded);
+  QObject::connect(model,
+    &pqServerManagerModel::serverAdded,
+    this,
+    &pqPointCloudBilateralRunBehavior::onServerAdded);
+  for (pqServer* server : model->findItems<pqServer*>())
+  {
+    this->onServerAdded(server);
+  }
   for (pqPipelineSource* source : model->findItems<pqPipelineSource*>())
   {
     this->onSourceAdded(source); // filters made before the plugin was loaded
@@ -265,27 +377,127 @@ void pqPointCloudBilateralRunBehavior::onSourceAdded(pqPipelineSource* source)
     this->onRepresentationAdded(display); // shown before the plugin's GUI part started
   }
 
-  vtkSMProxy* proxy = source->getProxy();
-  if (!proxy->GetXMLName() || std::strcmp(proxy->GetXMLName(), "PointCloudBilateralFilter") != 0 ||
-      source->getServer()->isRemote())
+  if (!source->getServer()->isRemote())
+  {
+    this->Watch(source->getProxy()); // (made before the plugin was loaded)
+    this->ObserveWatchedObjects();
+  }
+}
+
+void pqPointCloudBilateralRunBehavior::onServerAdded(pqServer* server)
+{
+  if (!server || server->isRemote())
   {
     return;
   }
-  auto* algorithm = vtkAlgorithm::SafeDownCast(proxy->GetClientSideObject());
-  if (!algorithm)
+  vtkSMSession* session = server->session();
+  pqCoreUtilities::connect(session,
+    vtkPVSessionBase::RegisterRemoteObjectEvent,
+    this,
+    SLOT(onRemoteObjectRegistered(vtkObject*, unsigned long, void*)));
+  pqCoreUtilities::connect(
+    session->GetProgressHandler(), vtkCommand::StartEvent, this, SLOT(onProgressPrepared()));
+  vtkNew<vtkCollection> existing;
+  session->GetAllRemoteObjects(existing);
+  for (int k = 0; k < existing->GetNumberOfItems(); ++k)
+  {
+    this->Watch(vtkSMProxy::SafeDownCast(existing->GetItemAsObject(k)));
+  }
+  this->ObserveWatchedObjects();
+}
+
+void pqPointCloudBilateralRunBehavior::onRemoteObjectRegistered(vtkObject* session,
+  unsigned long,
+  void* globalId)
+{
+  auto* base = vtkPVSessionBase::SafeDownCast(session);
+  if (base && globalId)
+  {
+    // A new proxy gets its id as its VTK objects are about to be made: watched now, observed
+    // once they exist (onProgressPrepared).
+    this->Watch(
+      vtkSMProxy::SafeDownCast(base->GetRemoteObject(*static_cast<vtkTypeUInt32*>(globalId))));
+  }
+}
+
+void pqPointCloudBilateralRunBehavior::onProgressPrepared()
+{
+  // The start of an update, a write or a render, before any algorithm runs in it.
+  this->ObserveWatchedObjects();
+}
+
+void pqPointCloudBilateralRunBehavior::Watch(vtkSMProxy* proxy)
+{
+  RunKind kind;
+  if (!FindRunKind(proxy, kind))
   {
     return;
   }
-  this->Sources[algorithm] = source;
-  vtkNew<vtkCallbackCommand> showMessage;
-  showMessage->SetCallback(&ShowFilterMessage);
-  algorithm->AddObserver(vtkCommand::ErrorEvent, showMessage);
-  algorithm->AddObserver(vtkCommand::WarningEvent, showMessage);
+  for (const WatchedProxy& watched : this->Watched)
+  {
+    if (watched.Proxy == proxy)
+    {
+      return;
+    }
+  }
+  this->Watched.push_back(WatchedProxy{ proxy, kind, nullptr });
+}
+
+void pqPointCloudBilateralRunBehavior::ObserveWatchedObjects()
+{
+  auto gone = [](const WatchedProxy& watched) { return watched.Proxy == nullptr; };
+  this->Watched.erase(
+    std::remove_if(this->Watched.begin(), this->Watched.end(), gone), this->Watched.end());
+  for (WatchedProxy& watched : this->Watched)
+  {
+    vtkSMProxy* proxy = watched.Proxy;
+    // Only objects already made: asking a proxy for its object would make it.
+    if (proxy->IsPrototype() || !proxy->GetObjectsCreated())
+    {
+      continue;
+    }
+    auto* algorithm = vtkAlgorithm::SafeDownCast(proxy->GetClientSideObject());
+    if (algorithm && algorithm != watched.Observed)
+    {
+      this->Observe(watched, algorithm);
+    }
+  }
+}
+
+void pqPointCloudBilateralRunBehavior::Observe(WatchedProxy& watched, vtkAlgorithm* algorithm)
+{
+  watched.Observed = algorithm;
+  // The progress bar names a run by its algorithm's progress text, or else by its class
+  // ("vtkPLASPointCloudReader"): give it the label the menus and the panel show.
+  if (const char* label = watched.Proxy->GetXMLLabel())
+  {
+    algorithm->SetProgressText(label);
+  }
+  if (watched.Kind == RunKind::Filter)
+  {
+    vtkNew<vtkCallbackCommand> showMessage;
+    showMessage->SetCallback(&ShowFilterMessage);
+    algorithm->AddObserver(vtkCommand::ErrorEvent, showMessage);
+    algorithm->AddObserver(vtkCommand::WarningEvent, showMessage);
+  }
   // The connections end with either object.
   pqCoreUtilities::connect(algorithm, vtkCommand::StartEvent, this, SLOT(onRunStarted(vtkObject*)));
   pqCoreUtilities::connect(
     algorithm, vtkCommand::ProgressEvent, this, SLOT(onRunProgress(vtkObject*)));
   pqCoreUtilities::connect(algorithm, vtkCommand::EndEvent, this, SLOT(onRunEnded(vtkObject*)));
+}
+
+const pqPointCloudBilateralRunBehavior::WatchedProxy* pqPointCloudBilateralRunBehavior::FindWatched(
+  vtkObject* algorithm) const
+{
+  for (const WatchedProxy& watched : this->Watched)
+  {
+    if (algorithm && watched.Observed == algorithm && watched.Proxy)
+    {
+      return &watched;
+    }
+  }
+  return nullptr;
 }
 
 void pqPointCloudBilateralRunBehavior::onRepresentationAdded(pqRepresentation* representation)
@@ -328,6 +540,11 @@ void pqPointCloudBilateralRunBehavior::onRepresentationAdded(pqRepresentation* r
 
 void pqPointCloudBilateralRunBehavior::onRunStarted(vtkObject* algorithm)
 {
+  // (A writer's run starts twice: the pipeline's StartEvent, then vtkWriter's own.)
+  if (algorithm != this->Running)
+  {
+    this->AbortAsked = false;
+  }
   this->Running = vtkAlgorithm::SafeDownCast(algorithm);
   this->SinceEvents.start();
   pqApplicationCore::instance()->getProgressManager()->setEnableAbort(true);
@@ -335,11 +552,13 @@ void pqPointCloudBilateralRunBehavior::onRunStarted(vtkObject* algorithm)
 
 void pqPointCloudBilateralRunBehavior::onRunProgress(vtkObject* algorithm)
 {
-  // The filter reports from its calling thread, the GUI's; a nested event loop is only safe there
-  // and only once at a time.
+  // The algorithm reports from its calling thread, the GUI's; a nested event loop is only safe
+  // there and only once at a time. Not at the run's end (progress 1, reported by the pipeline
+  // once the algorithm has returned): an Abort pressed then would come after its last check and
+  // stop its next run at once.
   if (algorithm != this->Running || this->InEvents ||
       QThread::currentThread() != QCoreApplication::instance()->thread() ||
-      this->SinceEvents.elapsed() < EventsIntervalMs)
+      this->SinceEvents.elapsed() < EventsIntervalMs || this->Running->GetProgress() >= 1.0)
   {
     return;
   }
@@ -357,37 +576,47 @@ void pqPointCloudBilateralRunBehavior::onRunProgress(vtkObject* algorithm)
 
 void pqPointCloudBilateralRunBehavior::onRunEnded(vtkObject* algorithm)
 {
-  // Once the Apply has finished (a pipeline request cannot be made from within one).
-  QPointer<pqPipelineSource> source = this->Sources.value(algorithm);
-  QTimer::singleShot(0,
-    this,
-    [source]()
-    {
-      if (source)
-      {
-        source->getProxy()->UpdatePropertyInformation();
-        SizePointsToData(source);
-      }
-    });
-  if (algorithm == this->Running)
+  const WatchedProxy* watched = this->FindWatched(algorithm);
+  if (watched && watched->Kind != RunKind::Writer)
   {
-    this->Running = nullptr;
-    pqApplicationCore::instance()->getProgressManager()->setEnableAbort(false);
-    if (static_cast<vtkAlgorithm*>(algorithm)->GetAbortExecute())
-    {
-      // The pipeline takes the aborted run as up to date: Apply alone would not run it again.
-      vtkOutputWindow::GetInstance()->DisplayWarningText(
-        "Point Cloud Bilateral Filter: aborted, the output is empty.\nChange a property and "
-        "Apply to run it again.");
-    }
+    // Once the Apply has finished (a pipeline request cannot be made from within one).
+    vtkWeakPointer<vtkSMProxy> proxy = watched->Proxy;
+    QTimer::singleShot(0,
+      this,
+      [proxy]()
+      {
+        pqServerManagerModel* model = pqApplicationCore::instance()->getServerManagerModel();
+        pqPipelineSource* source = proxy ? model->findItem<pqPipelineSource*>(proxy) : nullptr;
+        if (source)
+        {
+          proxy->UpdatePropertyInformation();
+          SizePointsToData(source);
+        }
+      });
   }
+  if (algorithm != this->Running)
+  {
+    return;
+  }
+  this->Running = nullptr;
+  pqApplicationCore::instance()->getProgressManager()->setEnableAbort(false);
+  // The filter's flag stays set until its next run; the readers' and writers' is cleared as
+  // their run ends, and an Abort seen by their progress event is always seen by their next check.
+  if (watched && (this->AbortAsked || static_cast<vtkAlgorithm*>(algorithm)->GetAbortExecute()))
+  {
+    vtkOutputWindow::GetInstance()->DisplayWarningText(
+      AbortedNote(watched->Proxy, watched->Kind).c_str());
+  }
+  this->AbortAsked = false;
 }
 
 void pqPointCloudBilateralRunBehavior::onAbort()
 {
   if (this->Running)
   {
-    // Polled by the filter between points; the run ends with an empty output.
+    // Polled by the algorithm at its progress points; the run ends with an empty output (a
+    // writer's with no file).
     this->Running->SetAbortExecute(1);
+    this->AbortAsked = true;
   }
 }

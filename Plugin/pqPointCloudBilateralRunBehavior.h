@@ -1,22 +1,35 @@
 /**
  * @class   pqPointCloudBilateralRunBehavior
- * @brief   keeps ParaView 5.11's GUI alive while a Point Cloud Bilateral Filter runs, and makes
- *          its Abort button stop the run
+ * @brief   keeps ParaView 5.11's GUI alive while this plugin's filter, readers and writers run,
+ *          and makes its Abort button stop them
  *
- * In ParaView 5.11 a filter runs on the GUI thread (built-in session) and the GUI does not
- * process events meanwhile: its progress manager's call to processEvents is commented out,
- * and its Abort button only emits pqProgressManager::abort(), which nothing in 5.11 receives.
- * So during a long run the window does not repaint, the Output Messages window shows the
- * run's warnings only after it, and Abort does nothing. ParaView 5.12 does both in its
- * progress manager; this auto-start object does the same for this plugin's filter only:
- * - while the filter executes, Abort is enabled, and the filter's progress events (one per
- *   0.1 s or so) let Qt process its pending events, at most every 0.1 s, timers excepted (they
- *   fire after the run). The progress manager's event filter still drops key and mouse presses
+ * In ParaView 5.11 a filter, reader or writer runs on the GUI thread (built-in session) and the
+ * GUI does not process events meanwhile: its progress manager's call to processEvents is
+ * commented out, and its Abort button only emits pqProgressManager::abort(), which nothing in
+ * 5.11 receives. So during a long run the window does not repaint, the Output Messages window
+ * shows the run's warnings only after it, and Abort does nothing. ParaView 5.12 does both in its
+ * progress manager; this auto-start object does the same for this plugin's algorithms only: the
+ * Point Cloud Bilateral Filter, the LAS/LAZ, PCD and text readers (File > Open, Apply, File >
+ * Reload Files) and the LAS/LAZ, PCD and text writers (File > Save Data, or SaveData in Python):
+ * - while one of them executes, Abort is enabled, and its progress events (one per 0.05-0.1 s
+ *   or so) let Qt process its pending events, at most every 0.1 s, timers excepted (they fire
+ *   after the run). The progress manager's event filter still drops key and mouse presses
  *   everywhere but on the progress bar and its Abort button, so nothing else can be started
  *   meanwhile;
- * - pqProgressManager::abort() (the Abort button) sets the running filter's AbortExecute flag,
- *   which the filter polls from its calling thread; the run stops and the output is empty.
- * Only in a built-in session: with a remote server the filter runs in another process.
+ * - pqProgressManager::abort() (the Abort button) sets the running algorithm's AbortExecute
+ *   flag, which it polls from its calling thread; the run stops, a filter's or reader's output is
+ *   empty, and a writer leaves no file (it writes beside the file and renames once complete).
+ *   A message in the Output Messages window says how to run it again (change a property and
+ *   Apply; Reload Files; save again);
+ * - the progress bar names each of them by its label in the menus ("LAS Point Cloud Reader"),
+ *   not by its class.
+ * A writer is no pipeline source: ParaView's Save Data creates its proxy through the writer
+ * factory and never registers it. So the behavior watches the session's remote objects as they
+ * are registered (vtkPVSessionBase::RegisterRemoteObjectEvent), keeps this plugin's proxies, and
+ * observes each one's VTK object when the session prepares progress (the start of every update,
+ * write or render, before the algorithm runs): by then the object exists, and a reader's object
+ * recreated by Reload Files is observed anew.
+ * Only in a built-in session: with a remote server the algorithms run in another process.
  *
  * It also shows point clouds without cells: ParaView 5.11 reads a PLY scan without faces (and a
  * VTP without vertex cells) as points with no cells, which its default Surface representation,
@@ -26,7 +39,10 @@
  *
  * After each run it refreshes the filter's information properties (Radius Used, Normal Radius
  * Used): the Properties panel reads them when Apply pushes the properties, before the run, so
- * they showed the previous run's values.
+ * they showed the previous run's values. And once a filter's or reader's output has points
+ * again after a display was first shown on an empty one (a bad first Apply, an aborted read),
+ * it sizes the Point Gaussian points to the data and, when the view shows nothing else, fits
+ * the camera to them (both were fitted to empty bounds).
  *
  * It gives the filter's long errors and warnings a short first line: the Output Messages window
  * sums a VTK message up by its whole text in one row, cut at the window's width, and any other
@@ -41,16 +57,18 @@
 #define pqPointCloudBilateralRunBehavior_h
 
 #include <QElapsedTimer>
-#include <QMap>
 #include <QObject>
-#include <QPointer>
 
 #include "vtkWeakPointer.h"
 
+#include <vector>
+
 class pqPipelineSource;
 class pqRepresentation;
+class pqServer;
 class vtkAlgorithm;
 class vtkObject;
+class vtkSMProxy;
 
 class pqPointCloudBilateralRunBehavior : public QObject
 {
@@ -66,6 +84,9 @@ public:
   void shutdown();
 
 private Q_SLOTS:
+  void onServerAdded(pqServer* server);
+  void onRemoteObjectRegistered(vtkObject* session, unsigned long event, void* globalId);
+  void onProgressPrepared();
   void onSourceAdded(pqPipelineSource* source);
   void onRepresentationAdded(pqRepresentation* representation);
   void onRunStarted(vtkObject* algorithm);
@@ -74,8 +95,19 @@ private Q_SLOTS:
   void onAbort();
 
 private:
+  struct WatchedProxy;
+  void Watch(vtkSMProxy* proxy);
+  void ObserveWatchedObjects();
+  void Observe(WatchedProxy& watched, vtkAlgorithm* algorithm);
+  const WatchedProxy* FindWatched(vtkObject* algorithm) const;
+
+  /// This plugin's proxies (the filter's, readers' and writers'), each with the VTK object
+  /// observed.
+  std::vector<WatchedProxy> Watched;
   vtkWeakPointer<vtkAlgorithm> Running;
-  QMap<vtkObject*, QPointer<pqPipelineSource>> Sources;
+  /// Whether Abort was pressed during the running algorithm's run (the readers and writers clear
+  /// their flag as their run ends).
+  bool AbortAsked = false;
   QElapsedTimer SinceEvents;
   bool InEvents = false;
 

@@ -6,6 +6,7 @@
 #include "CloudMeasurement.h"
 #include "EdgeAwareNormals.h"
 #include "HugePages.h"
+#include "IterationEngine.h"
 #include "ProcessingOctree.h"
 #include "ProgressCheck.h"
 #include "RadiusBands.h"
@@ -93,71 +94,6 @@ std::string CheckPrecisionLimits(const BilateralParameters& parameters,
 
 } // namespace
 
-/**
- * The octree, the scheduler and the per-point state of the points being filtered: a whole
- * cloud for all its iterations, or one part and its ghosts for one iteration.
- */
-class IterationEngine
-{
-public:
-  /// The points' positions (the last `ghosts` of them ghosts), by id, are `positions`, or the
-  /// state's when that is null.
-  IterationEngine(PointState state,
-    const double* positions,
-    const CloudExtent& extent,
-    const RadiiUsed& radii,
-    bool removeIsolatedPoints,
-    int threads,
-    const std::function<bool()>& shouldAbort)
-    : Octree(extent.Min, extent.Max, radii.Radius)
-    , Scheduler(this->Octree,
-        KernelConstants(radii.Radius, radii.NormalRadius),
-        radii.Radius,
-        removeIsolatedPoints,
-        threads)
-    , State(std::move(state))
-    , Threads(threads)
-  {
-    this->Loaded = this->Octree.Load(positions ? positions : this->State.Positions.data(),
-      this->State.Removed.size(),
-      threads,
-      shouldAbort);
-  }
-
-  ProcessingOctree Octree;
-  CellColoringScheduler Scheduler;
-  PointState State;
-  int Threads;
-  /// Whether an iteration has placed the points since the octree's last layout (Load makes the
-  /// first one).
-  bool PointsPlaced = false;
-  /// False when the run was aborted while the octree was built: the engine cannot iterate.
-  bool Loaded = false;
-
-  /// Writes the points' last moves from the octree's layout back to their ids.
-  void ScatterMoves()
-  {
-    const std::uint32_t* ids = this->Octree.GetIds();
-    const double* moved[3] = {
-      this->Octree.GetMovedX(), this->Octree.GetMovedY(), this->Octree.GetMovedZ()
-    };
-    const auto count = static_cast<std::int64_t>(this->Octree.GetNumberOfPoints());
-    std::vector<double>& positions = this->State.Positions;
-    const std::vector<std::uint8_t>& removed = this->State.Removed;
-#pragma omp parallel for schedule(static) num_threads(this->Threads)
-    for (std::int64_t i = 0; i < count; ++i)
-    {
-      if (!removed[ids[i]])
-      {
-        for (int axis = 0; axis < 3; ++axis)
-        {
-          positions[3 * static_cast<std::size_t>(ids[i]) + axis] = moved[axis][i];
-        }
-      }
-    }
-  }
-};
-
 struct BilateralRun::Internals
 {
   PointCloudView Cloud;
@@ -170,6 +106,8 @@ struct BilateralRun::Internals
   int Iteration = 0;
   bool Started = false;
   bool Finished = false;
+  /// RunBilateralFilter's run of a whole cloud: asks from its construction to its Finish.
+  bool Whole = false;
   bool PositionsCopied = false;
   /// Whether the constructor accepted the parameters and the cloud (the result then has
   /// positions, even when no iteration ran).
@@ -248,25 +186,14 @@ struct BilateralRun::Internals
     const double* positions,
     const RadiiUsed& radii)
   {
-    // The octree's construction asks whether to stop between and within its passes; it reports
-    // the progress so far there too (at most every 0.1 s: Report), so that a GUI repaints and
-    // sees its Abort button while it runs.
-    std::function<bool()> askDuringLoad;
-    if (this->Observer.ShouldAbort || this->Observer.Progress || this->Observer.PhaseProgress)
-    {
-      askDuringLoad = [this]()
-      {
-        this->ReportWithinStep(0.0);
-        return this->Observer.ShouldAbort && this->Observer.ShouldAbort();
-      };
-    }
     auto engine = std::make_unique<IterationEngine>(std::move(state),
       positions,
       this->WholeExtent,
-      radii,
+      radii.Radius,
+      radii.NormalRadius,
       this->Parameters.RemoveIsolatedPoints,
       this->Threads,
-      askDuringLoad);
+      this->AskDuringOctree());
     this->Result.ProcessingDepth = engine->Octree.GetProcessingDepth();
     CellColoringScheduler& scheduler = engine->Scheduler;
     scheduler.ShouldAbort = this->Observer.ShouldAbort;
@@ -276,6 +203,22 @@ struct BilateralRun::Internals
       this->ReportWithinStep(static_cast<double>(pointsDone) / static_cast<double>(total));
     };
     return engine;
+  }
+
+  /// What the octree's construction and Compact ask whether to stop, between and within their
+  /// passes; they report the progress so far there too (at most every 0.1 s: Report), so that
+  /// a GUI repaints and sees its Abort button while they run.
+  std::function<bool()> AskDuringOctree()
+  {
+    if (!this->Observer.ShouldAbort && !this->Observer.Progress && !this->Observer.PhaseProgress)
+    {
+      return nullptr;
+    }
+    return [this]()
+    {
+      this->ReportWithinStep(0.0);
+      return this->Observer.ShouldAbort && this->Observer.ShouldAbort();
+    };
   }
 
   /// Progress within the current iteration's share being filtered.
@@ -292,9 +235,9 @@ struct BilateralRun::Internals
     {
       return false; // aborted while the octree was built
     }
-    if (engine.PointsPlaced)
+    if (engine.PointsPlaced && !engine.Octree.Compact(this->Threads, this->AskDuringOctree()))
     {
-      engine.Octree.Compact(this->Threads);
+      return false; // aborted between two iterations
     }
     if (this->Iteration == 0 && !this->WarnedAboutNeighbours)
     {
@@ -360,7 +303,8 @@ struct BilateralRun::Internals
       },
       observer.ShouldAbort);
     scope.Check(0.0);
-    const CloudScales scales = MeasureWholeCloud(this->Cloud, this->Threads);
+    const CloudScales scales =
+      MeasureWholeCloud(this->Cloud, this->LocalExtent.NumberOfFinitePoints, this->Threads);
     if (scope.StopAsked() || scope.CheckNow())
     {
       return false;
@@ -570,6 +514,14 @@ struct BilateralRun::Internals
 BilateralRun::BilateralRun(const PointCloudView& cloud,
   const BilateralParameters& parameters,
   const BilateralObserver& observer)
+  : BilateralRun(cloud, parameters, observer, false)
+{
+}
+
+BilateralRun::BilateralRun(const PointCloudView& cloud,
+  const BilateralParameters& parameters,
+  const BilateralObserver& observer,
+  bool whole)
   : Impl(std::make_unique<Internals>())
 {
   Internals& run = *this->Impl;
@@ -603,7 +555,32 @@ BilateralRun::BilateralRun(const PointCloudView& cloud,
   {
     result.Normals.assign(3 * n, 0.0);
   }
-  run.LocalExtent = MeasureCloud(cloud);
+  run.Whole = whole;
+  if (whole && observer.ShouldAbort)
+  {
+    bool stopped = false;
+    {
+      ProgressScope scope(
+        [&observer](double)
+        {
+          if (observer.Progress)
+          {
+            observer.Progress(0.0); // (a GUI repaints and sees its Abort button in these calls)
+          }
+        },
+        observer.ShouldAbort);
+      run.LocalExtent = MeasureCloudUnlessStopped(cloud, stopped);
+    }
+    if (stopped)
+    {
+      result.Status = BilateralStatus::Aborted;
+      return;
+    }
+  }
+  else
+  {
+    run.LocalExtent = MeasureCloud(cloud);
+  }
   result.NumberOfNonFinitePoints = n - run.LocalExtent.NumberOfFinitePoints;
 }
 
@@ -914,6 +891,14 @@ BilateralResult BilateralRun::Finish()
     run.Engine->Octree.ReleaseAllButMoves();
     run.CopyInputPositions();
     state.Positions = std::move(result.Positions);
+    // An abort asked once the last iteration is done still ends a whole cloud's run (its result
+    // is then an aborted one's: the input's positions). Its parts must decide alike: asked in
+    // Step only.
+    if (result.Status == BilateralStatus::Completed && run.Whole && run.Observer.ShouldAbort &&
+        run.Observer.ShouldAbort())
+    {
+      result.Status = BilateralStatus::Aborted;
+    }
     if (result.Status == BilateralStatus::Completed)
     {
       run.Engine->ScatterMoves();
@@ -951,7 +936,7 @@ BilateralResult RunBilateralFilter(const PointCloudView& cloud,
   const BilateralParameters& parameters,
   const BilateralObserver& observer)
 {
-  BilateralRun run(cloud, parameters, observer);
+  BilateralRun run(cloud, parameters, observer, true);
   if (run.Start(run.GetLocalExtent()))
   {
     while (run.HasNextIteration())

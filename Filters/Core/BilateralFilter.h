@@ -177,6 +177,17 @@ public:
   BilateralResult Finish();
 
 private:
+  /// RunBilateralFilter's run of a whole cloud (`whole`): the cloud's extent, a pass over every
+  /// point before the measurement, asks the observer whether to stop, and an abort there ends
+  /// the run. (The parts of a distributed run must decide alike, so they ask from Start on.)
+  BilateralRun(const PointCloudView& cloud,
+    const BilateralParameters& parameters,
+    const BilateralObserver& observer,
+    bool whole);
+  friend BilateralResult RunBilateralFilter(const PointCloudView& cloud,
+    const BilateralParameters& parameters,
+    const BilateralObserver& observer);
+
   struct Internals;
   std::unique_ptr<Internals> Impl;
 };

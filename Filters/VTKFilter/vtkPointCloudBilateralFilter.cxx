@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <numeric>
 #include <sstream>
 #include <utility>
@@ -35,24 +36,36 @@ vtkStandardNewMacro(vtkPointCloudBilateralFilter);
 
 namespace
 {
-/// Copies a 3-component array of any value type into interleaved doubles.
+/// Copies a 3-component array of any value type into interleaved doubles, a million values at
+/// a time, asking `stop` before each (20 million points are 480 MB: a run's abort is asked
+/// within the copy); stops with the values copied so far.
 struct CopyTuplesToDouble
 {
   template<typename ArrayT>
-  void operator()(ArrayT* array, std::vector<double>& values) const
+  void operator()(ArrayT* array,
+    std::vector<double>& values,
+    const std::function<bool()>& stop) const
   {
     const auto range = vtk::DataArrayValueRange<3>(array);
-    values.assign(range.begin(), range.end());
+    const auto size = static_cast<std::ptrdiff_t>(range.size());
+    values.clear();
+    values.reserve(static_cast<std::size_t>(size));
+    constexpr std::ptrdiff_t Block = std::ptrdiff_t(1) << 20;
+    for (std::ptrdiff_t first = 0; first < size && !stop(); first += Block)
+    {
+      values.insert(
+        values.end(), range.begin() + first, range.begin() + std::min(size, first + Block));
+    }
   }
 };
 
-void ToDoubles(vtkDataArray* array, std::vector<double>& values)
+void ToDoubles(vtkDataArray* array, std::vector<double>& values, const std::function<bool()>& stop)
 {
   using Dispatcher = vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>;
   CopyTuplesToDouble worker;
-  if (!Dispatcher::Execute(array, worker, values))
+  if (!Dispatcher::Execute(array, worker, values, stop))
   {
-    worker(array, values); // any other array type, through the generic API
+    worker(array, values, stop); // any other array type, through the generic API
   }
 }
 
@@ -62,12 +75,17 @@ struct CopyKeptPositions
   template<typename ArrayT>
   void operator()(ArrayT* array,
     const std::vector<double>& positions,
-    const std::vector<vtkIdType>& kept) const
+    const std::vector<vtkIdType>& kept,
+    const std::function<bool()>& stop) const
   {
     using ValueType = vtk::GetAPIType<ArrayT>;
     auto range = vtk::DataArrayValueRange<3>(array);
     for (std::size_t out = 0; out < kept.size(); ++out)
     {
+      if ((out & 0xFFFFF) == 0 && stop())
+      {
+        return; // (asked every million points)
+      }
       const double* p = positions.data() + 3 * kept[out];
       for (int axis = 0; axis < 3; ++axis)
       {
@@ -110,13 +128,20 @@ void PassEmptyInput(vtkPointSet* input, vtkPolyData* output)
   output->GetFieldData()->PassData(input->GetFieldData());
 }
 
-/// The ids of the input's points that the run kept, in order.
-std::vector<vtkIdType> KeptPointIds(const std::vector<std::uint8_t>& removed, vtkIdType count)
+/// The ids of the input's points that the run kept, in order (asking `stop` every million
+/// points: when it says stop, the ids so far).
+std::vector<vtkIdType> KeptPointIds(const std::vector<std::uint8_t>& removed,
+  vtkIdType count,
+  const std::function<bool()>& stop)
 {
   std::vector<vtkIdType> kept;
   kept.reserve(static_cast<std::size_t>(count));
   for (vtkIdType id = 0; id < count; ++id)
   {
+    if ((id & 0xFFFFF) == 0 && stop())
+    {
+      break;
+    }
     if (!removed[id])
     {
       kept.push_back(id);
@@ -128,16 +153,17 @@ std::vector<vtkIdType> KeptPointIds(const std::vector<std::uint8_t>& removed, vt
 /// The kept points' filtered positions, as points of the input's type.
 vtkSmartPointer<vtkPoints> KeptPoints(int dataType,
   const std::vector<double>& positions,
-  const std::vector<vtkIdType>& kept)
+  const std::vector<vtkIdType>& kept,
+  const std::function<bool()>& stop)
 {
   auto points = vtkSmartPointer<vtkPoints>::New();
   points->SetDataType(dataType);
   points->SetNumberOfPoints(static_cast<vtkIdType>(kept.size()));
   using Dispatcher = vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>;
   CopyKeptPositions worker;
-  if (!Dispatcher::Execute(points->GetData(), worker, positions, kept))
+  if (!Dispatcher::Execute(points->GetData(), worker, positions, kept, stop))
   {
-    worker(points->GetData(), positions, kept);
+    worker(points->GetData(), positions, kept, stop);
   }
   return points;
 }
@@ -365,9 +391,13 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   InputCloud cloud;
   std::vector<std::uint8_t> chosen;
   std::string problem = this->PrepareInput(input, cloud);
-  if (problem.empty())
+  if (problem.empty() && !this->GetAbortExecute())
   {
     problem = this->ChooseClasses(input, chosen);
+  }
+  if (this->GetAbortExecute())
+  {
+    return this->EndAborted(output); // (asked within the copies above)
   }
   if (!problem.empty())
   {
@@ -408,15 +438,25 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     return 1;
   }
   this->RecordRunInformation(result);
+  // An aborted run leaves the output empty; so does an abort asked while the output is built
+  // (the copies of 20 million points' arrays take a good part of a second: BuildOutput asks).
+  if (result.Status != pcbilateral::BilateralStatus::Completed || this->GetAbortExecute() ||
+      !this->BuildOutput(input, cloud, result, output))
+  {
+    return this->EndAborted(output);
+  }
   // An empty cloud completes with nothing chosen: "r 0, rn 0, N 1 (paper's rule)" misled.
-  this->LastRunSummary = result.Status != pcbilateral::BilateralStatus::Completed ? "aborted"
-                         : input->GetNumberOfPoints() == 0
+  this->LastRunSummary = input->GetNumberOfPoints() == 0
                            ? "nothing to filter: the input has no points"
                            : this->DescribeRun(result);
-  if (result.Status == pcbilateral::BilateralStatus::Completed)
-  {
-    this->BuildOutput(input, cloud, result, output); // an aborted run leaves it empty
-  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+int vtkPointCloudBilateralFilter::EndAborted(vtkPolyData* output)
+{
+  output->Initialize();
+  this->LastRunSummary = "aborted";
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -431,7 +471,8 @@ std::string vtkPointCloudBilateralFilter::PrepareInput(vtkPointSet* input, Input
   {
     return std::string();
   }
-  ToDoubles(input->GetPoints()->GetData(), cloud.Positions);
+  const std::function<bool()> stop = [this]() { return this->GetAbortExecute() != 0; };
+  ToDoubles(input->GetPoints()->GetData(), cloud.Positions, stop);
   if (!this->OrientNormals)
   {
     return std::string();
@@ -455,7 +496,7 @@ std::string vtkPointCloudBilateralFilter::PrepareInput(vtkPointSet* input, Input
   }
   if (reference)
   {
-    ToDoubles(reference, cloud.Orientation);
+    ToDoubles(reference, cloud.Orientation, stop);
   }
   return std::string();
 }
@@ -615,7 +656,7 @@ std::string vtkPointCloudBilateralFilter::DescribeRun(
   return summary.str();
 }
 
-void vtkPointCloudBilateralFilter::BuildOutput(vtkPointSet* input,
+bool vtkPointCloudBilateralFilter::BuildOutput(vtkPointSet* input,
   const InputCloud& cloud,
   const pcbilateral::BilateralResult& result,
   vtkPolyData* output)
@@ -623,23 +664,38 @@ void vtkPointCloudBilateralFilter::BuildOutput(vtkPointSet* input,
   if (input->GetNumberOfPoints() == 0)
   {
     PassEmptyInput(input, output);
-    return;
+    return true;
   }
   if (HasCellsOtherThanVertices(input))
   {
     vtkWarningMacro(<< "the input's cells (lines, polygons, volumes) are not carried to the "
                        "output, which is a point cloud");
   }
-  const std::vector<vtkIdType> kept = KeptPointIds(result.Removed, input->GetNumberOfPoints());
+  const std::function<bool()> stop = [this]() { return this->GetAbortExecute() != 0; };
+  const std::vector<vtkIdType> kept =
+    KeptPointIds(result.Removed, input->GetNumberOfPoints(), stop);
   const auto outputCount = static_cast<vtkIdType>(kept.size());
-  output->SetPoints(KeptPoints(input->GetPoints()->GetDataType(), result.Positions, kept));
-  output->SetVerts(vtkPointCloudVertices(outputCount));
+  if (stop())
+  {
+    return false;
+  }
+  output->SetPoints(KeptPoints(input->GetPoints()->GetDataType(), result.Positions, kept, stop));
+  const vtkSmartPointer<vtkCellArray> vertices = vtkPointCloudVertices(outputCount, stop);
+  if (!vertices)
+  {
+    return false;
+  }
+  output->SetVerts(vertices);
   // The parameters used and the scales they came from travel with the data (ParaView's
   // Information panel shows them).
   output->GetFieldData()->PassData(input->GetFieldData());
   AddParametersUsed(result, this->EdgeAware, output->GetFieldData());
 
   vtkPointData* outPD = output->GetPointData();
+  if (stop())
+  {
+    return false;
+  }
   CopyKeptPointData(input->GetPointData(), input->GetNumberOfPoints(), kept, outPD);
   if (this->RemoveIsolatedPoints)
   {
@@ -664,6 +720,7 @@ void vtkPointCloudBilateralFilter::BuildOutput(vtkPointSet* input,
     }
     outPD->AddArray(radii);
   }
+  return !stop();
 }
 
 void vtkPointCloudBilateralFilter::PrintSelf(ostream& os, vtkIndent indent)

@@ -392,7 +392,10 @@ private:
   void RecordRunInformation(const pcbilateral::BilateralResult& result);
   std::string DescribeRun(const pcbilateral::BilateralResult& result) const;
   /// The output point cloud: the kept points, their arrays, the arrays the filter adds.
-  void BuildOutput(vtkPointSet* input,
+  /// Ends an aborted run: an empty output. Returns RequestData's 1.
+  int EndAborted(vtkPolyData* output);
+  /// Fills the output; false if an abort was asked meanwhile (asked between its copies).
+  bool BuildOutput(vtkPointSet* input,
     const InputCloud& cloud,
     const pcbilateral::BilateralResult& result,
     vtkPolyData* output);

@@ -163,10 +163,17 @@ std::string vtkLASPointCloudReader::DecodePoints(const pcbilateral::LASFileInfo&
     return pcbilateral::AbortedMessage;
   }
 
+  // (The cells are built once the records are decoded: asked as the decoding's end.)
+  const vtkSmartPointer<vtkCellArray> vertices =
+    vtkPointCloudVertices(count, []() { return pcbilateral::ProgressPoint(999, 1000); });
+  if (!vertices)
+  {
+    return pcbilateral::AbortedMessage;
+  }
   vtkNew<vtkPoints> points;
   points->SetData(positions);
   output->SetPoints(points);
-  output->SetVerts(vtkPointCloudVertices(count));
+  output->SetVerts(vertices);
   for (const auto& array : arrays)
   {
     output->GetPointData()->AddArray(array);

@@ -38,6 +38,10 @@ void Convert(vtkDataArray* array, double factor, std::vector<std::uint8_t>& buff
   const int components = array->GetNumberOfComponents();
   for (vtkIdType k = 0; k < values; ++k)
   {
+    if ((k & 0xFFFFF) == 0 && pcbilateral::ProgressPoint(0, 1))
+    {
+      return; // aborted (asked every million values): the write stops at its next point
+    }
     double value = array->GetComponent(k / components, static_cast<int>(k % components)) * factor;
     if (std::numeric_limits<T>::is_integer)
     {
@@ -100,6 +104,59 @@ const void* Column(vtkDataArray* array,
       break;
   }
   return buffer.data();
+}
+
+/**
+ * The points' bounds as the data set's GetBounds gives them, computed a million points at a time
+ * (each block's by VTK itself, through a vtkPoints viewing its memory) with the write's abort
+ * asked between blocks: on 20 million points the single call took 0.6 to 0.9 s of a busy
+ * machine, unasked. The blocks' bounds combine as VTK combines its threads' (a smaller minimum
+ * replaces, an equal one does not). Where the points are not one packed array, or a block has
+ * no valid coordinate on some axis, the data set's own GetBounds.
+ */
+void BoundsAskingBetweenBlocks(vtkPointSet* input, double bounds[6])
+{
+  vtkDataArray* data = input->GetPoints()->GetData();
+  const vtkIdType count = data->GetNumberOfTuples();
+  constexpr vtkIdType Block = vtkIdType(1) << 20;
+  if (!data->HasStandardMemoryLayout() || data->GetNumberOfComponents() != 3 || count <= Block)
+  {
+    input->GetBounds(bounds);
+    return;
+  }
+  auto* bytes = static_cast<unsigned char*>(data->GetVoidPointer(0));
+  const int valueSize = data->GetDataTypeSize();
+  for (vtkIdType first = 0; first < count; first += Block)
+  {
+    if (pcbilateral::ProgressPoint(0, 1))
+    {
+      return; // aborted: the write stops at its next point
+    }
+    const vtkIdType points = std::min(Block, count - first);
+    auto view =
+      vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(data->GetDataType()));
+    view->SetNumberOfComponents(3);
+    view->SetVoidArray(bytes + 3 * valueSize * first, 3 * points, 1);
+    vtkNew<vtkPoints> block;
+    block->SetData(view);
+    double blockBounds[6];
+    block->GetBounds(blockBounds);
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      if (!(blockBounds[2 * axis] <= blockBounds[2 * axis + 1]))
+      {
+        input->GetBounds(bounds);
+        return;
+      }
+      const bool firstBlock = first == 0;
+      bounds[2 * axis] = firstBlock || blockBounds[2 * axis] < bounds[2 * axis]
+                           ? blockBounds[2 * axis]
+                           : bounds[2 * axis];
+      bounds[2 * axis + 1] = firstBlock || blockBounds[2 * axis + 1] > bounds[2 * axis + 1]
+                               ? blockBounds[2 * axis + 1]
+                               : bounds[2 * axis + 1];
+    }
+  }
 }
 
 /// The header to write: the one a LAS reader kept in the input's field data, else a default
@@ -212,7 +269,7 @@ vtkLASPointCloudWriter::CloudSummary vtkLASPointCloudWriter::MeasureCloud(vtkPoi
   if (cloud.NumberOfPoints > 0)
   {
     double vtkBounds[6];
-    input->GetBounds(vtkBounds);
+    BoundsAskingBetweenBlocks(input, vtkBounds);
     for (int axis = 0; axis < 3; ++axis)
     {
       cloud.Bounds[axis] = vtkBounds[2 * axis];
@@ -264,8 +321,11 @@ void vtkLASPointCloudWriter::WriteData()
     problem = LoadFileInfo(this->FileName, input, cloud, info);
   }
   const vtkIdType count = problem.empty() ? input->GetNumberOfPoints() : 0;
+  // (Asked between these steps too; an abort seen here ends the write at its first point.)
+  pcbilateral::ProgressPoint(0, 1);
   const vtkSmartPointer<vtkDataArray> positions =
     problem.empty() ? DoublePositions(input) : nullptr;
+  pcbilateral::ProgressPoint(0, 1);
   std::vector<std::vector<std::uint8_t>> buffers(info.Dimensions.size());
   std::vector<const void*> columns(info.Dimensions.size(), nullptr);
   if (problem.empty())

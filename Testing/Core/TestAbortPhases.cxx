@@ -3,6 +3,8 @@
 // measurement is done, so an abort asked there ends the run before the octree and the kernel
 // (pcb_abort_latency measured 4 to 7 s on 20 million points when only the kernel asked).
 #include "BilateralFilter.h"
+#include "BilateralKernel.h"
+#include "CellColoringScheduler.h"
 #include "CloudView.h"
 #include "CoreTesting.h"
 #include "ProcessingOctree.h"
@@ -134,13 +136,18 @@ void Measurement()
   }
   // A cloud larger than the measured selection: the selection (a pass over every point) asks
   // per block of points.
+  // (Counted from the measurement's start: the cloud's extent, before it, asks too.)
   const std::vector<double> large = pcbilateral_testing::NoisyCube(600000, 0.001, 3);
   int polls = 0;
   double reached = 0.0;
-  bool chosen = false;
-  observer.ShouldAbort = [&polls] { return ++polls == 3; };
+  bool chosen = false, started = false;
+  observer.ShouldAbort = [&] { return started && ++polls == 3; };
   observer.ParametersChosen = [&chosen](const BilateralResult&) { chosen = true; };
-  observer.PhaseProgress = [&reached](const std::string&, double fraction) { reached = fraction; };
+  observer.PhaseProgress = [&](const std::string&, double fraction)
+  {
+    started = true;
+    reached = fraction;
+  };
   const BilateralResult result =
     pcbilateral::RunBilateralFilter(pcbilateral_testing::ViewOf(large), automatic, observer);
   PCB_CHECK(result.Status == BilateralStatus::Aborted && polls == 3 && !chosen && reached > 0.0 &&
@@ -152,10 +159,126 @@ void Measurement()
     reached);
   pcbilateral::ProgressScope::SetReportInterval(std::chrono::milliseconds(50));
 }
+
+/// A whole cloud's run asks while it measures the cloud's extent, before the measurement: an
+/// abort at its first question ends it there, before the measurement reports anything (the
+/// extent of 20 million points took a tenth of a second or more, unasked).
+void BeforeMeasuring()
+{
+  const std::vector<double> large = pcbilateral_testing::NoisyCube(600000, 0.001, 3);
+  int asked = 0;
+  bool measured = false, chosen = false;
+  BilateralObserver observer;
+  observer.ShouldAbort = [&asked] { return ++asked == 1; };
+  observer.PhaseProgress = [&measured](const std::string&, double) { measured = true; };
+  observer.ParametersChosen = [&chosen](const BilateralResult&) { chosen = true; };
+  const BilateralResult result =
+    pcbilateral::RunBilateralFilter(pcbilateral_testing::ViewOf(large), {}, observer);
+  PCB_CHECK(result.Status == BilateralStatus::Aborted && asked == 1 && !measured && !chosen &&
+              result.Positions == large,
+    "aborted at the first question: status %d, asked %d, measuring reported %d, chosen %d",
+    int(result.Status),
+    asked,
+    measured,
+    chosen);
+}
+
+/// An octree whose points one iteration has placed (the state Compact starts from between two
+/// iterations), on one thread.
+struct PlacedOctree
+{
+  std::vector<double> Cloud = pcbilateral_testing::NoisyPlane(0.002, 11);
+  double Low[3] = { -0.1, -0.1, -0.1 }, High[3] = { 1.1, 1.1, 0.1 };
+  pcbilateral::ProcessingOctree Octree{ Low, High, 0.02 };
+  pcbilateral::PointState State;
+
+  PlacedOctree()
+  {
+    const std::size_t count = this->Cloud.size() / 3;
+    this->Octree.Load(this->Cloud.data(), count, 1);
+    this->State.Removed.assign(count, 0);
+    this->State.FirstGhost = count;
+    pcbilateral::CellColoringScheduler scheduler(
+      this->Octree, pcbilateral::KernelConstants(0.02, 0.01), 0.02, false, 1);
+    scheduler.RunIteration(this->State);
+  }
+};
+
+/**
+ * Between two iterations the octree's Compact asks whether to stop (between its steps and every
+ * 4,096 cells within its passes), not only the next iteration's kernel once Compact is done (a
+ * whole cloud's Compact went unasked); a stop at any of its questions leaves the octree empty.
+ */
+void BetweenIterations()
+{
+  int checks = 0;
+  {
+    PlacedOctree placed;
+    const bool compacted = placed.Octree.Compact(1, [&checks] { return ++checks < 0; });
+    PCB_CHECK(compacted && placed.Octree.GetNumberOfPoints() == placed.Cloud.size() / 3,
+      "a Compact never stopped lays out every point");
+  }
+  PCB_CHECK(checks >= 6, "Compact asked %d time(s) whether to stop", checks);
+  std::printf("Compact asked %d times whether to stop\n", checks);
+  for (int stopAt = 1; stopAt <= checks; ++stopAt)
+  {
+    PlacedOctree placed;
+    int asked = 0;
+    const bool compacted = placed.Octree.Compact(1, [&asked, stopAt] { return ++asked == stopAt; });
+    PCB_CHECK(!compacted && asked == stopAt && placed.Octree.GetNumberOfPoints() == 0,
+      "stopped at check %d: compacted %d, asked %d, %zu points",
+      stopAt,
+      compacted,
+      asked,
+      placed.Octree.GetNumberOfPoints());
+  }
+  // A run stopped there ends aborted, before the second iteration's kernel reports progress.
+  const std::vector<double> cloud = pcbilateral_testing::NoisyPlane(0.002, 11);
+  BilateralParameters given;
+  given.Radius = 0.05;
+  given.NormalRadius = 0.02;
+  given.NumberOfIterations = 2;
+  double progress = 0.0;
+  BilateralObserver observer;
+  observer.Progress = [&progress](double fraction) { progress = std::max(progress, fraction); };
+  observer.ShouldAbort = [&progress] { return progress >= 0.5; };
+  const BilateralResult result =
+    pcbilateral::RunBilateralFilter(pcbilateral_testing::ViewOf(cloud), given, observer);
+  PCB_CHECK(result.Status == BilateralStatus::Aborted && progress == 0.5,
+    "aborted between the iterations: status %d, progress %g",
+    int(result.Status),
+    progress);
+}
+
+/// An abort asked once the last iteration is done, before the result is handed over, still
+/// ends a whole cloud's run: aborted, the input's positions.
+void AfterLastIteration()
+{
+  const std::vector<double> cloud = pcbilateral_testing::NoisyPlane(0.002, 11);
+  BilateralParameters given;
+  given.Radius = 0.05;
+  given.NormalRadius = 0.02;
+  given.NumberOfIterations = 1;
+  bool done = false;
+  BilateralObserver observer;
+  observer.Progress = [&done](double fraction) { done = done || fraction >= 1.0; };
+  observer.ShouldAbort = [&done] { return done; };
+  const BilateralResult result =
+    pcbilateral::RunBilateralFilter(pcbilateral_testing::ViewOf(cloud), given, observer);
+  PCB_CHECK(result.Status == BilateralStatus::Aborted && result.Positions == cloud,
+    "aborted after the last iteration: status %d",
+    int(result.Status));
+}
 } // namespace
 
 int main(int argc, char* argv[])
 {
-  return RunNamedCase(
-    argc, argv, { { "Octree", Octree }, { "Run", Run }, { "Measurement", Measurement } });
+  return RunNamedCase(argc,
+    argv,
+    { { "Octree", Octree },
+      { "Run", Run },
+      { "Measurement", Measurement },
+      { "BeforeMeasuring", BeforeMeasuring },
+      { "BetweenIterations", BetweenIterations },
+      { "AfterLastIteration", AfterLastIteration } });
 }

@@ -662,6 +662,33 @@ void TestProgressAndAbort()
     (long long)cloud->GetNumberOfPoints());
 }
 
+/// An abort asked once the core's last iteration is done (its progress of 1), while the result
+/// is handed over and the output built, still ends the run: no output, "aborted".
+void TestAbortAtTheEnd()
+{
+  auto cloud = MakeCloud(NoisyPlane(0.002, 5));
+  vtkNew<vtkPointCloudBilateralFilter> filter;
+  filter->SetInputData(cloud);
+  filter->SetRadius(0.03);
+  filter->SetNumberOfIterations(2);
+  vtkNew<vtkCallbackCommand> stopper;
+  stopper->SetCallback(
+    [](vtkObject* caller, unsigned long, void*, void* callData)
+    {
+      if (*static_cast<double*>(callData) >= 1.0)
+      {
+        static_cast<vtkAlgorithm*>(caller)->AbortExecuteOn();
+      }
+    });
+  filter->AddObserver(vtkCommand::ProgressEvent, stopper);
+  filter->Update();
+  PCB_CHECK(filter->GetOutput()->GetNumberOfPoints() == 0 &&
+              std::string(filter->GetLastRunSummary()) == "aborted",
+    "aborted at the end: %lld output points, summary '%s'",
+    (long long)filter->GetOutput()->GetNumberOfPoints(),
+    filter->GetLastRunSummary());
+}
+
 void TestDegenerateNeighbourhoods()
 {
   // Flat, linear and single-point neighbourhoods: the eigen solver must give a usable normal or
@@ -784,6 +811,7 @@ int main(int argc, char* argv[])
     { "point-types", TestPointTypes },
     { "parameters-and-normals", TestParametersAndNormals },
     { "progress-and-abort", TestProgressAndAbort },
+    { "abort-at-the-end", TestAbortAtTheEnd },
     { "degenerate-neighbourhoods", TestDegenerateNeighbourhoods },
     { "follows-density", TestFollowsDensity },
   };

@@ -274,8 +274,14 @@ struct Bench
                      readingNow,
                      phase),
         Reading);
+    }
+    // The writes are of the whole filtered cloud: an aborted read left an empty one.
+    this->Reader->Modified();
+    this->Filter->Update();
+    for (int k = 1; k <= samples; ++k)
+    {
       unlink(this->Settings.Output.c_str());
-      phase = Writing;
+      int phase = Writing;
       const double latency = AbortAfter(
         this->Writer,
         this->Seconds[2] * k / (samples + 1),
@@ -290,6 +296,7 @@ struct Bench
 
   void AbortFilterRuns()
   {
+    this->Reader->Modified(); // (read whole again: the last read may have been aborted)
     this->Reader->Update();
     const int runs = 4 * this->Settings.Samples;
     const double span =

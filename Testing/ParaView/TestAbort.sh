@@ -1,15 +1,29 @@
 #!/usr/bin/env bash
-# In the ParaView GUI: a long run shows progress and its warning while it runs, and the Abort
-# button of the status bar stops it. AbortSession.py starts the run (4 iterations with every point
-# a neighbour of every other: a minute or more); once the progress bar has passed 5 %, this
-# script clicks Abort (xdotool, ParaView 5.11's default layout on its own 1600x1000 X server),
-# then checks that the run ended soon after, with an empty output, and prints what it measured.
-#   TestAbort.sh PLUGIN_DIR SOURCE_DIR SCRATCH_DIR
-# Bounds are generous (a shared, busy machine): the abort must end the run within 5 s (it takes
-# about 0.1 s on a quiet machine), the warning must come before 5 % of the run, and progress
-# must arrive at least every 2 s.
+# In the ParaView GUI: the Abort button of the status bar stops the plugin's runs. A session
+# script logs what the GUI sees ("<time> start ..." before each run to abort, "<time> progress
+# P ..." as the progress bar moves); once a run's progress has passed 5 %, this script clicks
+# Abort (xdotool, ParaView 5.11's default layout on its own 1600x1000 X server), then a check
+# script reads the log and the times of the clicks and prints what it measured.
+#   TestAbort.sh PLUGIN_DIR SOURCE_DIR SCRATCH_DIR [CASE]
+# CASE:
+#   filter      (the default) AbortSession.py, CheckAbortFilter.py: a long run of the filter
+#               shows progress and its warning while it runs, and Abort stops it; two Applies
+#               after it run to the end;
+#   read-write  AbortReadWriteSession.py, CheckAbortReadWrite.py: Abort stops the LAS reader
+#               reading a generated LAZ file (opened, then reloaded) and the LAS writer writing
+#               one (Save Data), which leaves no file; the runs after them go to the end.
+# Bounds are generous (a shared, busy machine): an abort must end the run within 5 s (about
+# 0.1 s on a quiet machine).
 set -euo pipefail
-plugin_dir=$1 source_dir=$2 scratch=$3
+plugin_dir=$1 source_dir=$2 scratch=$3 case=${4:-filter}
+case $case in
+  filter) session=AbortSession.py checks=CheckAbortFilter.py runs=1 ;;
+  read-write) session=AbortReadWriteSession.py checks=CheckAbortReadWrite.py runs=3 ;;
+  *)
+    echo "TestAbort.sh: unknown case $case" >&2
+    exit 2
+    ;;
+esac
 # ParaView 5.11 loses its X server now and then when both cores are busy (not this plugin's
 # doing): a run that failed so is started again, three runs at most.
 if [ -z "${PCB_ABORT_RUN:-}" ]; then
@@ -24,8 +38,8 @@ if [ -z "${PCB_ABORT_RUN:-}" ]; then
   done
 fi
 mkdir -p "$scratch"
-log=$scratch/abort.log
-rm -f "$log"
+log=$scratch/abort.log clicks=$scratch/clicks
+rm -f "$log" "$clicks"
 
 display=:$((RANDOM % 400 + 500))
 Xvfb "$display" -screen 0 1600x1000x24 > /dev/null 2>&1 &
@@ -40,68 +54,44 @@ export DISPLAY=$display
 sleep 1
 
 PCB_LOG=$log PCB_SOURCE_DIR=$source_dir PV_PLUGIN_PATH=$plugin_dir \
-  paraview --dr "--script=$source_dir/Testing/ParaView/AbortSession.py" --exit \
+  paraview --dr "--script=$source_dir/Testing/ParaView/$session" --exit \
   > "$scratch/paraview.log" 2>&1 &
 paraview_pid=$!
 
-# Wait for 5 % of progress (or the end of the run, which then fails below).
-for _ in $(seq 600); do
-  if awk '$2 == "progress" && $3 >= 5 { found = 1 } $2 == "end" { found = 1 } END { exit !found }' \
-    "$log" 2> /dev/null; then
-    break
-  fi
-  kill -0 "$paraview_pid" 2> /dev/null || break # ParaView is gone (it lost its X server?)
-  sleep 0.1
-done
-# The Output Messages window opens on the warning and may cover the status bar: move it away.
-messages=$(xdotool search --name "^Output Messages$" | head -1 || true)
-[ -n "$messages" ] && xdotool windowmove "$messages" 0 820
-main=$(xdotool search --name "ParaView 5" | head -1)
-eval "$(xdotool getwindowgeometry --shell "$main")"
-# The Abort button: a third of the way along the status bar, at the bottom of the window.
-clicked=$(date +%s.%N)
-xdotool mousemove $((X + WIDTH / 3)) $((Y + HEIGHT - 13)) click 1
+# Clicks Abort once the `run`-th run to abort has passed 5 % (or has ended: the checks fail).
+click_abort_in_run() {
+  local run=$1
+  for _ in $(seq 1200); do
+    if awk -v run="$run" '$2 == "start" { started++ }
+      started >= run && (($2 == "progress" && $3 >= 5) || $2 == "end") { found = 1 }
+      END { exit !found }' "$log" 2> /dev/null; then
+      break
+    fi
+    kill -0 "$paraview_pid" 2> /dev/null || return 0 # ParaView is gone (it lost its X server?)
+    sleep 0.1
+  done
+  # The Output Messages window opens on a warning and may cover the status bar: move it away.
+  local messages
+  messages=$(xdotool search --name "^Output Messages$" | head -1 || true)
+  [ -n "$messages" ] && xdotool windowmove "$messages" 0 820
+  local main
+  main=$(xdotool search --name "ParaView 5" | head -1)
+  eval "$(xdotool getwindowgeometry --shell "$main")"
+  # The Abort button: a third of the way along the status bar, at the bottom of the window.
+  date +%s.%N >> "$clicks"
+  xdotool mousemove $((X + WIDTH / 3)) $((Y + HEIGHT - 13)) click 1
+  # Until the run has ended.
+  for _ in $(seq 1200); do
+    awk -v run="$run" '$2 == "end" { ended++ } END { exit ended < run }' "$log" && break
+    kill -0 "$paraview_pid" 2> /dev/null || break
+    sleep 0.1
+  done
+}
 
-for _ in $(seq 1200); do
-  grep -q "^[0-9.]* end" "$log" && break
-  sleep 0.1
+for run in $(seq "$runs"); do
+  click_abort_in_run "$run"
 done
 wait "$paraview_pid" || true
 paraview_pid=
 
-/usr/bin/python3 - "$log" "$clicked" <<'PYTHON'
-import sys
-lines = [line.split() for line in open(sys.argv[1])]
-clicked = float(sys.argv[2])
-times = {}
-for line in lines:
-    times.setdefault(line[1], []).append(float(line[0]))
-failures = []
-def check(condition, message):
-    print(("ok:     " if condition else "FAILED: ") + message)
-    if not condition:
-        failures.append(message)
-start = times["start"][0]
-end = times.get("end", [float("inf")])[0]
-returned = times.get("returned", [float("inf")])[0]
-progress = [start] + [t for t in times.get("progress", []) if t <= clicked]
-gaps = [b - a for a, b in zip(progress, progress[1:])]
-warning = times.get("warning", [float("inf")])[0]
-points = [line[2] for line in lines if line[1] == "end"]
-print(f"measured: the filter returned {returned - clicked:.3f} s after the click, the Apply "
-      f"ended after {end - clicked:.3f} s; {len(progress) - 1} progress events "
-      f"in the {clicked - start:.2f} s before it, largest gap {max(gaps, default=0):.3f} s; "
-      f"warning {warning - start:.3f} s after the start")
-check(returned - clicked < 5.0, f"the filter returned {returned - clicked:.3f} s after Abort was clicked")
-check(points == ["0"], f"an aborted run has an empty output ({points})")
-check("aborted-message" in times, "the Output Messages window says the run was aborted")
-texts = {" ".join(line[3:]) for line in lines if line[1] == "progress"}
-ours = {text for text in texts if "ilateral" in text}
-check(ours == {"Point Cloud Bilateral Filter"},
-      f"the progress bar names the filter by its label, not its class ({sorted(texts)})")
-again = [line[2] for line in lines if line[1] == "again"]
-check(again == ["40000", "40000"], f"the two Applies after the abort ran to the end ({again})")
-check(len(progress) > 3 and max(gaps) < 2.0, "progress reaches the GUI while the run goes on")
-check(warning < clicked, "the warning about the radius arrived while the run went on")
-sys.exit(1 if failures else 0)
-PYTHON
+/usr/bin/python3 "$source_dir/Testing/ParaView/$checks" "$log" "$clicks"

@@ -1,4 +1,5 @@
 #include "PointCloudView.h"
+#include "ProgressCheck.h"
 
 #include <algorithm>
 #include <limits>
@@ -27,25 +28,38 @@ bool CloudExtent::IsFinite() const
   return IsFinitePoint(this->Min) && IsFinitePoint(this->Max);
 }
 
-CloudExtent MeasureCloud(const PointCloudView& cloud)
+namespace
+{
+/// The extent of the finite points; `stop(done)` is asked between blocks of points.
+template<typename Stop>
+CloudExtent MeasureCloudIn(const PointCloudView& cloud, Stop stop)
 {
   CloudExtent extent;
   const double infinity = std::numeric_limits<double>::infinity();
   double low[3] = { infinity, infinity, infinity }, high[3] = { -infinity, -infinity, -infinity };
   std::size_t finite = 0;
-  for (std::size_t i = 0; i < cloud.NumberOfPoints; ++i)
+  constexpr std::size_t Block = std::size_t(1) << 16;
+  for (std::size_t first = 0; first < cloud.NumberOfPoints; first += Block)
   {
-    const double* p = cloud.Positions + 3 * i;
-    if (!IsFinitePoint(p))
+    if (stop(first))
     {
-      continue;
+      break;
     }
-    for (int axis = 0; axis < 3; ++axis)
+    const std::size_t end = std::min(cloud.NumberOfPoints, first + Block);
+    for (std::size_t i = first; i < end; ++i)
     {
-      low[axis] = std::min(low[axis], p[axis]);
-      high[axis] = std::max(high[axis], p[axis]);
+      const double* p = cloud.Positions + 3 * i;
+      if (!IsFinitePoint(p))
+      {
+        continue;
+      }
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        low[axis] = std::min(low[axis], p[axis]);
+        high[axis] = std::max(high[axis], p[axis]);
+      }
+      ++finite;
     }
-    ++finite;
   }
   if (finite > 0)
   {
@@ -54,6 +68,19 @@ CloudExtent MeasureCloud(const PointCloudView& cloud)
     std::copy_n(high, 3, extent.Max);
   }
   return extent;
+}
+} // namespace
+
+CloudExtent MeasureCloud(const PointCloudView& cloud)
+{
+  return MeasureCloudIn(cloud, [](std::size_t) { return false; });
+}
+
+CloudExtent MeasureCloudUnlessStopped(const PointCloudView& cloud, bool& stopped)
+{
+  stopped = false;
+  return MeasureCloudIn(
+    cloud, [&](std::size_t done) { return stopped = ProgressPoint(done, cloud.NumberOfPoints); });
 }
 
 CloudExtent MergeExtents(const CloudExtent& a, const CloudExtent& b)

@@ -39,6 +39,10 @@ struct CloudExtent
 
 /// The extent of the finite points among a cloud's points.
 CloudExtent MeasureCloud(const PointCloudView& cloud);
+
+/// MeasureCloud, asking the calling thread's progress scope (ProgressPoint) whether to stop
+/// every 65,536 points: on a stop, `stopped` is set and the extent is that of the points seen.
+CloudExtent MeasureCloudUnlessStopped(const PointCloudView& cloud, bool& stopped);
 /// The extent of two parts of one cloud together.
 CloudExtent MergeExtents(const CloudExtent& a, const CloudExtent& b);
 

@@ -1,5 +1,6 @@
 #include "ProgressCheck.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <utility>
 
@@ -80,6 +81,21 @@ bool ProgressScope::CheckNow()
     this->Stopped.store(true, std::memory_order_relaxed);
   }
   return this->StopAsked();
+}
+
+void ParallelProgress::WaitForOthers()
+{
+  if (this->Scope == nullptr || !this->Scope->CalledByOwner())
+  {
+    return;
+  }
+  while (this->Ended.load(std::memory_order_acquire) < this->Total)
+  {
+    const std::uint64_t done = this->Count.load(std::memory_order_relaxed);
+    this->Scope->Check(
+      static_cast<double>(done) / static_cast<double>(std::max<std::uint64_t>(this->Total, 1)));
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
 }
 
 bool ProgressPoint(std::uint64_t done, std::uint64_t total)

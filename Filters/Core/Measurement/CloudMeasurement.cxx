@@ -913,7 +913,14 @@ CloudScales MeasureSelection(const std::vector<double>& selection, double fracti
 
 CloudScales MeasureWholeCloud(const PointCloudView& cloud, int threads)
 {
-  const double fraction = MeasuredFraction(MeasureCloud(cloud).NumberOfFinitePoints);
+  return MeasureWholeCloud(cloud, MeasureCloud(cloud).NumberOfFinitePoints, threads);
+}
+
+CloudScales MeasureWholeCloud(const PointCloudView& cloud,
+  std::size_t numberOfFinitePoints,
+  int threads)
+{
+  const double fraction = MeasuredFraction(numberOfFinitePoints);
   if (fraction >= 1.0)
   {
     // The selection would be a copy of the finite points; MeasureScales skips the others and

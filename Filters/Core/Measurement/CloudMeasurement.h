@@ -117,6 +117,11 @@ CloudScales MeasureSelection(const std::vector<double>& selection, double fracti
 /// result is the same bits for the cloud in any order, split into parts in any way, on any
 /// number of threads.
 CloudScales MeasureWholeCloud(const PointCloudView& cloud, int threads);
+/// The same, for a cloud whose number of finite points is known (from its MeasureCloud): saves
+/// a pass over every point, which asks no progress scope (a tenth of a second on 20 million).
+CloudScales MeasureWholeCloud(const PointCloudView& cloud,
+  std::size_t numberOfFinitePoints,
+  int threads);
 
 } // namespace pcbilateral
 

@@ -19,6 +19,8 @@ namespace
 /// filter's guarantee) from one cell cannot reach a leaf reachable from a cell of the same
 /// colour (the paper's d = 2.1 r).
 constexpr double CellSizeInRadii = 2.1;
+/// Compact's parallel passes take this many cells at a time, and ask at the first of each.
+constexpr std::int64_t CellsPerAsk = 4096;
 
 /// The order of the points in a leaf: by coordinates, so that it depends on geometry alone and
 /// not on the point ids (a distributed run numbers its points differently). Points equal in all
@@ -123,142 +125,6 @@ void OrderCellPoints(const std::uint32_t* points,
 }
 
 } // namespace
-
-std::size_t LatticeCoordHash::operator()(const LatticeCoord& c) const
-{
-  // SplitMix64 finaliser over a mix of the three coordinates.
-  std::uint64_t h = static_cast<std::uint64_t>(c.X) * 0x9E3779B97F4A7C15ULL;
-  h ^= static_cast<std::uint64_t>(c.Y) + 0xBF58476D1CE4E5B9ULL + (h << 6) + (h >> 2);
-  h ^= static_cast<std::uint64_t>(c.Z) + 0x94D049BB133111EBULL + (h << 6) + (h >> 2);
-  h ^= h >> 30;
-  h *= 0xBF58476D1CE4E5B9ULL;
-  h ^= h >> 27;
-  h *= 0x94D049BB133111EBULL;
-  h ^= h >> 31;
-  return static_cast<std::size_t>(h);
-}
-
-void CellIndexMap::Clear(std::size_t expectedCells)
-{
-  std::size_t capacity = 16;
-  while (capacity < 2 * expectedCells)
-  {
-    capacity *= 2;
-  }
-  this->Slots.assign(capacity, Slot());
-  this->Count = 0;
-}
-
-namespace
-{
-/// The slot's tag: the hash's high 32 bits (the low ones pick the slot).
-std::uint32_t TagOf(std::uint64_t hash)
-{
-  return static_cast<std::uint32_t>(hash >> 32);
-}
-} // namespace
-
-std::int32_t CellIndexMap::Find(const LatticeCoord& cell, const LatticeCoord* coords) const
-{
-  const std::uint64_t hash = LatticeCoordHash()(cell);
-  const std::uint32_t tag = TagOf(hash);
-  const std::size_t mask = this->Slots.size() - 1;
-  for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask)
-  {
-    const Slot& entry = this->Slots[slot];
-    if (entry.Index == Missing || (entry.Tag == tag && coords[entry.Index] == cell))
-    {
-      return entry.Index;
-    }
-  }
-}
-
-std::int32_t CellIndexMap::Insert(const LatticeCoord& cell,
-  std::int32_t index,
-  const LatticeCoord* coords)
-{
-  if (2 * (this->Count + 1) > this->Slots.size())
-  {
-    this->Grow(coords);
-  }
-  const std::uint64_t hash = LatticeCoordHash()(cell);
-  const std::uint32_t tag = TagOf(hash);
-  const std::size_t mask = this->Slots.size() - 1;
-  for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask)
-  {
-    Slot& entry = this->Slots[slot];
-    if (entry.Index == Missing)
-    {
-      entry.Tag = tag;
-      entry.Index = index;
-      ++this->Count;
-      return index;
-    }
-    if (entry.Tag == tag && coords[entry.Index] == cell)
-    {
-      return entry.Index;
-    }
-  }
-}
-
-void CellIndexMap::InsertDistinct(const LatticeCoord* coords,
-  std::size_t count,
-  int numberOfThreads)
-{
-  this->Clear(count);
-  const std::size_t mask = this->Slots.size() - 1;
-  const auto signedCount = static_cast<std::int64_t>(count);
-#if defined(__GNUC__)
-  // In parallel: a slot is claimed with a compare-and-swap of its 8 bytes from empty. The cells
-  // are distinct, so a taken slot is always another cell's, and the probe goes on.
-  static_assert(sizeof(Slot) == sizeof(std::uint64_t), "a slot is claimed in one 8-byte swap");
-  const Slot emptySlot;
-  std::uint64_t empty;
-  std::memcpy(&empty, &emptySlot, sizeof(empty));
-  std::uint64_t* slots = reinterpret_cast<std::uint64_t*>(this->Slots.data());
-#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
-  for (std::int64_t index = 0; index < signedCount; ++index)
-  {
-    const std::uint64_t hash = LatticeCoordHash()(coords[index]);
-    Slot claimed;
-    claimed.Tag = TagOf(hash);
-    claimed.Index = static_cast<std::int32_t>(index);
-    std::uint64_t value;
-    std::memcpy(&value, &claimed, sizeof(value));
-    for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask)
-    {
-      std::uint64_t expected = empty;
-      if (__atomic_compare_exchange_n(
-            slots + slot, &expected, value, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
-      {
-        break;
-      }
-    }
-  }
-  this->Count = count;
-#else
-  (void)numberOfThreads;
-  (void)mask;
-  for (std::int64_t index = 0; index < signedCount; ++index)
-  {
-    this->Insert(coords[index], static_cast<std::int32_t>(index), coords);
-  }
-#endif
-}
-
-void CellIndexMap::Grow(const LatticeCoord* coords)
-{
-  std::vector<Slot> old;
-  old.swap(this->Slots);
-  this->Clear(std::max<std::size_t>(8, old.size()));
-  for (const Slot& entry : old)
-  {
-    if (entry.Index != Missing)
-    {
-      this->Insert(coords[entry.Index], entry.Index, coords);
-    }
-  }
-}
 
 ProcessingOctree::ProcessingOctree(const double boundsMin[3],
   const double boundsMax[3],
@@ -381,6 +247,13 @@ bool ProcessingOctree::EndIfStopped()
   return true;
 }
 
+bool ProcessingOctree::StopSeen(std::int64_t cell) const
+{
+  return cell % CellsPerAsk == 0
+           ? this->StopAsked()
+           : this->Stop != nullptr && this->Stop->Stopped.load(std::memory_order_relaxed);
+}
+
 bool ProcessingOctree::StopAsked() const
 {
   if (!this->Stop)
@@ -463,6 +336,10 @@ void ProcessingOctree::AssignCellsAndLeaves(const double* positions, int numberO
   }
   for (std::size_t i = 0; i < n; ++i)
   {
+    if ((i & 0xFFFFF) == 0xFFFFF && this->StopAsked()) // (serial: asked every million points)
+    {
+      return; // Load sees it
+    }
     if (this->NextLink[i] == NoCell)
     {
       this->NextLink[i] = this->FindOrCreateCell(CellOfLeaf(this->LeafOf(positionOf(i))));
@@ -483,6 +360,12 @@ ProcessingOctree::LoadBuckets ProcessingOctree::PlanBuckets(
   buckets.CellCode.resize(cells);
   for (std::size_t cell = 0, inBucket = 0; cell < cells; ++cell)
   {
+    // (Serial over every cell, up to one per two points: asked every 65,536 cells. Load sees a
+    // stop before the buckets are used.)
+    if ((cell & 0xFFFF) == 0xFFFF && this->StopAsked())
+    {
+      break;
+    }
     if (cell == 0 || inBucket >= bucketPoints)
     {
       buckets.FirstCell.push_back(static_cast<std::uint32_t>(cell));
@@ -509,8 +392,15 @@ void ProcessingOctree::ScatterToBuckets(const double* positions,
   // but that order does not matter: OrderBuckets orders every cell's points by geometry alone.
   const std::size_t n = this->Ids.size();
   constexpr std::size_t Chunks = 64;
+  if (this->StopAsked()) // (PlanBuckets asks too)
+  {
+    return; // Load sees it
+  }
   std::vector<std::uint32_t> cursors(Chunks * buckets.Count, 0);
   auto chunkBegin = [n](std::size_t chunk) { return chunk * n / Chunks; };
+  // A chunk is n / 64 points (300,000 of 20 million, each written to its bucket: a cache miss
+  // and, the first time, a page fault; 0.7 s unasked on a busy machine): asked within it too.
+  constexpr std::size_t AskEvery = (std::size_t(1) << 14) - 1;
   // Chunks taken one at a time (here and below): the calling thread, which asks whether to stop,
   // then never waits long for the others at the loop's end (seconds on a busy machine).
 #pragma omp parallel for schedule(dynamic, 1) num_threads(numberOfThreads)
@@ -523,6 +413,10 @@ void ProcessingOctree::ScatterToBuckets(const double* positions,
     std::uint32_t* counts = cursors.data() + static_cast<std::size_t>(chunk) * buckets.Count;
     for (std::size_t i = chunkBegin(chunk); i < chunkBegin(chunk + 1); ++i)
     {
+      if ((i & AskEvery) == 0 && this->StopAsked())
+      {
+        break;
+      }
       ++counts[buckets.BucketOfCell[static_cast<std::size_t>(this->NextLink[i])]];
     }
   }
@@ -540,10 +434,10 @@ void ProcessingOctree::ScatterToBuckets(const double* positions,
       at += count;
     }
   }
-  this->CompactedIds.resize(n);
-  this->X.resize(n);
-  this->Y.resize(n);
-  this->Z.resize(n);
+  if (!this->TouchLayout(codes, numberOfThreads))
+  {
+    return; // Load sees it
+  }
 #pragma omp parallel for schedule(dynamic, 1) num_threads(numberOfThreads)
   for (std::int64_t chunk = 0; chunk < static_cast<std::int64_t>(Chunks); ++chunk)
   {
@@ -554,6 +448,10 @@ void ProcessingOctree::ScatterToBuckets(const double* positions,
     std::uint32_t* cursor = cursors.data() + static_cast<std::size_t>(chunk) * buckets.Count;
     for (std::size_t i = chunkBegin(chunk); i < chunkBegin(chunk + 1); ++i)
     {
+      if ((i & AskEvery) == 0 && this->StopAsked())
+      {
+        break;
+      }
       const auto cell = static_cast<std::size_t>(this->NextLink[i]);
       const std::uint32_t to = cursor[buckets.BucketOfCell[cell]]++;
       const double* p = positions + 3 * static_cast<std::size_t>(this->Ids[i]);
@@ -567,6 +465,23 @@ void ProcessingOctree::ScatterToBuckets(const double* positions,
   this->Ids.swap(this->CompactedIds);
   // The ids of the finite points in input order are not needed again; Compact makes its own.
   PointArray<std::uint32_t>().swap(this->CompactedIds);
+}
+
+bool ProcessingOctree::TouchLayout(PointArray<std::uint32_t>& codes, int numberOfThreads)
+{
+  const std::size_t n = this->Ids.size();
+  this->CompactedIds.resize(n);
+  this->X.resize(n);
+  this->Y.resize(n);
+  this->Z.resize(n);
+  const auto stopSeen = [this]() { return this->StopAsked(); };
+  TouchPages(codes.data(), n, numberOfThreads, stopSeen);
+  TouchPages(this->CompactedIds.data(), n, numberOfThreads, stopSeen);
+  for (PointArray<double>* axis : { &this->X, &this->Y, &this->Z })
+  {
+    TouchPages(axis->data(), n, numberOfThreads, stopSeen);
+  }
+  return !this->StopAsked();
 }
 
 void ProcessingOctree::OrderBuckets(const LoadBuckets& buckets,
@@ -768,15 +683,65 @@ void ProcessingOctree::FinishCells(const std::vector<std::int32_t>& kept,
   }
 }
 
-void ProcessingOctree::Compact(int numberOfThreads)
+bool ProcessingOctree::Compact(int numberOfThreads, const std::function<bool()>& shouldStop)
+{
+  LoadStop stop;
+  stop.Ask = shouldStop ? &shouldStop : nullptr;
+  this->Stop = &stop;
+  // (Both parallel passes over the cells take them in blocks, so that the calling thread, which
+  // asks whether to stop, does not wait for the others' halves: a whole cloud's Compact between
+  // two iterations was unasked.)
+  std::vector<std::uint32_t> cellCounts;
+  std::vector<std::uint64_t> cellMasks;
+  this->CountPlacedPoints(cellCounts, cellMasks, numberOfThreads);
+  if (this->EndIfStopped())
+  {
+    return false;
+  }
+  // Non-empty cells in lattice order.
+  std::vector<std::int32_t> kept;
+  for (std::size_t cell = 0; cell < cellCounts.size(); ++cell)
+  {
+    if (cellCounts[cell] > 0)
+    {
+      kept.push_back(static_cast<std::int32_t>(cell));
+    }
+  }
+  this->SortCells(kept, numberOfThreads);
+  this->SetUpCells(kept, cellCounts, cellMasks);
+  cellCounts = std::vector<std::uint32_t>();
+  cellMasks = std::vector<std::uint64_t>();
+  if (this->EndIfStopped())
+  {
+    return false;
+  }
+  const std::size_t pointCount = this->CellBegins.back();
+  this->LayOutPlacedPoints(kept, numberOfThreads);
+  if (this->EndIfStopped())
+  {
+    return false;
+  }
+  this->FinishCells(kept, pointCount, numberOfThreads);
+  const bool stopped = this->EndIfStopped(); // (FinishCells asks too)
+  this->Stop = nullptr;
+  return !stopped;
+}
+
+void ProcessingOctree::CountPlacedPoints(std::vector<std::uint32_t>& cellCounts,
+  std::vector<std::uint64_t>& cellMasks,
+  int numberOfThreads)
 {
   // Each cell's points and occupied leaves.
   const auto oldCellCount = static_cast<std::int64_t>(this->CellCoords.size());
-  std::vector<std::uint32_t> cellCounts(this->CellCoords.size(), 0);
-  std::vector<std::uint64_t> cellMasks(this->CellCoords.size(), 0);
-#pragma omp parallel for schedule(static) num_threads(numberOfThreads)
+  cellCounts.assign(this->CellCoords.size(), 0);
+  cellMasks.assign(this->CellCoords.size(), 0);
+#pragma omp parallel for schedule(dynamic, CellsPerAsk) num_threads(numberOfThreads)
   for (std::int64_t cell = 0; cell < oldCellCount; ++cell)
   {
+    if (this->StopSeen(cell))
+    {
+      continue;
+    }
     std::uint32_t count = 0;
     std::uint64_t mask = 0;
     for (std::int32_t index = this->NextHead[cell]; index >= 0; index = this->NextLink[index])
@@ -787,21 +752,11 @@ void ProcessingOctree::Compact(int numberOfThreads)
     cellCounts[cell] = count;
     cellMasks[cell] = mask;
   }
+}
 
-  // Non-empty cells in lattice order.
-  std::vector<std::int32_t> kept;
-  for (std::int32_t cell = 0; cell < oldCellCount; ++cell)
-  {
-    if (cellCounts[cell] > 0)
-    {
-      kept.push_back(cell);
-    }
-  }
-  this->SortCells(kept, numberOfThreads);
-  this->SetUpCells(kept, cellCounts, cellMasks);
-  cellCounts = std::vector<std::uint32_t>();
-  cellMasks = std::vector<std::uint64_t>();
-
+void ProcessingOctree::LayOutPlacedPoints(const std::vector<std::int32_t>& kept,
+  int numberOfThreads)
+{
   // The new layout from the placed points: their ids and moved positions, by leaf, each leaf
   // sorted. The coordinate arrays of the last iteration are free to take it.
   const std::size_t pointCount = this->CellBegins.back();
@@ -817,9 +772,13 @@ void ProcessingOctree::Compact(int numberOfThreads)
 #pragma omp parallel num_threads(numberOfThreads)
   {
     std::vector<std::uint32_t> listed, sorted;
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, CellsPerAsk)
     for (std::int64_t cell = 0; cell < signedNewCellCount; ++cell)
     {
+      if (this->StopSeen(cell))
+      {
+        continue;
+      }
       listed.clear();
       for (std::int32_t index = this->NextHead[kept[cell]]; index >= 0;
            index = this->NextLink[index])
@@ -847,7 +806,6 @@ void ProcessingOctree::Compact(int numberOfThreads)
     }
   }
   this->Ids.swap(this->CompactedIds);
-  this->FinishCells(kept, pointCount, numberOfThreads);
 }
 
 void ProcessingOctree::ReleaseAllButMoves()

@@ -214,9 +214,11 @@ public:
   /**
    * After an iteration has placed its points: turns them into the layout read by the next
    * iteration: drops empty cells, sorts cells by lattice coordinates and each leaf's points by
-   * coordinates, lays out their ids and moved positions in that order.
+   * coordinates, lays out their ids and moved positions in that order. `shouldStop`, when
+   * given, is asked as Load asks it (between the steps, and every few thousand cells within
+   * them): when it says stop, the octree is left empty and Compact returns false.
    */
-  void Compact(int numberOfThreads);
+  bool Compact(int numberOfThreads, const std::function<bool()>& shouldStop = nullptr);
 
   ///@{
   /// The layout of this iteration (valid after Load or Compact).
@@ -303,6 +305,9 @@ private:
   };
   LoadStop* Stop = nullptr;
   bool StopAsked() const;
+  /// In a pass over the cells: StopAsked at the first of each block of cells, else whether a
+  /// stop was seen already (a relaxed load).
+  bool StopSeen(std::int64_t cell) const;
   /// Whether the load was asked to stop; if so, the octree is emptied.
   bool EndIfStopped();
 
@@ -321,6 +326,15 @@ private:
     std::vector<std::uint32_t> CellCode;
   };
   LoadBuckets PlanBuckets(const std::vector<std::int32_t>& kept) const;
+  /// Sizes the layout's arrays for the points (and `codes`) and takes their page faults
+  /// (TouchPages); false if asked to stop meanwhile.
+  bool TouchLayout(PointArray<std::uint32_t>& codes, int numberOfThreads);
+  /// Compact's steps: each cell's placed points and occupied leaves; the placed points' layout
+  /// in the `kept` cells' new order.
+  void CountPlacedPoints(std::vector<std::uint32_t>& cellCounts,
+    std::vector<std::uint64_t>& cellMasks,
+    int numberOfThreads);
+  void LayOutPlacedPoints(const std::vector<std::int32_t>& kept, int numberOfThreads);
   /// Writes every point's position and id into its bucket's stretch of the layout, and its cell
   /// code with its leaf index into `codes`.
   void ScatterToBuckets(const double* positions,

@@ -207,17 +207,22 @@ bool DecodeLASPoints(const LASFileInfo& info,
   // place) the memory it writes.
   const BlockDecoder decoder(info, positions, columns);
   ParallelProgress progress(count);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t b = 0; b < blocks; ++b)
+#pragma omp parallel
   {
-    if (progress.StopAsked())
+#pragma omp for schedule(static) nowait
+    for (std::int64_t b = 0; b < blocks; ++b)
     {
-      continue;
+      const std::size_t first = static_cast<std::size_t>(b) * PointsPerDecodedBlock;
+      const std::size_t points = std::min(PointsPerDecodedBlock, count - first);
+      if (progress.StopAsked())
+      {
+        progress.Skipped(points);
+        continue;
+      }
+      decoder.Decode(records + first * stride, first, points);
+      progress.Done(points);
     }
-    const std::size_t first = static_cast<std::size_t>(b) * PointsPerDecodedBlock;
-    const std::size_t points = std::min(PointsPerDecodedBlock, count - first);
-    decoder.Decode(records + first * stride, first, points);
-    progress.Done(points);
+    progress.WaitForOthers(); // (the asking thread does not wait in a barrier)
   }
   return !progress.StopAsked();
 }

@@ -68,17 +68,24 @@ MappedWrite WritePointsMapped(std::FILE* file,
   std::uint8_t* records = static_cast<std::uint8_t*>(mapping) + (offset - start);
   const auto blocks = static_cast<std::int64_t>(encoder.Blocks());
   ParallelProgress progress(encoder.Blocks());
-  // Each thread encodes one contiguous part of the file, and takes the page faults of its part.
-#pragma omp parallel for schedule(static)
-  for (std::int64_t b = 0; b < blocks; ++b)
+  // Each thread encodes one contiguous part of the file, and takes the page faults of its part
+  // (a fault waits while the kernel writes back an earlier file's dirty pages: the thread
+  // that asks does not wait for the other in a barrier meanwhile, WaitForOthers).
+#pragma omp parallel
   {
-    if (progress.StopAsked())
+#pragma omp for schedule(static) nowait
+    for (std::int64_t b = 0; b < blocks; ++b)
     {
-      continue;
+      if (progress.StopAsked())
+      {
+        progress.Skipped(1);
+        continue;
+      }
+      const auto block = static_cast<std::size_t>(b);
+      summaries[block] = encoder.Encode(block, records + encoder.Bytes(0, block));
+      progress.Done(1);
     }
-    const auto block = static_cast<std::size_t>(b);
-    summaries[block] = encoder.Encode(block, records + encoder.Bytes(0, block));
-    progress.Done(1);
+    progress.WaitForOthers();
   }
   if (munmap(mapping, length) != 0 || progress.StopAsked() ||
       std::fseek(file, static_cast<long>(offset + bytes), SEEK_SET) != 0)
