@@ -233,9 +233,13 @@ int ParseCount(const char* option, const char* text)
   char* end = nullptr;
   errno = 0;
   const long value = std::strtol(text, &end, 10);
-  if (end == text || *end != '\0' || errno == ERANGE || value < INT_MIN || value > INT_MAX)
+  if (end == text || *end != '\0')
   {
     Fail(std::string(option) + ": '" + text + "' is not a whole number");
+  }
+  if (errno == ERANGE || value < INT_MIN || value > INT_MAX)
+  {
+    Fail(std::string(option) + ": '" + text + "' is out of range");
   }
   return static_cast<int>(value);
 }
@@ -452,6 +456,12 @@ void CheckOptions(const Options& options)
   }
   CheckFileName(options.Input, false);
   CheckFileName(options.Output, true);
+  const std::string outputProblem =
+    vtkPointCloudFileIO::CheckOutputPath(options.Output.c_str(), options.Input.c_str());
+  if (!outputProblem.empty())
+  {
+    Fail(outputProblem);
+  }
 }
 
 Options ParseArguments(int argc, char* argv[])

@@ -61,6 +61,14 @@ def check_input(path):
         sys.exit(f"error: {problem}")
 
 
+def check_output(output, input_path):
+    """Exits with one line, before anything is read, when `output` is the input file: the raw
+    cloud would be replaced by the result."""
+    both = os.path.exists(output) and os.path.exists(input_path)
+    if both and os.path.samefile(output, input_path):
+        sys.exit(f"error: {output}: is the input file; write the result to another file")
+
+
 def open_cloud(path, oriented_normals):
     if not os.path.isfile(path):
         sys.exit(f"error: {path}: no such file")
@@ -143,6 +151,7 @@ def main():
     parser.add_argument("output")
     add_filter_arguments(parser)
     args = parser.parse_args()
+    check_output(args.output, args.input)
 
     where = load_plugin(args.plugin)
     reader = open_cloud(args.input, args.oriented_normals)

@@ -17,7 +17,8 @@ import sys
 from paraview import simple
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from denoise import add_filter_arguments, describe_run, load_plugin, run_filter  # noqa: E402
+from denoise import (  # noqa: E402
+    add_filter_arguments, check_output, describe_run, load_plugin, run_filter)
 
 
 def main():
@@ -28,6 +29,7 @@ def main():
     args = parser.parse_args()
     if not args.output.lower().endswith(".las"):
         sys.exit(f"error: {args.output}: the output must be a .las file")
+    check_output(args.output, args.input)
 
     where = load_plugin(args.plugin)
     if not os.path.isfile(args.input):

@@ -32,7 +32,8 @@ from vtkmodules.vtkParallelCore import vtkMultiProcessController
 
 # The plugin search, the reader choice and the filter's options are denoise.py's, beside this.
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from denoise import add_filter_arguments, describe_run, load_plugin, open_cloud, run_filter  # noqa: E402
+from denoise import (  # noqa: E402
+    add_filter_arguments, check_output, describe_run, load_plugin, open_cloud, run_filter)
 
 
 def whole_count(points):
@@ -63,6 +64,7 @@ def main():
     if not args.output.lower().endswith((".pvtp", ".ply", ".las", ".laz")):
         sys.exit("error: the output must be a .pvtp file (one piece per process), a .ply file or "
                  "a .las/.laz file")
+    check_output(args.output, args.input)  # every process sees the same files: all stop alike
 
     processes = vtkMultiProcessController.GetGlobalController().GetNumberOfProcesses()
     where = load_plugin(args.plugin)

@@ -445,7 +445,10 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   {
     return this->EndAborted(output);
   }
-  this->LastRunSummary = this->DescribeRun(result);
+  // An empty cloud completes with nothing chosen: "r 0, rn 0, N 1 (paper's rule)" misled.
+  this->LastRunSummary = input->GetNumberOfPoints() == 0
+                           ? "nothing to filter: the input has no points"
+                           : this->DescribeRun(result);
   this->UpdateProgress(1.0);
   return 1;
 }

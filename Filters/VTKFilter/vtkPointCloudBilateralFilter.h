@@ -312,7 +312,8 @@ public:
   /**
    * The last update in one line, for a user interface: "not run yet" before the first, then the
    * parameters used and where they came from (e.g. "r 0.0628, rn 0.0471, N 2 (measured)": from
-   * the measured scales; "(paper's rule)", "(given)"), "failed: " and the error, or "aborted".
+   * the measured scales; "(paper's rule)", "(given)"), "failed: " and the error, "aborted", or
+   * "nothing to filter: the input has no points".
    */
   const char* GetLastRunSummary() const { return this->LastRunSummary.c_str(); }
 

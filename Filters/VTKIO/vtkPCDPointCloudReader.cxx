@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkPCDPointCloudReader);
@@ -40,12 +41,26 @@ vtkSmartPointer<vtkDataArray> MakeArray(const pcbilateral::PCDColumn& column)
   return array;
 }
 
-vtkSmartPointer<vtkDataArray> MakeColours(const pcbilateral::PCDColumn& column)
+/// "RGB" or "RGBA", unless another field has that name: then "Colors", as the LAS reader names
+/// its 8-bit colours (a LAS file's 16-bit RGB written to PCD is such a field, and one array
+/// would silently replace the other).
+std::string ColourName(const pcbilateral::PCDColumn& column,
+  const std::vector<pcbilateral::PCDColumn>& columns)
+{
+  const std::string name = column.Field.Name == "rgba" ? "RGBA" : "RGB";
+  const bool taken = std::any_of(columns.begin(),
+    columns.end(),
+    [&](const pcbilateral::PCDColumn& other) { return other.Field.Name == name; });
+  return taken ? "Colors" : name;
+}
+
+vtkSmartPointer<vtkDataArray> MakeColours(const pcbilateral::PCDColumn& column,
+  const std::vector<pcbilateral::PCDColumn>& columns)
 {
   const std::vector<std::uint8_t> channels = pcbilateral::UnpackPCDColours(column);
   const int components = column.Field.Name == "rgba" ? 4 : 3;
   auto colours = vtkSmartPointer<vtkUnsignedCharArray>::New();
-  colours->SetName(components == 4 ? "RGBA" : "RGB");
+  colours->SetName(ColourName(column, columns).c_str());
   colours->SetNumberOfComponents(components);
   colours->SetNumberOfTuples(static_cast<vtkIdType>(channels.size() / components));
   std::copy(channels.begin(), channels.end(), colours->GetPointer(0));
@@ -104,8 +119,8 @@ void AddPointArrays(const std::vector<pcbilateral::PCDColumn>& columns, vtkPoint
     {
       continue;
     }
-    pointData->AddArray(
-      pcbilateral::IsPCDPackedColour(column.Field) ? MakeColours(column) : MakeArray(column));
+    pointData->AddArray(pcbilateral::IsPCDPackedColour(column.Field) ? MakeColours(column, columns)
+                                                                     : MakeArray(column));
   }
 }
 } // namespace

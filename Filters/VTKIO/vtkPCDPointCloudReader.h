@@ -8,8 +8,9 @@
  * the field's own type (F4 float, F8 double, I1 to I8 signed and U1 to U8 unsigned integers),
  * with COUNT components. Padding fields (`_`) are skipped. PCL's packed colours become
  * unsigned-char arrays: "RGB" (3 components) from an `rgb` field, "RGBA" (4) from `rgba` (the
- * bits of the 32-bit value, 0xAARRGGBB, a float's bits for type F). `normal_x`, `normal_y` and
- * `normal_z` become the point normals ("Normals").
+ * bits of the 32-bit value, 0xAARRGGBB, a float's bits for type F), or "Colors" when another
+ * field has that name. `normal_x`, `normal_y` and `normal_z` become the point normals
+ * ("Normals").
  *
  * Organised frames (HEIGHT > 1, a depth camera's) mark pixels without a depth by NaN points.
  * By default those points are left out (GetNumberOfDroppedPoints() says how many); with

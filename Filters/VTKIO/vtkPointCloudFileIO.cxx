@@ -315,6 +315,32 @@ std::string vtkPointCloudFileIO::CheckFileName(const char* path, bool forWriting
   return std::string();
 }
 
+std::string vtkPointCloudFileIO::CheckOutputPath(const char* output, const char* input)
+{
+  const std::string name = output ? output : "";
+  const std::filesystem::path path(name);
+  std::filesystem::path folder = path.parent_path();
+  if (folder.empty())
+  {
+    folder = ".";
+  }
+  std::error_code error;
+  const auto folderStatus = std::filesystem::status(folder, error);
+  if (!std::filesystem::exists(folderStatus))
+  {
+    return name + ": cannot be written (its folder " + folder.string() + " does not exist)";
+  }
+  if (!std::filesystem::is_directory(folderStatus))
+  {
+    return name + ": cannot be written (" + folder.string() + " is not a folder)";
+  }
+  if (input && std::filesystem::equivalent(path, std::filesystem::path(input), error))
+  {
+    return name + ": is the input file; write the result to another file";
+  }
+  return std::string();
+}
+
 bool vtkPointCloudFileIO::IsTextFormat(const char* path)
 {
   return TypeOf(path) == FileType::Text;

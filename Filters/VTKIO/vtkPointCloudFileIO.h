@@ -98,6 +98,14 @@ public:
    */
   static std::string CheckFileName(const char* path, bool forWriting);
 
+  /**
+   * Whether `output` can take the result of filtering `input`, judged before the input is
+   * read (a large cloud then filters for minutes): an empty string, or one line naming the
+   * output and the problem, a folder that does not exist or the input file itself (which the
+   * run would replace with its result).
+   */
+  static std::string CheckOutputPath(const char* output, const char* input);
+
   /// Whether the path names a file of the authors' text format (.txt, .xyz).
   static bool IsTextFormat(const char* path);
 

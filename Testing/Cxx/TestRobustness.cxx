@@ -150,6 +150,14 @@ void TestSmallClouds()
       CheckSane(("small cloud of " + std::to_string(count)).c_str(), input, run, 1e-300);
     }
   }
+  // Last Run says so, rather than radii of 0 chosen by the paper's rule.
+  vtkNew<vtkPointCloudBilateralFilter> filter;
+  filter->SetInputData(Cloud({}));
+  filter->Update();
+  PCB_CHECK(
+    std::string(filter->GetLastRunSummary()) == "nothing to filter: the input has no points",
+    "an empty cloud's last run: %s",
+    filter->GetLastRunSummary());
 }
 
 void TestCoincidentAndDegenerate()

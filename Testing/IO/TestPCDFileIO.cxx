@@ -16,6 +16,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkPointData.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkUnsignedShortArray.h"
 
 #include <cmath>
 #include <cstring>
@@ -152,6 +153,38 @@ void FromElsewhere()
   PCB_CHECK(io->Read("doubles.pcd", back) && back->GetPoint(1)[0] == 3.1, "coordinates not exact");
   auto* rgb = vtkUnsignedCharArray::SafeDownCast(back->GetPointData()->GetArray("RGB"));
   PCB_CHECK(rgb && rgb->GetValue(5) == 6, "colours not written");
+}
+
+/// A LAS file's two colour arrays, 8-bit `Colors` and 16-bit `RGB`, written to PCD as the
+/// packed `rgb` and a field `RGB`: both read back (the packed one had been read as "RGB" too, and
+/// the field replaced it).
+void ColoursBesideRGBField()
+{
+  vtkSmartPointer<vtkPolyData> cloud = MakeCloud({ 0.5, 1, 2, 3, 4, 5 });
+  vtkNew<vtkUnsignedCharArray> colours;
+  colours->SetName("Colors");
+  colours->SetNumberOfComponents(3);
+  vtkNew<vtkUnsignedShortArray> wide;
+  wide->SetName("RGB");
+  wide->SetNumberOfComponents(3);
+  for (const unsigned char value : { 1, 2, 3, 4, 5, 6 })
+  {
+    colours->InsertNextValue(value);
+    wide->InsertNextValue(static_cast<unsigned short>(value * 257));
+  }
+  cloud->GetPointData()->AddArray(colours);
+  cloud->GetPointData()->AddArray(wide);
+  vtkNew<vtkPointCloudFileIO> io;
+  vtkNew<vtkPolyData> back;
+  PCB_CHECK(io->Write(cloud, "two-colours.pcd") && io->Read("two-colours.pcd", back),
+    "%s",
+    io->GetErrorMessage());
+  auto* eight = vtkUnsignedCharArray::SafeDownCast(back->GetPointData()->GetArray("Colors"));
+  auto* sixteen = vtkUnsignedShortArray::SafeDownCast(back->GetPointData()->GetArray("RGB"));
+  PCB_CHECK(eight && eight->GetNumberOfComponents() == 3 && eight->GetValue(5) == 6,
+    "the 8-bit colours were lost");
+  PCB_CHECK(sixteen && sixteen->GetNumberOfComponents() == 3 && sixteen->GetValue(5) == 6 * 257,
+    "the 16-bit RGB field was lost");
 }
 
 /// A frame of 40 x 30 pixels on a noisy plane, every 7th pixel without depth (NaN).
@@ -325,6 +358,7 @@ int main(int argc, char* argv[])
     argv,
     { { "fields", Fields },
       { "from-elsewhere", FromElsewhere },
+      { "colours-beside-rgb-field", ColoursBesideRGBField },
       { "kept-through-filter", KeptThroughFilter },
       { "las-warning", LASWarning },
       { "las-crs-warning", LASCoordinateSystemWarning },
