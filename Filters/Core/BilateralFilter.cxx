@@ -138,10 +138,11 @@ struct BilateralRun::Internals
   {
     // Every 1 % of the run, and at least every 0.1 s while it runs, even when 1 % takes longer:
     // a GUI that runs the filter on its own thread (ParaView) repaints and sees its Abort button
-    // only in these calls.
+    // only in these calls. And the end, always: it was skipped when the last report had come
+    // less than 1 % and 0.1 s before it.
     const auto now = std::chrono::steady_clock::now();
     if ((this->Observer.Progress || this->Observer.PhaseProgress) &&
-        (fraction - this->LastReported >= 0.01 ||
+        (fraction >= 1.0 || fraction - this->LastReported >= 0.01 ||
           now - this->LastReportTime >= std::chrono::milliseconds(100)))
     {
       this->ReportPhase(fraction);
