@@ -649,6 +649,10 @@ std::string vtkPointCloudBilateralFilter::DescribeRun(
   {
     summary << (given[0] ? " (given)" : automatic);
   }
+  if (this->EdgeAware)
+  {
+    summary << "; edge-aware"; // its rules choose other parameters than the paper's mode's
+  }
   if (!this->Classes.empty())
   {
     summary << "; " << this->NumberOfFilteredPoints << " points of the chosen classes";

@@ -580,6 +580,14 @@ void TestParametersAndNormals()
     filter->GetNormalRadiusUsed(),
     filter->GetNumberOfIterationsUsed());
 
+  // The mode is said too: the edge-aware rules choose other parameters.
+  filter->SetEdgeAware(true);
+  filter->Update();
+  PCB_CHECK(std::string(filter->GetLastRunSummary()).find("; edge-aware") != std::string::npos,
+    "edge-aware run: %s",
+    filter->GetLastRunSummary());
+  filter->SetEdgeAware(false);
+
   filter->SetRadius(0.0);
   filter->SetAutomaticParametersToPaper();
   filter->Update();
