@@ -12,6 +12,8 @@
 // past a few milliseconds, another thread samples the running thread's stack (SIGPROF), so each
 // gap longer than the threshold (default 0.1 s) is printed with the functions it was spent in.
 // Per phase (the filter's as pcb_abort_latency counts them), prints the largest gap.
+#include "AbortPhaseNames.h"
+
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkLASPointCloudReader.h"
@@ -46,21 +48,7 @@ std::int64_t NowNs()
     .count();
 }
 
-const char* const PhaseNames[] = { "reading",
-  "measuring",
-  "octree",
-  "kernel",
-  "output",
-  "writing" };
-enum PhaseIndex
-{
-  Reading,
-  Measuring,
-  Octree,
-  Kernel,
-  Output,
-  Writing
-};
+using namespace pcbilateral_testing; // PhaseIndex, PhaseNames
 
 /// A stack taken while a gap lasted; `GapStart` names the gap (the last question's moment).
 struct Sample

@@ -15,6 +15,8 @@
 // output (to its end); reading and writing are the reader's and the writer's runs. Prints a
 // Markdown table: per phase, the aborts that landed in it, the largest and the mean latency, and
 // whether an aborted write left a file at OUTPUT.
+#include "AbortPhaseNames.h"
+
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -65,15 +67,7 @@ struct Phase
   int LeftFiles = 0;
 };
 
-enum PhaseIndex
-{
-  Reading,
-  Measuring,
-  Octree,
-  Kernel,
-  Output,
-  Writing
-};
+using namespace pcbilateral_testing; // the phases' names: Reading, Measuring...
 
 /**
  * Runs `update` with another thread setting the algorithm's abort flag `delay` seconds after its
@@ -186,12 +180,12 @@ struct Bench
   std::atomic<int> PhaseNow{ Measuring }; // read by the aborting thread
   std::function<void()> OnStart, OnChosen, OnProgress;
   double Seconds[3] = { 0.0, 0.0, 0.0 }; // reading, filter, writing
-  std::vector<Phase> Phases = { { "reading" },
-    { "measuring" },
-    { "octree" },
-    { "kernel" },
-    { "output" },
-    { "writing" } };
+  std::vector<Phase> Phases = { { PhaseNames[Reading] },
+    { PhaseNames[Measuring] },
+    { PhaseNames[Octree] },
+    { PhaseNames[Kernel] },
+    { PhaseNames[Output] },
+    { PhaseNames[Writing] } };
 
   bool SetUp()
   {
