@@ -12,7 +12,7 @@
 // past a few milliseconds, another thread samples the running thread's stack (SIGPROF), so each
 // gap longer than the threshold (default 0.1 s) is printed with the functions it was spent in.
 // Per phase (the filter's as pcb_abort_latency counts them), prints the largest gap.
-#include "AbortPhaseNames.h"
+#include "AbortTools.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -48,7 +48,7 @@ std::int64_t NowNs()
     .count();
 }
 
-using namespace pcbilateral_testing; // PhaseIndex, PhaseNames
+using namespace pcbilateral_testing; // PhaseIndex, PhaseNames, Observe
 
 /// A stack taken while a gap lasted; `GapStart` names the gap (the last question's moment).
 struct Sample
@@ -124,15 +124,6 @@ public:
     return Base::GetAbortExecute();
   }
 };
-
-void Observe(vtkAlgorithm* algorithm, unsigned long event, std::function<void()>* what)
-{
-  vtkNew<vtkCallbackCommand> command;
-  command->SetClientData(what);
-  command->SetCallback([](vtkObject*, unsigned long, void* data, void*)
-    { (*static_cast<std::function<void()>*>(data))(); });
-  algorithm->AddObserver(event, command);
-}
 
 /// Samples the running thread's stack every 5 ms once a gap has lasted 10 ms.
 void Watch(const std::atomic<bool>& done)

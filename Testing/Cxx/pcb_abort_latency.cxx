@@ -15,7 +15,7 @@
 // output (to its end); reading and writing are the reader's and the writer's runs. Prints a
 // Markdown table: per phase, the aborts that landed in it, the largest and the mean latency, and
 // whether an aborted write left a file at OUTPUT.
-#include "AbortPhaseNames.h"
+#include "AbortTools.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
@@ -49,16 +49,6 @@ double SecondsBetween(Clock::time_point a, Clock::time_point b)
   return std::chrono::duration<double>(b - a).count();
 }
 
-/// Calls a function on an algorithm's events (the callback command owns nothing).
-void Observe(vtkAlgorithm* algorithm, unsigned long event, std::function<void()>* what)
-{
-  vtkNew<vtkCallbackCommand> command;
-  command->SetClientData(what);
-  command->SetCallback([](vtkObject*, unsigned long, void* data, void*)
-    { (*static_cast<std::function<void()>*>(data))(); });
-  algorithm->AddObserver(event, command);
-}
-
 struct Phase
 {
   const char* Name;
@@ -67,7 +57,7 @@ struct Phase
   int LeftFiles = 0;
 };
 
-using namespace pcbilateral_testing; // the phases' names: Reading, Measuring...
+using namespace pcbilateral_testing; // the phases (Reading, Measuring...), Observe
 
 /**
  * Runs `update` with another thread setting the algorithm's abort flag `delay` seconds after its
