@@ -13,19 +13,24 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCollection.h"
 #include "vtkCommand.h"
+#include "vtkDataObject.h"
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
+#include "vtkPVArrayInformation.h"
 #include "vtkPVDataInformation.h"
+#include "vtkPVDataSetAttributesInformation.h"
 #include "vtkPVProgressHandler.h"
 #include "vtkPVRepresentedArrayListSettings.h"
 #include "vtkPVSessionBase.h"
 #include "vtkSMBoundsDomain.h"
+#include "vtkSMPVRepresentationProxy.h"
 #include "vtkSMProperty.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMProxy.h"
 #include "vtkSMSession.h"
 #include "vtkSMSettings.h"
 #include "vtkSMStringListDomain.h"
+#include "vtkType.h"
 
 #include <QAbstractItemView>
 #include <QApplication>
@@ -500,12 +505,48 @@ const pqPointCloudBilateralRunBehavior::WatchedProxy* pqPointCloudBilateralRunBe
   return nullptr;
 }
 
+namespace
+{
+/// A new display of a cloud with "Colors" (3 unsigned chars a point: the display colours the
+/// LAS and PCD readers make from the file's RGB, kept by the filter) shows those colours, as
+/// the scanner recorded them, rather than plain grey: coloured by them, not mapped through a
+/// colour map (a filter's display inherits its input's colouring, but mapped). A display
+/// coloured by another array is left as it is.
+void ShowRecordedColours(pqDataRepresentation* display, vtkPVDataInformation* information)
+{
+  vtkSMProxy* proxy = display->getProxy();
+  vtkPVArrayInformation* colours =
+    information->GetPointDataInformation()->GetArrayInformation("Colors");
+  auto* coloured = vtkSMPVRepresentationProxy::SafeDownCast(proxy);
+  if (!colours || colours->GetDataType() != VTK_UNSIGNED_CHAR ||
+      colours->GetNumberOfComponents() != 3 || !coloured || !proxy->GetProperty("MapScalars"))
+  {
+    return;
+  }
+  if (!vtkSMPVRepresentationProxy::GetUsingScalarColoring(proxy))
+  {
+    coloured->SetScalarColoring("Colors", vtkDataObject::POINT);
+  }
+  const char* array = vtkSMPropertyHelper(proxy, "ColorArrayName").GetInputArrayNameToProcess();
+  if (array && std::strcmp(array, "Colors") == 0)
+  {
+    vtkSMPropertyHelper(proxy, "MapScalars").Set(0);
+    proxy->UpdateVTKObjects();
+  }
+}
+}
+
 void pqPointCloudBilateralRunBehavior::onRepresentationAdded(pqRepresentation* representation)
 {
   QPointer<pqDataRepresentation> display = qobject_cast<pqDataRepresentation*>(representation);
   if (!display || !display->getProxy()->GetProperty("Representation"))
   {
     return;
+  }
+  // Now, while ParaView's Show still runs: a queued call would come after a script's next lines.
+  if (vtkPVDataInformation* information = display->getInputDataInformation())
+  {
+    ShowRecordedColours(display, information);
   }
   // Once ParaView has set the new display up: Show chooses its representation type after
   // registering it.
@@ -514,9 +555,14 @@ void pqPointCloudBilateralRunBehavior::onRepresentationAdded(pqRepresentation* r
     [display]()
     {
       vtkPVDataInformation* information = display ? display->getInputDataInformation() : nullptr;
-      if (!information || information->GetNumberOfPoints() == 0 ||
-          information->GetNumberOfCells() != 0)
+      if (!information || information->GetNumberOfPoints() == 0)
       {
+        return;
+      }
+      ShowRecordedColours(display, information);
+      if (information->GetNumberOfCells() != 0)
+      {
+        display->renderViewEventually();
         return;
       }
       vtkSMProxy* proxy = display->getProxy();

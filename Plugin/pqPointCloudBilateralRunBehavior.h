@@ -31,6 +31,10 @@
  * recreated by Reload Files is observed anew.
  * Only in a built-in session: with a remote server the algorithms run in another process.
  *
+ * A new display of a cloud with display colours ("Colors", 3 unsigned chars: what the LAS and
+ * PCD readers make of a file's RGB, kept by the filter) shows them as they are (coloured by
+ * them, Map Scalars off), not plain grey; a display coloured by another array is left alone.
+ *
  * It also shows point clouds without cells: ParaView 5.11 reads a PLY scan without faces (and a
  * VTP without vertex cells) as points with no cells, which its default Surface representation,
  * and Points too, draw as nothing, so a new user takes the file for empty. A new display in a

@@ -4,7 +4,8 @@ plugin's GUI part sets up, and writes "ok: ..." or "FAILED: ..." lines to PCB_LO
   Bilateral* (the parameters used and the measured scales, for the Information panel and
   scripts) must not be among them; DisplacementLength must;
 - the default reader of .xyz files (what File > Open uses without asking) is the Point Cloud
-  Text Reader, not PLOT3D's."""
+  Text Reader, not PLOT3D's;
+- a LAS file with colours, and the filter's output of it, are shown in those colours."""
 import os
 
 from paraview import servermanager, simple
@@ -18,9 +19,9 @@ simple.Render()
 domain = display.GetProperty("ColorArrayName").SMProperty.FindDomain("vtkSMArrayListDomain")
 offered = [domain.GetString(i) for i in range(domain.GetNumberOfStrings())]
 field = [array.GetName() for array in bilateral.FieldData]
-with open(os.environ["PCB_LOG"], "w") as log:
+with open(os.environ["PCB_LOG"], "w") as log_file:
     def check(condition, message):
-        log.write(("ok:     " if condition else "FAILED: ") + message + "\n")
+        log_file.write(("ok:     " if condition else "FAILED: ") + message + "\n")
     recorded = ["BilateralRadius", "BilateralNormalRadius", "BilateralNumberOfIterations",
                 "BilateralPointSpacing", "BilateralNoiseSigma",
                 "BilateralNearestNeighbourDistances", "BilateralSpacingSpread", "BilateralMode"]
@@ -53,6 +54,30 @@ with open(os.environ["PCB_LOG"], "w") as log:
     check(any(name.startswith("LAS ") for name in las_field) and "Intensity" in las_offered
           and not any(name.startswith("LAS ") for name in las_offered),
           f"a LAS file's colour-by offers {las_offered}, not its header ({las_field})")
+
+    # A LAS file with colours is shown in them (the reader's "Colors", not mapped), and so is
+    # the filter's output of it: both were plain grey.
+    painted = simple.ProgrammableFilter(Input=reader)
+    painted.Script = ("import numpy\n"
+                      "rgb = numpy.zeros((inputs[0].GetNumberOfPoints(), 3), numpy.uint16)\n"
+                      "rgb[:, 0] = 65535\n"
+                      "output.ShallowCopy(inputs[0].VTKObject)\n"
+                      "output.PointData.append(rgb, 'RGB')")
+    colour_path = os.path.join(os.environ.get("PCB_LOG") + ".colours.las")
+    simple.SaveData(colour_path, proxy=painted)
+    coloured = simple.OpenDataFile(colour_path)
+    coloured_display = simple.Show(coloured)
+    simple.Render()
+    coloured_filter = simple.PointCloudBilateralFilter(Input=coloured)
+    coloured_filter_display = simple.Show(coloured_filter)
+    simple.Render()
+    for what, shown in (("a LAS file", coloured_display), ("its filtered output",
+                                                         coloured_filter_display)):
+        check(list(shown.ColorArrayName) == ["POINTS", "Colors"] and shown.MapScalars == 0,
+              f"{what} with colours is shown in them ({shown.ColorArrayName}, "
+              f"map scalars {shown.MapScalars})")
+    check(not las_display.ColorArrayName[1],
+          f"a LAS file without colours is not coloured ({las_display.ColorArrayName})")
 
     # Class Array: Classification on a LAS file, "(none)" on a cloud without integer point arrays
     # (the PLY sample), never a name the input lacks (the panel showed "Classification (?)").

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs a Python script inside the ParaView GUI (with the plugin auto-loaded) that writes
-# "ok: ..." / "FAILED: ..." lines to the file PCB_LOG; prints them and fails on any FAILED line or
-# none at all. Needs an X display (the test command runs ctest under xvfb-run).
+# "ok: ..." / "FAILED: ..." lines to the file PCB_LOG; prints them and fails on any FAILED line,
+# none at all, or an exception that stopped the script. Needs an X display (the test command runs ctest under xvfb-run).
 #   TestGUIScript.sh PLUGIN_DIR SOURCE_DIR SCRIPT LOG
 set -euo pipefail
 plugin_dir=$1 source_dir=$2 script=$3 log=$4
@@ -18,4 +18,10 @@ for attempt in 1 2 3; do
   echo "TestGUIScript.sh: run $attempt lost its X server connection; running again"
 done
 cat "$log"
+# A script that stopped on an exception wrote only the checks before it.
+if grep -q "^Traceback" "$log.paraview"; then
+  echo "FAILED: the script raised an exception:"
+  sed -n '/^Traceback/,$p' "$log.paraview"
+  exit 1
+fi
 grep -q "^ok:" "$log" && ! grep -q "^FAILED" "$log"
