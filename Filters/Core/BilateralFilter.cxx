@@ -134,15 +134,17 @@ struct BilateralRun::Internals
     }
   }
 
-  void Report(double fraction)
+  /// `fraction` of the whole run; `iterationEnd`: the end of an iteration, reported whenever it
+  /// comes (it was skipped when the last report had come less than 1 % and 0.1 s before it, so
+  /// that an observer missed the end of the run, or saw the next iteration's progress first).
+  void Report(double fraction, bool iterationEnd = false)
   {
     // Every 1 % of the run, and at least every 0.1 s while it runs, even when 1 % takes longer:
     // a GUI that runs the filter on its own thread (ParaView) repaints and sees its Abort button
-    // only in these calls. And the end, always: it was skipped when the last report had come
-    // less than 1 % and 0.1 s before it.
+    // only in these calls.
     const auto now = std::chrono::steady_clock::now();
     if ((this->Observer.Progress || this->Observer.PhaseProgress) &&
-        (fraction >= 1.0 || fraction - this->LastReported >= 0.01 ||
+        (iterationEnd || fraction - this->LastReported >= 0.01 ||
           now - this->LastReportTime >= std::chrono::milliseconds(100)))
     {
       this->ReportPhase(fraction);
@@ -507,7 +509,7 @@ struct BilateralRun::Internals
       return this->Result.Status;
     }
     ++this->Iteration;
-    this->Report(static_cast<double>(this->Iteration) / this->Parameters.NumberOfIterations);
+    this->Report(static_cast<double>(this->Iteration) / this->Parameters.NumberOfIterations, true);
     return this->Result.Status;
   }
 };
