@@ -144,7 +144,7 @@ struct BilateralRun::Internals
     // only in these calls.
     const auto now = std::chrono::steady_clock::now();
     if ((this->Observer.Progress || this->Observer.PhaseProgress) &&
-        (iterationEnd || fraction - this->LastReported >= 0.01 ||
+        (fraction - this->LastReported >= 0.01 ||
           now - this->LastReportTime >= std::chrono::milliseconds(100)))
     {
       this->ReportPhase(fraction);
@@ -154,6 +154,11 @@ struct BilateralRun::Internals
       }
       this->LastReported = fraction;
       this->LastReportTime = now;
+    }
+    else if (iterationEnd && this->Observer.Progress)
+    {
+      // The run's progress only: the phases' reports (a command line's bars) keep their pace.
+      this->Observer.Progress(fraction);
     }
   }
 
