@@ -43,10 +43,10 @@
  * with COPCUseBounds (default off) only the points inside COPCBounds (xmin, xmax, ymin, ymax,
  * zmin, zmax, real coordinates, faces included) are read. Only the chosen nodes' chunks are
  * decompressed; the points come in file order. Piece p of n gets whole nodes, its share of the
- * chosen nodes' points (COPCPieceOfNodes), and decompresses only those. The octree is checked first (COPC.h): a damaged hierarchy is one error and an empty output. With
- * the defaults a COPC file is read as LAZ and its octree is not looked at. Set on a file that
- * is not COPC, these options give one warning (they apply to COPC files only) and every point
- * is read.
+ * chosen nodes' points (COPCPieceOfNodes), and decompresses only those. The octree is checked first
+ * (COPC.h): a damaged hierarchy is one error and an empty output. With the defaults a COPC file is
+ * read as LAZ and its octree is not looked at. Set on a file that is not COPC, these options give
+ * one warning (they apply to COPC files only) and every point is read.
  *
  * @sa
  * vtkLASPointCloudWriter vtkPointCloudFileIO
