@@ -5,8 +5,10 @@ VTK class itself, then:
   1. opened (the LAS reader) and shown: TestAbort.sh clicks Abort during the read;
   2. reloaded (File > Reload Files: a new VTK object for the reader): Abort again;
   3. reloaded once more, to the end;
-  4. saved to a .laz file (a writer made by the writer factory, as by File > Save Data, which
-     registers no pipeline source): Abort during the write;
+  4. four copies of it, appended (12 million points by default, so that a write of about 2 s
+     leaves room after the click at 5 %: a 3-million-point write can end, under load, before
+     the click lands), saved to a .laz file (a writer made by the writer factory, as by File >
+     Save Data, which registers no pipeline source): Abort during the write;
   5. saved again, to the end, and read back.
 Logged (AbortLog.py):
   start NAME         an abortable phase starts (TestAbort.sh clicks Abort in each, at 5 %)
@@ -17,6 +19,7 @@ Logged (AbortLog.py):
                      the files left in the output folder)
   again NAME N       a run after the aborts ended with N points (read back, for the write)
   points N           the generated file's number of points
+  to-write N         the number of points given to the writer
   camera X Y         the view's focal point after the reload (the cloud spans 0-1000 in x and y)
   radius R           the display's Point Gaussian radius then (set from empty bounds, -0.01, when
                      the display was first shown on the aborted read's empty output)"""
@@ -94,9 +97,13 @@ simple.ReloadFiles(reader)
 simple.Render()
 note(f"again read {reader.GetDataInformation().GetNumberOfPoints()}")
 
+# Made before the write starts, so that the click at 5 % lands in the writer, not in the append.
+copies = simple.AppendGeometry(Input=[reader] * 4)
+copies.UpdatePipeline()
+note(f"to-write {copies.GetDataInformation().GetNumberOfPoints()}")
 # What File > Save Data does (pqSaveDataReaction): a writer proxy from the writer factory, then
 # its UpdatePipeline.
-writer = simple.CreateWriter(saved, reader)
+writer = simple.CreateWriter(saved, copies)
 observe_return(writer, "write")
 note("start write")
 writer.UpdatePipeline()
@@ -108,6 +115,6 @@ note(f"end write {int(os.path.exists(saved))} {left}")
 note("camera {:.0f} {:.0f}".format(*simple.GetActiveCamera().GetFocalPoint()[:2]))
 note(f"radius {simple.GetDisplayProperties(reader).GaussianRadius}")
 del writer
-simple.SaveData(saved, proxy=reader)
+simple.SaveData(saved, proxy=copies)
 note(f"again write {read_back(saved) if os.path.exists(saved) else 0}")
 log.close()
