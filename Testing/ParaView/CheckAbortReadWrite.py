@@ -28,8 +28,6 @@ def values(what, name):
 points = [int(line[2]) for line in lines if line[1] == "points"]
 check(len(points) == 1 and points[0] > 0, f"the generated LAZ file has {points} points")
 total = points[0] if points else -1
-to_write = [int(line[2]) for line in lines if line[1] == "to-write"]
-check(to_write == [4 * total], f"the writer was given four copies of the cloud ({to_write})")
 check(len(clicks) == 3, f"Abort was clicked three times ({len(clicks)})")
 clicks += [float("inf")] * (3 - len(clicks))
 for run, clicked in zip(("read", "reload", "write"), clicks):
@@ -62,8 +60,8 @@ check(values("again", "read") == [[str(total)]],
       f"the next reload read all {total} points ({values('again', 'read')})")
 check(values("end", "write") == [["0", "-"]],
       f"the aborted write left no file, complete or partial ({values('end', 'write')})")
-check(values("again", "write") == [[str(4 * total)]],
-      f"the next save wrote all {4 * total} points ({values('again', 'write')})")
+check(values("again", "write") == [[str(total)]],
+      f"the next save wrote all {total} points ({values('again', 'write')})")
 camera = [[float(value) for value in line[2:4]] for line in lines if line[1] == "camera"]
 check(len(camera) == 1 and all(400 < value < 600 for value in camera[0]),
       f"after the reload the camera looks at the cloud's middle ({camera}; 500 500)")
