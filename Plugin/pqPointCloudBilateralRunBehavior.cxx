@@ -262,6 +262,70 @@ bool AloneInView(pqDataRepresentation* display)
   return true;
 }
 
+/// A new display of a cloud with "Colors" (3 unsigned chars a point: the display colours the
+/// LAS and PCD readers make from the file's RGB, kept by the filter) shows those colours, as
+/// the scanner recorded them, rather than plain grey: coloured by them, not mapped through a
+/// colour map (a filter's display inherits its input's colouring, but mapped). A display
+/// coloured by another array is left as it is.
+void ShowRecordedColours(pqDataRepresentation* display, vtkPVDataInformation* information)
+{
+  vtkSMProxy* proxy = display->getProxy();
+  vtkPVArrayInformation* colours =
+    information->GetPointDataInformation()->GetArrayInformation("Colors");
+  auto* coloured = vtkSMPVRepresentationProxy::SafeDownCast(proxy);
+  if (!colours || colours->GetDataType() != VTK_UNSIGNED_CHAR ||
+      colours->GetNumberOfComponents() != 3 || !coloured || !proxy->GetProperty("MapScalars"))
+  {
+    return;
+  }
+  if (!vtkSMPVRepresentationProxy::GetUsingScalarColoring(proxy))
+  {
+    coloured->SetScalarColoring("Colors", vtkDataObject::POINT);
+  }
+  const char* array = vtkSMPropertyHelper(proxy, "ColorArrayName").GetInputArrayNameToProcess();
+  if (array && std::strcmp(array, "Colors") == 0)
+  {
+    vtkSMPropertyHelper(proxy, "MapScalars").Set(0);
+    proxy->UpdateVTKObjects();
+  }
+}
+
+/// Shows a new display of a cloud as a point cloud: in its recorded colours, and, for points
+/// without cells shown as ParaView's default Surface (which draws nothing), as Point Gaussian
+/// spheres, as the GUI's Apply shows a PLY cloud. False while its input has no points (an
+/// empty output: a first Apply with a bad value, an aborted read): nothing to choose from yet.
+bool SetUpPointDisplay(pqDataRepresentation* display)
+{
+  vtkPVDataInformation* information = display->getInputDataInformation();
+  if (!information || information->GetNumberOfPoints() == 0)
+  {
+    return false;
+  }
+  ShowRecordedColours(display, information);
+  if (information->GetNumberOfCells() != 0)
+  {
+    display->renderViewEventually();
+    return true;
+  }
+  vtkSMProxy* proxy = display->getProxy();
+  vtkSMPropertyHelper type(proxy, "Representation");
+  auto* domain = proxy->GetProperty("Representation")->FindDomain<vtkSMStringListDomain>();
+  unsigned int index = 0;
+  if (!type.GetAsString() || std::strcmp(type.GetAsString(), "Surface") != 0 || !domain ||
+      !domain->IsInDomain("Point Gaussian", index))
+  {
+    return true; // not the default, or not a render view's display
+  }
+  type.Set("Point Gaussian");
+  if (proxy->GetProperty("ShaderPreset"))
+  {
+    vtkSMPropertyHelper(proxy, "ShaderPreset").Set("Sphere");
+  }
+  proxy->UpdateVTKObjects();
+  display->renderViewEventually();
+  return true;
+}
+
 /// A display shown while the filter's or reader's output was empty (a first Apply with a bad
 /// value, an aborted read) took its Point Gaussian radius from empty bounds (-0.01): the points
 /// of every later run would be invisible. Once there are points, such a radius is set again from
@@ -377,6 +441,11 @@ void pqPointCloudBilateralRunBehavior::onSourceAdded(pqPipelineSource* source)
     this,
     [this](pqPipelineSource*, pqDataRepresentation* display, int)
     { this->onRepresentationAdded(display); });
+  // After each update, once the pipeline has returned (its data information is then new).
+  QObject::connect(source,
+    QOverload<pqPipelineSource*>::of(&pqPipelineSource::dataUpdated),
+    this,
+    &pqPointCloudBilateralRunBehavior::onDataUpdated);
   for (pqDataRepresentation* display : source->getRepresentations(nullptr))
   {
     this->onRepresentationAdded(display); // shown before the plugin's GUI part started
@@ -505,37 +574,6 @@ const pqPointCloudBilateralRunBehavior::WatchedProxy* pqPointCloudBilateralRunBe
   return nullptr;
 }
 
-namespace
-{
-/// A new display of a cloud with "Colors" (3 unsigned chars a point: the display colours the
-/// LAS and PCD readers make from the file's RGB, kept by the filter) shows those colours, as
-/// the scanner recorded them, rather than plain grey: coloured by them, not mapped through a
-/// colour map (a filter's display inherits its input's colouring, but mapped). A display
-/// coloured by another array is left as it is.
-void ShowRecordedColours(pqDataRepresentation* display, vtkPVDataInformation* information)
-{
-  vtkSMProxy* proxy = display->getProxy();
-  vtkPVArrayInformation* colours =
-    information->GetPointDataInformation()->GetArrayInformation("Colors");
-  auto* coloured = vtkSMPVRepresentationProxy::SafeDownCast(proxy);
-  if (!colours || colours->GetDataType() != VTK_UNSIGNED_CHAR ||
-      colours->GetNumberOfComponents() != 3 || !coloured || !proxy->GetProperty("MapScalars"))
-  {
-    return;
-  }
-  if (!vtkSMPVRepresentationProxy::GetUsingScalarColoring(proxy))
-  {
-    coloured->SetScalarColoring("Colors", vtkDataObject::POINT);
-  }
-  const char* array = vtkSMPropertyHelper(proxy, "ColorArrayName").GetInputArrayNameToProcess();
-  if (array && std::strcmp(array, "Colors") == 0)
-  {
-    vtkSMPropertyHelper(proxy, "MapScalars").Set(0);
-    proxy->UpdateVTKObjects();
-  }
-}
-}
-
 void pqPointCloudBilateralRunBehavior::onRepresentationAdded(pqRepresentation* representation)
 {
   QPointer<pqDataRepresentation> display = qobject_cast<pqDataRepresentation*>(representation);
@@ -548,40 +586,43 @@ void pqPointCloudBilateralRunBehavior::onRepresentationAdded(pqRepresentation* r
   {
     ShowRecordedColours(display, information);
   }
+  if (!display->getInputDataInformation() ||
+      display->getInputDataInformation()->GetNumberOfPoints() == 0)
+  {
+    this->ShownEmpty.push_back(display); // set up once its input has points (onDataUpdated)
+  }
   // Once ParaView has set the new display up: Show chooses its representation type after
   // registering it.
   QTimer::singleShot(0,
     this,
-    [display]()
+    [this, display]()
     {
-      vtkPVDataInformation* information = display ? display->getInputDataInformation() : nullptr;
-      if (!information || information->GetNumberOfPoints() == 0)
+      if (display && SetUpPointDisplay(display))
       {
-        return;
+        this->ShownEmpty.removeAll(display);
       }
-      ShowRecordedColours(display, information);
-      if (information->GetNumberOfCells() != 0)
-      {
-        display->renderViewEventually();
-        return;
-      }
-      vtkSMProxy* proxy = display->getProxy();
-      vtkSMPropertyHelper type(proxy, "Representation");
-      auto* domain = proxy->GetProperty("Representation")->FindDomain<vtkSMStringListDomain>();
-      unsigned int index = 0;
-      if (!type.GetAsString() || std::strcmp(type.GetAsString(), "Surface") != 0 || !domain ||
-          !domain->IsInDomain("Point Gaussian", index))
-      {
-        return; // not the default, or not a render view's display
-      }
-      type.Set("Point Gaussian");
-      if (proxy->GetProperty("ShaderPreset"))
-      {
-        vtkSMPropertyHelper(proxy, "ShaderPreset").Set("Sphere");
-      }
-      proxy->UpdateVTKObjects();
-      display->renderViewEventually();
     });
+}
+
+void pqPointCloudBilateralRunBehavior::onDataUpdated(pqPipelineSource* source)
+{
+  RunKind kind;
+  if (FindRunKind(source->getProxy(), kind) && kind != RunKind::Writer)
+  {
+    source->getProxy()->UpdatePropertyInformation(); // the Properties panel's read-outs
+  }
+  for (const QPointer<pqDataRepresentation>& display : QList(this->ShownEmpty))
+  {
+    if (!display)
+    {
+      this->ShownEmpty.removeAll(display);
+    }
+    else if (display->getInput() == source && SetUpPointDisplay(display))
+    {
+      this->ShownEmpty.removeAll(display);
+    }
+  }
+  SizePointsToData(source);
 }
 
 void pqPointCloudBilateralRunBehavior::onRunStarted(vtkObject* algorithm)
@@ -623,23 +664,6 @@ void pqPointCloudBilateralRunBehavior::onRunProgress(vtkObject* algorithm)
 void pqPointCloudBilateralRunBehavior::onRunEnded(vtkObject* algorithm)
 {
   const WatchedProxy* watched = this->FindWatched(algorithm);
-  if (watched && watched->Kind != RunKind::Writer)
-  {
-    // Once the Apply has finished (a pipeline request cannot be made from within one).
-    vtkWeakPointer<vtkSMProxy> proxy = watched->Proxy;
-    QTimer::singleShot(0,
-      this,
-      [proxy]()
-      {
-        pqServerManagerModel* model = pqApplicationCore::instance()->getServerManagerModel();
-        pqPipelineSource* source = proxy ? model->findItem<pqPipelineSource*>(proxy) : nullptr;
-        if (source)
-        {
-          proxy->UpdatePropertyInformation();
-          SizePointsToData(source);
-        }
-      });
-  }
   if (algorithm != this->Running)
   {
     return;

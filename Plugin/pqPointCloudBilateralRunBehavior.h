@@ -61,12 +61,15 @@
 #define pqPointCloudBilateralRunBehavior_h
 
 #include <QElapsedTimer>
+#include <QList>
 #include <QObject>
+#include <QPointer>
 
 #include "vtkWeakPointer.h"
 
 #include <vector>
 
+class pqDataRepresentation;
 class pqPipelineSource;
 class pqRepresentation;
 class pqServer;
@@ -93,6 +96,7 @@ private Q_SLOTS:
   void onProgressPrepared();
   void onSourceAdded(pqPipelineSource* source);
   void onRepresentationAdded(pqRepresentation* representation);
+  void onDataUpdated(pqPipelineSource* source);
   void onRunStarted(vtkObject* algorithm);
   void onRunProgress(vtkObject* algorithm);
   void onRunEnded(vtkObject* algorithm);
@@ -109,6 +113,8 @@ private:
   /// observed.
   std::vector<WatchedProxy> Watched;
   vtkWeakPointer<vtkAlgorithm> Running;
+  /// Displays first shown on an empty input, to be set up as point clouds once it has points.
+  QList<QPointer<pqDataRepresentation>> ShownEmpty;
   /// Whether Abort was pressed during the running algorithm's run (the readers and writers clear
   /// their flag as their run ends).
   bool AbortAsked = false;

@@ -5,7 +5,8 @@ plugin's GUI part sets up, and writes "ok: ..." or "FAILED: ..." lines to PCB_LO
   scripts) must not be among them; DisplacementLength must;
 - the default reader of .xyz files (what File > Open uses without asking) is the Point Cloud
   Text Reader, not PLOT3D's;
-- a LAS file with colours, and the filter's output of it, are shown in those colours."""
+- a LAS file with colours, and the filter's output of it, are shown in those colours, also when
+  the output was first shown empty (a bad radius, then a good one)."""
 import os
 
 from paraview import servermanager, simple
@@ -76,6 +77,21 @@ with open(os.environ["PCB_LOG"], "w") as log_file:
         check(list(shown.ColorArrayName) == ["POINTS", "Colors"] and shown.MapScalars == 0,
               f"{what} with colours is shown in them ({shown.ColorArrayName}, "
               f"map scalars {shown.MapScalars})")
+    # First shown on an empty output (a bad radius: an error), then run with a good radius: the
+    # display is set up as one first shown with points (it stayed a plain white surface).
+    late = simple.PointCloudBilateralFilter(Input=coloured, Radius=-1.0)
+    late_display = simple.Show(late)
+    simple.Render()
+    empty = late.GetDataInformation().GetNumberOfPoints()
+    late.Radius = 0.0
+    simple.Render()
+    check(empty == 0 and late.GetDataInformation().GetNumberOfPoints() > 0 and
+          list(late_display.ColorArrayName) == ["POINTS", "Colors"] and
+          late_display.MapScalars == 0 and late_display.Representation == "Point Gaussian" and
+          late_display.GaussianRadius > 0,
+          f"an output first shown empty ({empty} points), then filled, is shown as the others: "
+          f"{late_display.Representation}, radius {late_display.GaussianRadius}, coloured by "
+          f"{late_display.ColorArrayName}, map scalars {late_display.MapScalars}")
     check(not las_display.ColorArrayName[1],
           f"a LAS file without colours is not coloured ({las_display.ColorArrayName})")
 
