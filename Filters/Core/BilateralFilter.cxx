@@ -177,6 +177,13 @@ struct BilateralRun::Internals
       done - iteration);
   }
 
+  /// Whether the run was aborted and its caller discards the result: its positions are not
+  /// copied then (BilateralObserver::DiscardsAbortedResult).
+  bool DiscardsResult() const
+  {
+    return this->Result.Status == BilateralStatus::Aborted && this->Observer.DiscardsAbortedResult;
+  }
+
   /// The result's positions as a copy of the input's, if not made yet: made only when needed,
   /// so that a whole cloud's run does not hold its positions beside the octree's.
   void CopyInputPositions()
@@ -897,8 +904,6 @@ BilateralResult BilateralRun::Finish()
     // where removed points stopped.
     PointState& state = run.Engine->State;
     run.Engine->Octree.ReleaseAllButMoves();
-    run.CopyInputPositions();
-    state.Positions = std::move(result.Positions);
     // An abort asked once the last iteration is done still ends a whole cloud's run (its result
     // is then an aborted one's: the input's positions). Its parts must decide alike: asked in
     // Step only.
@@ -907,24 +912,33 @@ BilateralResult BilateralRun::Finish()
     {
       result.Status = BilateralStatus::Aborted;
     }
-    if (result.Status == BilateralStatus::Completed)
+    if (!run.DiscardsResult())
     {
-      run.Engine->ScatterMoves();
-    }
-    for (const StoppedPoint& stopped : state.Stopped)
-    {
-      std::copy(stopped.Position,
-        stopped.Position + 3,
-        state.Positions.data() + 3 * static_cast<std::size_t>(stopped.Id));
+      run.CopyInputPositions();
+      state.Positions = std::move(result.Positions);
+      if (result.Status == BilateralStatus::Completed)
+      {
+        run.Engine->ScatterMoves();
+      }
+      for (const StoppedPoint& stopped : state.Stopped)
+      {
+        std::copy(stopped.Position,
+          stopped.Position + 3,
+          state.Positions.data() + 3 * static_cast<std::size_t>(stopped.Id));
+      }
     }
     result.Positions = std::move(state.Positions);
     result.Removed = std::move(state.Removed);
     result.Normals = std::move(state.Normals);
     run.Engine.reset();
   }
-  else if (run.Accepted)
+  else if (run.Accepted && !run.DiscardsResult())
   {
     run.CopyInputPositions();
+  }
+  if (run.DiscardsResult())
+  {
+    std::vector<double>().swap(result.Positions); // (copied already by the bands' iterations)
   }
   if (!run.Bands.Empty())
   {

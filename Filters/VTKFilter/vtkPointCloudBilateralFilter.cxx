@@ -271,7 +271,7 @@ vtkSmartPointer<vtkDoubleArray> EstimatedNormals(const std::vector<double>& norm
 }
 
 /// "DisplacementLength": how far each kept point moved (0 for a non-finite one).
-vtkSmartPointer<vtkDoubleArray> DisplacementLengths(const std::vector<double>& before,
+vtkSmartPointer<vtkDoubleArray> DisplacementLengths(const double* before,
   const std::vector<double>& after,
   const std::vector<vtkIdType>& kept)
 {
@@ -280,7 +280,7 @@ vtkSmartPointer<vtkDoubleArray> DisplacementLengths(const std::vector<double>& b
   lengths->SetNumberOfValues(static_cast<vtkIdType>(kept.size()));
   for (std::size_t out = 0; out < kept.size(); ++out)
   {
-    const double* from = before.data() + 3 * kept[out];
+    const double* from = before + 3 * kept[out];
     const double* to = after.data() + 3 * kept[out];
     const double length =
       std::sqrt((to[0] - from[0]) * (to[0] - from[0]) + (to[1] - from[1]) * (to[1] - from[1]) +
@@ -293,14 +293,19 @@ vtkSmartPointer<vtkDoubleArray> DisplacementLengths(const std::vector<double>& b
 
 struct vtkPointCloudBilateralFilter::InputCloud
 {
-  std::vector<double> Positions;
+  /// The input's positions as interleaved doubles: the input's own array when it holds them so
+  /// (a LAS reader's), else PositionsCopy. (A copy of 20 million points is 480 MB to fill
+  /// before the run and to free after it, an aborted one's too.)
+  const double* Positions = nullptr;
+  std::size_t NumberOfPoints = 0;
+  std::vector<double> PositionsCopy;
   std::vector<double> Orientation;
 
   pcbilateral::PointCloudView View() const
   {
     pcbilateral::PointCloudView view;
-    view.NumberOfPoints = this->Positions.size() / 3;
-    view.Positions = this->Positions.data();
+    view.NumberOfPoints = this->NumberOfPoints;
+    view.Positions = this->Positions;
     view.OrientationNormals = this->Orientation.empty() ? nullptr : this->Orientation.data();
     return view;
   }
@@ -407,6 +412,7 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   pcbilateral::BilateralObserver observer;
   observer.Progress = [this](double fraction) { this->UpdateProgress(fraction); };
   observer.ShouldAbort = [this]() { return this->GetAbortExecute() != 0; };
+  observer.DiscardsAbortedResult = true; // (an aborted run's output is empty)
   observer.PhaseProgress = [this](const std::string& phase, double fraction)
   {
     this->ProgressPhase = phase;
@@ -472,7 +478,18 @@ std::string vtkPointCloudBilateralFilter::PrepareInput(vtkPointSet* input, Input
     return std::string();
   }
   const std::function<bool()> stop = [this]() { return this->GetAbortExecute() != 0; };
-  ToDoubles(input->GetPoints()->GetData(), cloud.Positions, stop);
+  vtkDataArray* points = input->GetPoints()->GetData();
+  if (auto* doubles = vtkDoubleArray::SafeDownCast(points))
+  {
+    cloud.Positions = doubles->GetPointer(0);
+    cloud.NumberOfPoints = static_cast<std::size_t>(doubles->GetNumberOfTuples());
+  }
+  else
+  {
+    ToDoubles(points, cloud.PositionsCopy, stop);
+    cloud.Positions = cloud.PositionsCopy.data();
+    cloud.NumberOfPoints = cloud.PositionsCopy.size() / 3;
+  }
   if (!this->OrientNormals)
   {
     return std::string();
@@ -567,7 +584,7 @@ pcbilateral::BilateralResult vtkPointCloudBilateralFilter::RunOnChosen(const Inp
 {
   if (chosen.empty())
   {
-    this->NumberOfFilteredPoints = static_cast<vtkIdType>(cloud.Positions.size() / 3);
+    this->NumberOfFilteredPoints = static_cast<vtkIdType>(cloud.NumberOfPoints);
     return this->RunCore(cloud.View(), this->MakeParameters(), observer, preparedHere);
   }
   const pcbilateral::ChosenPoints subset(cloud.View(), chosen);
