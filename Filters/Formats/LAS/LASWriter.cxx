@@ -122,7 +122,20 @@ std::vector<std::uint8_t> EncodeAllRecords(const BlockEncoder& encoder,
   std::size_t recordLength,
   std::vector<BlockSummary>& summaries)
 {
-  std::vector<std::uint8_t> records(count * recordLength, 0);
+  // Zeroed 8 MB at a time, asking between: the first touch of the whole buffer took 0.14 s for
+  // 12 million points, unasked (pcb_abort_gaps). The caller sees a stop here too.
+  std::vector<std::uint8_t> records;
+  const std::size_t bytes = count * recordLength;
+  records.reserve(bytes);
+  constexpr std::size_t BlockBytes = std::size_t(8) << 20;
+  while (records.size() < bytes)
+  {
+    if (ProgressPoint(0, 1))
+    {
+      return records;
+    }
+    records.resize(std::min(bytes, records.size() + BlockBytes));
+  }
   const auto blocks = static_cast<std::int64_t>(summaries.size());
   ParallelProgress progress(summaries.size());
 #pragma omp parallel for schedule(static)
@@ -203,10 +216,12 @@ std::string WriteLAZ(const std::string& path,
     points.size(),
     true);
   bytes.insert(bytes.end(), records.VLRBytes.begin(), records.VLRBytes.end());
-  bytes.insert(bytes.end(), points.begin(), points.end());
+  // The points are written from their own buffer, not appended to the header's: that copy of
+  // the whole compressed cloud went unasked (0.06 s for 12 million points).
+  std::vector<std::uint8_t> after;
   for (const LASRecord* record : records.Extended)
   {
-    AppendRecord(bytes, *record, true);
+    AppendRecord(after, *record, true);
   }
   ReplacingFile output(path);
   std::FILE* file = output.Get();
@@ -214,7 +229,9 @@ std::string WriteLAZ(const std::string& path,
   {
     return output.OpenError();
   }
-  const bool ok = WriteInBlocks(file, bytes.data(), bytes.size());
+  const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size() &&
+                  WriteInBlocks(file, points.data(), points.size()) &&
+                  std::fwrite(after.data(), 1, after.size(), file) == after.size();
   if (ProgressStopAsked())
   {
     output.Commit(false);

@@ -297,7 +297,19 @@ std::string UncompressedLASRecordRange(const std::uint8_t* data,
   }
   try
   {
-    decompressed.resize(count * h.RecordLength);
+    // Zeroed 8 MB at a time, asking between: the first touch of the whole buffer (400 MB for
+    // 12 million points) took 0.12 s before the read's first question (pcb_abort_gaps).
+    const std::size_t bytes = count * h.RecordLength;
+    decompressed.reserve(bytes);
+    constexpr std::size_t BlockBytes = std::size_t(8) << 20;
+    while (decompressed.size() < bytes)
+    {
+      if (ProgressPoint(0, 1))
+      {
+        return AbortedMessage;
+      }
+      decompressed.resize(std::min(bytes, decompressed.size() + BlockBytes));
+    }
   }
   catch (const std::bad_alloc&)
   {
