@@ -184,6 +184,14 @@ struct BilateralRun::Internals
     return this->Result.Status == BilateralStatus::Aborted && this->Observer.DiscardsAbortedResult;
   }
 
+  /// What a whole cloud's run asks while it moves its result back into the points' order, when
+  /// its caller discards an aborted result (a result moved in part is not handed over then).
+  std::function<bool()> StopWhileFinishing() const
+  {
+    return this->Whole && this->Observer.DiscardsAbortedResult ? this->Observer.ShouldAbort
+                                                               : nullptr;
+  }
+
   /// The result's positions as a copy of the input's, if not made yet: made only when needed,
   /// so that a whole cloud's run does not hold its positions beside the octree's.
   void CopyInputPositions()
@@ -916,9 +924,10 @@ BilateralResult BilateralRun::Finish()
     {
       run.CopyInputPositions();
       state.Positions = std::move(result.Positions);
-      if (result.Status == BilateralStatus::Completed)
+      if (result.Status == BilateralStatus::Completed &&
+          !run.Engine->ScatterMoves(run.StopWhileFinishing()))
       {
-        run.Engine->ScatterMoves();
+        result.Status = BilateralStatus::Aborted; // (moved in part: discarded)
       }
       for (const StoppedPoint& stopped : state.Stopped)
       {

@@ -8,6 +8,7 @@
 #include "PointState.h"
 #include "ProcessingOctree.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <utility>
@@ -58,8 +59,9 @@ public:
   /// False when the run was aborted while the octree was built: the engine cannot iterate.
   bool Loaded = false;
 
-  /// Writes the points' last moves from the octree's layout back to their ids.
-  void ScatterMoves()
+  /// Writes the points' last moves from the octree's layout back to their ids; false if `stop`
+  /// said stop.
+  bool ScatterMoves(const std::function<bool()>& stop = nullptr)
   {
     const std::uint32_t* ids = this->Octree.GetIds();
     const double* moved[3] = {
@@ -68,17 +70,29 @@ public:
     const auto count = static_cast<std::int64_t>(this->Octree.GetNumberOfPoints());
     std::vector<double>& positions = this->State.Positions;
     const std::vector<std::uint8_t>& removed = this->State.Removed;
-#pragma omp parallel for schedule(static) num_threads(this->Threads)
-    for (std::int64_t i = 0; i < count; ++i)
+    // A million points at a time, `stop` asked before each (20 million points' moves took 0.09
+    // to 0.17 s of a busy machine): stopped, the positions are moved in part.
+    constexpr std::int64_t Block = std::int64_t(1) << 20;
+    for (std::int64_t first = 0; first < count; first += Block)
     {
-      if (!removed[ids[i]])
+      if (stop && stop())
       {
-        for (int axis = 0; axis < 3; ++axis)
+        return false;
+      }
+      const std::int64_t end = std::min(count, first + Block);
+#pragma omp parallel for schedule(static) num_threads(this->Threads)
+      for (std::int64_t i = first; i < end; ++i)
+      {
+        if (!removed[ids[i]])
         {
-          positions[3 * static_cast<std::size_t>(ids[i]) + axis] = moved[axis][i];
+          for (int axis = 0; axis < 3; ++axis)
+          {
+            positions[3 * static_cast<std::size_t>(ids[i]) + axis] = moved[axis][i];
+          }
         }
       }
     }
+    return true;
   }
 };
 

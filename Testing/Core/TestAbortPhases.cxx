@@ -275,7 +275,8 @@ void AfterLastIteration()
  * A caller that discards an aborted run's result (the VTK filter) is not handed the input's
  * positions: an aborted run of 20 million points spent 0.05 to 0.27 s copying them into fresh
  * memory. Aborted at the first question (no octree yet), between two iterations, after the
- * last, and in the edge-aware mode (positions copied in its first iteration); a completed
+ * last, while the moves are put back in the points' order (0.09 to 0.17 s for 20 million
+ * points), and in the edge-aware mode (positions copied in its first iteration); a completed
  * run is the same with or without the flag.
  */
 void DiscardedResult()
@@ -295,13 +296,16 @@ void DiscardedResult()
     observer.ShouldAbort = [&progress, &stopAt] { return stopAt(progress); };
     return pcbilateral::RunBilateralFilter(pcbilateral_testing::ViewOf(cloud), given, observer);
   };
+  // The last: at the question after the one that follows the last iteration, asked while the
+  // moves are put back into the points' order (asked only when the result is discarded).
   const std::function<bool(double)> moments[] = { [](double) { return true; },
     [](double progress) { return progress >= 0.5; },
-    [](double progress) { return progress >= 1.0; } };
+    [](double progress) { return progress >= 1.0; },
+    [after = 0](double progress) mutable { return progress >= 1.0 && ++after == 2; } };
   for (bool edgeAware : { false, true })
   {
     // (The edge-aware mode asks nothing once its last iteration is done.)
-    for (std::size_t m = 0; m < (edgeAware ? 2u : 3u); ++m)
+    for (std::size_t m = 0; m < (edgeAware ? 2u : 4u); ++m)
     {
       const BilateralResult aborted = run(edgeAware, moments[m]);
       PCB_CHECK(aborted.Status == BilateralStatus::Aborted && aborted.Positions.empty(),
