@@ -216,8 +216,7 @@ std::string WriteLAZ(const std::string& path,
     points.size(),
     true);
   bytes.insert(bytes.end(), records.VLRBytes.begin(), records.VLRBytes.end());
-  // The points are written from their own buffer, not appended to the header's: that copy of
-  // the whole compressed cloud went unasked (0.06 s for 12 million points).
+  // The points from their own buffer: appended to the header's, they were copied, unasked.
   std::vector<std::uint8_t> after;
   for (const LASRecord* record : records.Extended)
   {
