@@ -645,10 +645,12 @@ void WriteOutput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData
 /// Why the streamed run (--memory-limit) cannot run with these files and options, or empty.
 std::string StreamingUnsupported(const Options& options)
 {
-  return pcbilateral::StreamingProblem(options.Input,
-    options.Output,
-    options.COPCLevel != -1 || options.COPCUseBounds,
-    !options.Classes.empty());
+  const std::string copc = options.COPCLevel != -1 && options.COPCUseBounds
+                             ? "--copc-level and --copc-bounds"
+                           : options.COPCLevel != -1 ? "--copc-level"
+                           : options.COPCUseBounds   ? "--copc-bounds"
+                                                     : "";
+  return pcbilateral::StreamingProblem(options.Input, options.Output, copc);
 }
 
 /// The streamed run's progress: a bar per phase on a terminal, a line per slab otherwise.

@@ -561,6 +561,47 @@ std::string OutOfCoreRun::Internals::FilterSlab(std::size_t slab)
   return std::string();
 }
 
+void LeftAlonePoints::Add(const double* position)
+{
+  ++this->Count;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const double value = position[axis];
+    this->Floats = this->Floats && (std::isnan(value) || static_cast<float>(value) == value);
+  }
+  if (std::isfinite(position[0]) && std::isfinite(position[1]) && std::isfinite(position[2]))
+  {
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      this->Bounds[axis] = std::min(this->Bounds[axis], position[axis]);
+      this->Bounds[3 + axis] = std::max(this->Bounds[3 + axis], position[axis]);
+    }
+  }
+}
+
+void StreamedPoints::LeaveAlone(std::uint64_t first,
+  std::size_t count,
+  const std::uint8_t* chosen,
+  double* positions)
+{
+  const bool firstPass = first >= this->LeftAlone.CountedUpTo;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    if (!chosen[i])
+    {
+      if (firstPass)
+      {
+        this->LeftAlone.Add(positions + 3 * i);
+      }
+      std::fill_n(positions + 3 * i, 3, std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  if (firstPass)
+  {
+    this->LeftAlone.CountedUpTo = first + count;
+  }
+}
+
 OutOfCoreRun::OutOfCoreRun(StreamedPoints& points,
   const BilateralParameters& parameters,
   const OutOfCoreSettings& settings)
@@ -625,12 +666,17 @@ std::uint64_t OutOfCoreRun::GetDiskBytesNeeded() const
 
 bool OutOfCoreRun::AreFilteredPositionsFloats() const
 {
-  return this->Impl->ResultsAreFloats;
+  return this->Impl->ResultsAreFloats && this->Impl->Points.GetLeftAlonePoints().Floats;
 }
 
 void OutOfCoreRun::GetFilteredBounds(double bounds[6]) const
 {
-  std::copy_n(this->Impl->ResultBounds, 6, bounds);
+  const double* leftAlone = this->Impl->Points.GetLeftAlonePoints().Bounds;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    bounds[axis] = std::min(this->Impl->ResultBounds[axis], leftAlone[axis]);
+    bounds[3 + axis] = std::max(this->Impl->ResultBounds[3 + axis], leftAlone[3 + axis]);
+  }
 }
 
 std::uint64_t OutOfCoreRun::GetNumberOfRemovedPoints() const

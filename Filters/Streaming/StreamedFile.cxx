@@ -86,11 +86,10 @@ public:
     {
       if (array.Name == name)
       {
-        return "the class array '" + name + "' must hold one integer per point (it has " +
-               std::to_string(array.Type.Count) + " component(s) of type double)";
+        return ClassArrayTypeProblem(name, array.Type.Count, "double");
       }
     }
-    return "classes were chosen, but the input has no point array '" + name + "'";
+    return MissingClassArrayProblem(name);
   }
   std::string WriteWarning(const std::string& path) const override
   {
@@ -201,6 +200,26 @@ std::string TextPointSource::WriteFiltered(OutOfCoreRun& run,
 }
 } // namespace
 
+bool IsChosenClass(const std::vector<long long>& classes, double value)
+{
+  return std::find_if(classes.begin(),
+           classes.end(),
+           [value](long long c) { return static_cast<double>(c) == value; }) != classes.end();
+}
+
+std::string ClassArrayTypeProblem(const std::string& name,
+  unsigned components,
+  const std::string& typeName)
+{
+  return "the class array '" + name + "' must hold one integer per point (it has " +
+         std::to_string(components) + " component(s) of type " + typeName + ")";
+}
+
+std::string MissingClassArrayProblem(const std::string& name)
+{
+  return "classes were chosen, but the input has no point array '" + name + "'";
+}
+
 std::string StreamingFormatsProblem(const std::string& input, const std::string& output)
 {
   if ((IsLASPath(input) || IsTextPath(input) || EndsWith(input, ".pcd")) && IsArraysOutput(output))
@@ -213,13 +232,11 @@ std::string StreamingFormatsProblem(const std::string& input, const std::string&
 
 std::string StreamingProblem(const std::string& input,
   const std::string& output,
-  bool copc,
-  bool classes)
+  const std::string& copcOption)
 {
-  // (--classes with text input: the run in memory's error, from ChooseClasses.)
-  if (copc || (classes && EndsWith(output, ".pcd") && !IsTextPath(input)))
+  if (!copcOption.empty())
   {
-    return "streaming does not take the --copc options, or --classes with PCD output, yet";
+    return "streaming does not take " + copcOption + " yet";
   }
   return StreamingFormatsProblem(input, output);
 }

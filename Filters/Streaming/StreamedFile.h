@@ -60,21 +60,32 @@ public:
   {
     (void)name;
     (void)classes;
-    return "--memory-limit: --classes is streamed for LAS and LAZ input only";
+    return "--memory-limit: --classes is streamed for LAS, LAZ and PCD input only";
   }
 };
+
+/// Whether a class array's value (an integer, read as a double) is one of `classes`: compared as
+/// doubles, as the filter in memory compares them (exact below 2^53).
+bool IsChosenClass(const std::vector<long long>& classes, double value);
+
+/// The one-line error of the filter in memory for a class array that is not one integer per
+/// point: `components` of the type VTK names `typeName` ("float", "unsigned short"...).
+std::string ClassArrayTypeProblem(const std::string& name,
+  unsigned components,
+  const std::string& typeName);
+
+/// The same for a class array the input does not have.
+std::string MissingClassArrayProblem(const std::string& name);
 
 /// Why `input` cannot be streamed into `output` (by their extensions), or empty: LAS, LAZ, text
 /// (.txt, .xyz) or PCD into any of them.
 std::string StreamingFormatsProblem(const std::string& input, const std::string& output);
 
-/// Why pcbilateral's options cannot be streamed with these files, or empty: the --copc options
-/// (`copc`), --classes (`classes`) into PCD (but from text, whose error is the run in memory's),
-/// then StreamingFormatsProblem.
+/// Why pcbilateral's options cannot be streamed with these files, or empty: a --copc option
+/// given (`copcOption`, e.g. "--copc-level", or empty), then StreamingFormatsProblem.
 std::string StreamingProblem(const std::string& input,
   const std::string& output,
-  bool copc,
-  bool classes);
+  const std::string& copcOption);
 
 /// The points of a range read and written at a time: 2^18, or PCB_STREAMING_RANGE_POINTS from
 /// the environment (tests).

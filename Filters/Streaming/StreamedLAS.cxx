@@ -101,24 +101,17 @@ std::string LASPointSource::ReadPositions(std::uint64_t first, std::size_t count
   std::vector<std::uint8_t> values(count * LASColumnBytes(dimension));
   columns[this->ClassDimension] = values.data();
   const std::string problem = this->ReadPoints(first, count, positions, columns.data());
-  std::uint64_t leftAlone = 0;
-  for (std::size_t i = 0; i < count && problem.empty(); ++i)
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  std::vector<std::uint8_t> chosen(count);
+  for (std::size_t i = 0; i < count; ++i)
   {
     // (As the filter in memory: integers compared as doubles, exact below 2^53.)
-    const double value = ColumnValue(dimension.ColumnType, values.data(), i);
-    if (std::find_if(this->Classes.begin(),
-          this->Classes.end(),
-          [&](long long c) { return static_cast<double>(c) == value; }) == this->Classes.end())
-    {
-      std::fill_n(positions + 3 * i, 3, std::numeric_limits<double>::quiet_NaN());
-      ++leftAlone;
-    }
+    chosen[i] = IsChosenClass(this->Classes, ColumnValue(dimension.ColumnType, values.data(), i));
   }
-  if (first >= this->CountedUpTo)
-  {
-    this->LeftAlone += leftAlone;
-    this->CountedUpTo = first + count;
-  }
+  this->LeaveAlone(first, count, chosen.data(), positions);
   return problem;
 }
 
@@ -146,16 +139,15 @@ std::string LASPointSource::ChooseClasses(const std::string& name,
         "long",
         "float",
         "double" };
-      return "the class array '" + name + "' must hold one integer per point (it has " +
-             std::to_string(dimension.Components) + " component(s) of type " +
-             typeNames[static_cast<int>(type)] + ")";
+      return ClassArrayTypeProblem(
+        name, static_cast<unsigned>(dimension.Components), typeNames[static_cast<int>(type)]);
     }
     this->ClassDimension = d;
     this->ClassName = name;
     this->Classes = classes;
     return std::string();
   }
-  return "classes were chosen, but the input has no point array '" + name + "'";
+  return MissingClassArrayProblem(name);
 }
 
 std::string LASPointSource::ReadPoints(std::uint64_t first,

@@ -48,7 +48,6 @@ public:
   /// Whether every RGB value of the file is at most 255 (true without RGB): the run in memory's
   /// display colours are then the values, else their high bytes.
   std::string ColoursFitEightBits(bool& fit);
-  std::uint64_t GetNumberOfPointsLeftAlone() const override { return this->LeftAlone; }
   std::string GetClassArrayName() const override { return this->ClassName; }
 
 private:
@@ -57,13 +56,10 @@ private:
   LASFileInfo Info;
   MappedInput Mapped;
   std::vector<std::uint8_t> Decompressed;
-  /// --classes: the class dimension's index (or none), the classes, and the points left alone
-  /// so far (counted on the first pass: ranges before CountedUpTo were counted).
+  /// --classes: the class dimension's index (or none) and the classes.
   std::size_t ClassDimension = static_cast<std::size_t>(-1);
   std::vector<long long> Classes;
   std::string ClassName;
-  std::uint64_t LeftAlone = 0;
-  std::uint64_t CountedUpTo = 0;
 };
 
 /// The header a LAS file written from `info` has after pcbilateral's in-memory run (the

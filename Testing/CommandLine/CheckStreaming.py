@@ -133,7 +133,11 @@ def check_refusals(c, source):
     c.check(not c.temporary_left(), "the refusal leaves no temporary file")
     for arguments, words in (([source, os.path.join(c.scratch, "o.ply")], "into .las"),
                              ([source, os.path.join(c.scratch, "o.vtp")], "not yet"),
-                             ([source, output, "--copc-level", "0"], "does not take"),
+                             ([source, output, "--copc-level", "0"],
+                              "streaming does not take --copc-level yet"),
+                             ([source, output, "--copc-level", "0", "--copc-bounds",
+                               "0,1,0,1,0,1"],
+                              "streaming does not take --copc-level and --copc-bounds yet"),
                              ([source, output, "-r", "3"], None)):
         size = "2X" if words is None else "1G"
         result = c.run(arguments + ["--memory-limit", size])
