@@ -645,12 +645,7 @@ void WriteOutput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData
 /// Why the streamed run (--memory-limit) cannot run with these files and options, or empty.
 std::string StreamingUnsupported(const Options& options)
 {
-  const std::string copc = options.COPCLevel != -1 && options.COPCUseBounds
-                             ? "--copc-level and --copc-bounds"
-                           : options.COPCLevel != -1 ? "--copc-level"
-                           : options.COPCUseBounds   ? "--copc-bounds"
-                                                     : "";
-  return pcbilateral::StreamingProblem(options.Input, options.Output, copc);
+  return pcbilateral::StreamingFormatsProblem(options.Input, options.Output);
 }
 
 /// The streamed run's progress: a bar per phase on a terminal, a line per slab otherwise.
@@ -704,13 +699,26 @@ void SayWarnings(const std::vector<std::string>& warnings, std::size_t& said)
   }
 }
 
-/// The out-of-core run: the file in slabs within `limit` bytes, the same output file as the
-/// run in memory. Returns an empty string or the one-line error.
-std::string RunStreamed(const Options& options, std::uint64_t limit)
+/// The input of the streamed run, its COPC part and classes chosen (with the run in memory's
+/// warning on a file that is not COPC), or null with `problem` set.
+std::unique_ptr<pcbilateral::StreamedFile> OpenStreamedInput(const Options& options,
+  std::string& problem)
 {
-  std::string problem;
-  const std::unique_ptr<pcbilateral::StreamedFile> file = pcbilateral::OpenStreamedFile(
-    options.Input, options.Output, options.OrientedNormals, options.KeepNaNPoints, problem);
+  pcbilateral::COPCQuery part;
+  part.MaxLevel = options.COPCLevel;
+  part.UseBounds = options.COPCUseBounds;
+  std::copy_n(options.COPCBounds, 6, part.Bounds);
+  const bool partAsked = part.MaxLevel != -1 || part.UseBounds;
+  std::unique_ptr<pcbilateral::StreamedFile> file = pcbilateral::OpenStreamedFile(options.Input,
+    options.Output,
+    options.OrientedNormals,
+    options.KeepNaNPoints,
+    partAsked ? &part : nullptr,
+    problem);
+  if (file && !file->GetReadWarning().empty())
+  {
+    std::fprintf(stderr, "pcbilateral: warning: %s\n", file->GetReadWarning().c_str());
+  }
   if (problem.empty() && file->GetNumberOfPoints() == 0)
   {
     problem = options.Input + ": contains no points";
@@ -719,6 +727,15 @@ std::string RunStreamed(const Options& options, std::uint64_t limit)
   {
     problem = file->ChooseClasses(options.ClassArray, options.Classes);
   }
+  return problem.empty() ? std::move(file) : nullptr;
+}
+
+/// The out-of-core run: the file in slabs within `limit` bytes, the same output file as the
+/// run in memory. Returns an empty string or the one-line error.
+std::string RunStreamed(const Options& options, std::uint64_t limit)
+{
+  std::string problem;
+  const std::unique_ptr<pcbilateral::StreamedFile> file = OpenStreamedInput(options, problem);
   if (!problem.empty())
   {
     return problem;

@@ -230,17 +230,6 @@ std::string StreamingFormatsProblem(const std::string& input, const std::string&
          "(not yet PLY or VTP)";
 }
 
-std::string StreamingProblem(const std::string& input,
-  const std::string& output,
-  const std::string& copcOption)
-{
-  if (!copcOption.empty())
-  {
-    return "streaming does not take " + copcOption + " yet";
-  }
-  return StreamingFormatsProblem(input, output);
-}
-
 std::size_t StreamedRangePoints()
 {
   // (For tests: ranges that cut a LAZ file's chunks on a small file.)
@@ -253,6 +242,7 @@ std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,
   const std::string& output,
   bool orientedNormals,
   bool keepNaN,
+  const COPCQuery* copcPart,
   std::string& problem)
 {
   problem = StreamingFormatsProblem(input, output);
@@ -260,21 +250,34 @@ std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,
   {
     return nullptr;
   }
+  std::unique_ptr<StreamedFile> file;
+  bool isCOPCPart = false;
   if (IsLASPath(input))
   {
     auto las = std::make_unique<LASPointSource>();
-    problem = las->Open(input);
-    return problem.empty() ? std::move(las) : nullptr;
+    problem = las->Open(input, copcPart);
+    isCOPCPart = las->IsCOPCPart();
+    file = std::move(las);
   }
-  if (EndsWith(input, ".pcd"))
+  else if (EndsWith(input, ".pcd"))
   {
     auto pcd = std::make_unique<PCDPointSource>();
     problem = pcd->Open(input, orientedNormals, keepNaN);
-    return problem.empty() ? std::move(pcd) : nullptr;
+    file = std::move(pcd);
   }
-  auto text = std::make_unique<TextPointSource>();
-  problem = text->Open(input, orientedNormals);
-  return problem.empty() ? std::move(text) : nullptr;
+  else
+  {
+    auto text = std::make_unique<TextPointSource>();
+    problem = text->Open(input, orientedNormals);
+    file = std::move(text);
+  }
+  if (copcPart && !isCOPCPart)
+  {
+    // (The run in memory's warning, vtkPointCloudFileIO's and vtkLASPointCloudReader's.)
+    file->SetReadWarning(input + ": not a COPC file: the COPC level and bounds apply to COPC "
+                                 "files only; every point is read");
+  }
+  return problem.empty() ? std::move(file) : nullptr;
 }
 
 } // namespace pcbilateral
