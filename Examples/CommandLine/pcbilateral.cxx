@@ -398,7 +398,8 @@ Options ParseArguments(int argc, char* argv[])
   return options;
 }
 
-/// The warnings about options that cannot do what they ask here, before anything is read.
+/// The warnings about options that cannot do what they ask here, once the input could be read
+/// (an input that cannot be read is one line, its error).
 void WarnAboutOptions(const Options& options)
 {
   std::vector<std::string> warnings = pcbilateral_cli::NoEffectWarnings(
@@ -717,6 +718,7 @@ std::string RunStreamed(const Options& options, std::uint64_t limit)
   {
     return problem;
   }
+  WarnAboutOptions(options);
   pcbilateral::StreamedFile& input = *file;
   SayDropped(input.GetNumberOfDroppedPoints());
   Say("input:         %s, %llu points, streamed within %s of memory\n",
@@ -894,7 +896,6 @@ int main(int argc, char* argv[])
   vtkOutputWindow::SetInstance(quiet);
   const Options options = ParseArguments(argc, argv);
   Screen().Configure(options.Quiet, isatty(fileno(stdout)));
-  WarnAboutOptions(options);
   StreamIfLimited(options);
 
   // One place picks the reader and writer by extension and checks the file first.
@@ -908,6 +909,7 @@ int main(int argc, char* argv[])
   const unsigned long reading = ShowProgress(files, "reading");
   ReadInput(files, options, input);
   files->RemoveObserver(reading);
+  WarnAboutOptions(options);
 
   Say("input:         %s, %lld points\n",
     options.Input.c_str(),

@@ -446,6 +446,12 @@ elseif (CASE STREQUAL "ply-to-text-oriented-normals")
   set(arguments "${SAMPLE}" "${out}" -R -N 1)
   set(expect_exit 0)
   set(expect "output: .*out.xyz, 40000 points")
+elseif (CASE STREQUAL "unreadable-input-with-options")
+  # The warnings about the options come once the input is read: an unreadable one is one line.
+  file(WRITE "${WORK}/text.ply" "0 0 0\n1 1 1\n")
+  set(arguments "${WORK}/text.ply" "${WORK}/out.ply" --keep-nan -R -t 1000)
+  set(expect_exit 1)
+  set(expect "^pcbilateral: error: [^\n]*text.ply: not a PLY file \\(it does not start with 'ply'\\)\n$")
 # A cloud too small to measure (one point): written unchanged, and said, in memory and streamed.
 elseif (CASE STREQUAL "one-point-automatic" OR CASE STREQUAL "one-point-automatic-streamed")
   set(arguments "${WORK}/one.xyz" "${out}")
