@@ -414,8 +414,8 @@ std::string OutOfCoreRun::Internals::PlanSlabs()
       std::ostringstream problem;
       if (budget / perPoint == 0)
       {
-        problem << "the memory limit (" << this->Settings.MemoryLimit / megabyte
-                << " MB) does not cover what the program holds besides the slabs ("
+        problem << "the memory limit (" << MemorySizeText(this->Settings.MemoryLimit)
+                << ") does not cover what the program holds besides the slabs ("
                 << (reserved + megabyte - 1) / megabyte << " MB)";
       }
       else
@@ -646,6 +646,8 @@ std::string OutOfCoreRun::Measure()
              "are never used as neighbours");
   }
   run.ResolveParameters();
+  // (After: the parameters' summary replaces the whole summary.)
+  run.Summary.NumberOfNonFinitePoints = static_cast<std::size_t>(nonFinite);
   if (run.Summary.Status == BilateralStatus::Failed)
   {
     return run.Summary.Error;
@@ -933,11 +935,31 @@ OutOfCoreSettings StreamingSettings(std::uint64_t limit,
   return settings;
 }
 
-std::string MegabytesText(std::uint64_t bytes)
+std::string MemoryLimitProblem(const OutOfCoreSettings& settings, bool edgeAware)
 {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.0f MB", static_cast<double>(bytes) / 1048576.0);
-  return text;
+  const std::uint64_t reserved =
+    settings.ReservedBytes + (edgeAware ? OutOfCoreRun::EdgeAwareNeighbourListBytes : 0);
+  const std::uint64_t megabyte = 1024 * 1024;
+  if (settings.MemoryLimit >= megabyte || settings.MemoryLimit >= reserved)
+  {
+    return std::string();
+  }
+  return MemorySizeText(settings.MemoryLimit) +
+         " is far below what the program holds besides the slabs (" + MemorySizeText(reserved) +
+         "); a size without a unit is in bytes: give e.g. 512M or 2G";
+}
+
+std::string MemorySizeText(std::uint64_t bytes)
+{
+  const std::uint64_t kilobyte = 1024, megabyte = 1024 * 1024;
+  if (bytes >= megabyte)
+  {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.0f MB", static_cast<double>(bytes) / megabyte);
+    return text;
+  }
+  return bytes >= kilobyte ? std::to_string(bytes / kilobyte) + " KB"
+                           : std::to_string(bytes) + (bytes == 1 ? " byte" : " bytes");
 }
 
 } // namespace pcbilateral

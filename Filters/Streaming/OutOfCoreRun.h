@@ -207,8 +207,16 @@ OutOfCoreSettings StreamingSettings(std::uint64_t limit,
   const std::string& outputPath,
   int numberOfThreads);
 
-/// "512 MB": a size in whole megabytes.
-std::string MegabytesText(std::uint64_t bytes);
+/// Why no run can work within the memory limit of these settings, judged before anything is
+/// read, or empty: a limit below a megabyte (most likely a size given without its unit, which
+/// means bytes), far below what the program holds besides the slabs (ReservedBytes, and in the
+/// `edgeAware` mode the neighbour lists). A larger limit that cannot hold a slab is said once
+/// the slabs are planned, with the limit that holds them (OutOfCoreRun::Bucket).
+std::string MemoryLimitProblem(const OutOfCoreSettings& settings, bool edgeAware);
+
+/// A size as people read it: "512 MB" in whole megabytes from 1 MB on, "800 KB" in whole
+/// kilobytes from 1 KB on, "100 bytes" below (never "0 MB" for a size that is not 0).
+std::string MemorySizeText(std::uint64_t bytes);
 
 } // namespace pcbilateral
 
