@@ -10,23 +10,27 @@
 // Formats by extension: .txt and .xyz (the authors' ASCII format), .las, .laz, .pcd, .ply,
 // .vtp. Errors print one line and exit with status 1; a damaged input file is an error, never
 // a cloud. Run with -h for the options.
-#include "AutomaticRule.h"
 #include "BilateralFilter.h"
-#include "EdgeAwareRule.h"
 #include "OutOfCoreRun.h"
+#include "StreamedArrays.h"
 #include "StreamedFile.h"
 #include "StreamedLAS.h"
+#include "Threads.h"
+#include "pcbilateral_checks.h"
+#include "pcbilateral_help.h"
 #include "pcbilateral_progress.h"
 #include "vtkPointCloudBilateralFilter.h"
 #include "vtkPointCloudFileIO.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkDataArray.h"
 #include "vtkLogger.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOutputWindow.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 
 #include <algorithm>
@@ -47,108 +51,9 @@
 
 namespace
 {
+using pcbilateral_cli::HelpText;
 using pcbilateral_cli::Say;
 using pcbilateral_cli::Screen;
-// The help's fixed text; the automatic rule and the paper's heuristic are the core's own words
-// (AutomaticRule.h), inserted by HelpText.
-const char* const UsageHead =
-  "usage: pcbilateral INPUT OUTPUT [-r R] [-n RN] [-N ITER] [--paper] [-R] [-t THREADS]\n"
-  "                   [--remove-isolated] [--edge-aware] [--keep-nan] [-q]\n"
-  "                   [--classes LIST [--class-array NAME]]\n"
-  "                   [--copc-level N] [--copc-bounds xmin,xmax,ymin,ymax,zmin,zmax]\n"
-  "                   [--memory-limit SIZE]\n"
-  "\n"
-  "Denoises a point cloud with the bilateral filter (Digne & de Franchis, IPOL 2017).\n"
-  "INPUT and OUTPUT: .txt or .xyz (x y z [nx ny nz] [more columns]), .las (LiDAR),\n"
-  ".laz (compressed LiDAR), .pcd (PCL's), .ply or .vtp. A text file is written as the\n"
-  "text input was: the same columns in the same order, a header line only if it had\n"
-  "one, spaces or tabs.\n"
-  "\n"
-  "  -r R               neighbourhood radius\n"
-  "  -n RN              normal radius, the tolerance to the tangent plane\n"
-  "  -N ITER            number of iterations\n";
-const char* const AutomaticLead =
-  "Each is automatic when not given (or 0): chosen from the cloud's measured point spacing "
-  "and noise sigma";
-const char* const PaperLead =
-  "parameters not given follow the paper's heuristic instead, as the authors' program:";
-const char* const UsageTail =
-  "  -R                 text files carry oriented normals in columns 4-6; the estimated\n"
-  "                     normals are oriented by them and they are written back\n"
-  "  -t THREADS         threads (default 0: all cores); the result does not depend on it\n"
-  "  --remove-isolated  remove points with fewer than 5 neighbours, as the authors' program\n"
-  "                     does (default: they stay where they are)\n"
-  "  --edge-aware       edge-aware mode, beyond the paper: normals filtered bilaterally\n"
-  "                     before the displacement, for sharp edges under strong noise\n"
-  "                     (default: the paper's filter)\n"
-  "  --classes LIST     filter only the points of these classes (integers, comma-separated,\n"
-  "                     e.g. 2,6 for LAS ground and buildings); the others keep their exact\n"
-  "                     coordinates and are no one's neighbours (default: every point)\n"
-  "  --class-array NAME the integer point array that holds the class (default\n"
-  "                     Classification, as LAS files name it)\n"
-  "  --keep-nan         PCD input: keep the points without coordinates (NaN) of an\n"
-  "                     organised frame in place, never as neighbours, so that a .pcd\n"
-  "                     output keeps the frame's WIDTH and HEIGHT (default: left out)\n"
-  "  --copc-level N     COPC input: read only the octree levels 0 to N (a level of detail;\n"
-  "                     default -1: every point)\n"
-  "  --copc-bounds B    COPC input: read only the points inside the box B =\n"
-  "                     xmin,xmax,ymin,ymax,zmin,zmax (the file's coordinates)\n"
-  "  --memory-limit SIZE  filter the file in slabs within SIZE of memory (e.g. 512M, 2G),\n"
-  "                     temporary files in TMPDIR or beside the output; the same output\n"
-  "                     file as in memory. LAS, LAZ, text or PCD into any of them;\n"
-  "                     --edge-aware, --remove-isolated, -R, --keep-nan.\n"
-  "                     Default: in memory, or streamed within 80% of the available\n"
-  "                     memory when the cloud needs more (said)\n"
-  "  -q, --quiet        print nothing but warnings and errors (default: what was read,\n"
-  "                     measured, chosen and written, each line as soon as it is known, and\n"
-  "                     on a terminal a progress bar with the time left for reading,\n"
-  "                     measuring, each iteration and writing)\n"
-  "  -p                 accepted for compatibility and ignored: the filter always runs in "
-  "parallel\n"
-  "  -h, --help         this text\n";
-
-/// The help's option descriptions start in this column and wrap before this width.
-constexpr std::size_t DescriptionColumn = 21;
-constexpr std::size_t HelpWidth = 86;
-
-/// `label` padded to the description column, then `text` wrapped at word boundaries, each
-/// continuation line indented to that column.
-std::string OptionParagraph(const std::string& label, const std::string& text)
-{
-  std::string paragraph = label + std::string(DescriptionColumn - label.size(), ' ');
-  std::size_t lineLength = DescriptionColumn;
-  std::istringstream words(text);
-  std::string word;
-  while (words >> word)
-  {
-    const bool lineStarted = lineLength > DescriptionColumn;
-    if (lineStarted && lineLength + 1 + word.size() > HelpWidth)
-    {
-      paragraph += "\n" + std::string(DescriptionColumn, ' ');
-      lineLength = DescriptionColumn;
-    }
-    else if (lineStarted)
-    {
-      paragraph += ' ';
-      ++lineLength;
-    }
-    paragraph += word;
-    lineLength += word.size();
-  }
-  return paragraph + "\n";
-}
-
-std::string HelpText()
-{
-  return UsageHead +
-         OptionParagraph("",
-           std::string(AutomaticLead) + " (" + pcbilateral::DescribeAutomaticRule() + "; " +
-             pcbilateral::DescribeEdgeAwareRule() + ")") +
-         OptionParagraph(
-           "  --paper", std::string(PaperLead) + " " + pcbilateral::DescribePaperRule()) +
-         UsageTail;
-}
-
 /// Swallows what VTK prints by itself: the messages that matter come from the observers of
 /// the reader, the filter and the writer (see ReportMessages); the rest repeat them (the
 /// pipeline's "returned failure" reports) or are internals of VTK's readers.
@@ -456,6 +361,12 @@ void CheckOptions(const Options& options)
   }
   CheckFileName(options.Input, false);
   CheckFileName(options.Output, true);
+  const std::string keepNaNProblem =
+    pcbilateral_cli::KeepNaNOutputProblem(options.Input, options.Output, options.KeepNaNPoints);
+  if (!keepNaNProblem.empty())
+  {
+    Fail(keepNaNProblem);
+  }
   const std::string outputProblem =
     vtkPointCloudFileIO::CheckOutputPath(options.Output.c_str(), options.Input.c_str());
   if (!outputProblem.empty())
@@ -487,6 +398,38 @@ Options ParseArguments(int argc, char* argv[])
   return options;
 }
 
+/// The warnings about options that cannot do what they ask here, once the input could be read
+/// (an input that cannot be read is one line, its error).
+void WarnAboutOptions(const Options& options)
+{
+  std::vector<std::string> warnings = pcbilateral_cli::NoEffectWarnings(
+    options.Input, options.Output, options.OrientedNormals, options.KeepNaNPoints);
+  const std::string threads =
+    pcbilateral_cli::ThreadsWarning(options.Threads, pcbilateral::HardwareThreadCount());
+  if (!threads.empty())
+  {
+    warnings.insert(warnings.begin(), threads);
+  }
+  for (const std::string& warning : warnings)
+  {
+    std::fprintf(stderr, "pcbilateral: warning: %s\n", warning.c_str());
+  }
+}
+
+/// The points of `cloud` without finite coordinates.
+unsigned long long CountNonFinitePoints(vtkPolyData* cloud)
+{
+  vtkDataArray* xyz = cloud->GetPoints() ? cloud->GetPoints()->GetData() : nullptr;
+  unsigned long long count = 0;
+  for (vtkIdType i = 0; xyz && i < xyz->GetNumberOfTuples(); ++i)
+  {
+    double p[3];
+    xyz->GetTuple(i, p);
+    count += std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]) ? 0 : 1;
+  }
+  return count;
+}
+
 /// The input cloud; a file that cannot be read or holds no points is an error.
 void ReadInput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData* input)
 {
@@ -503,6 +446,16 @@ void ReadInput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData* 
   if (input->GetNumberOfPoints() == 0)
   {
     Fail(options.Input + ": contains no points");
+  }
+  if (pcbilateral::IsLASPath(options.Output))
+  {
+    // Said before the filter runs, not when its result cannot be written.
+    const std::string problem =
+      pcbilateral_cli::NonFiniteOutputProblem(options.Output, CountNonFinitePoints(input));
+    if (!problem.empty())
+    {
+      Fail(problem);
+    }
   }
   SayDropped(static_cast<unsigned long long>(files->GetNumberOfDroppedPoints()));
 }
@@ -575,6 +528,12 @@ void PrintParameters(const pcbilateral::BilateralResult& used, const Options& op
   }
   const char* automatic =
     measured ? " (automatic, from the measured spacing and noise)" : " (automatic: the paper's)";
+  if (!used.RadiusFollowsDensity && !(used.RadiusUsed > 0.0))
+  {
+    // (A cloud without extent: the core's warning says why; no parameter was used.)
+    Say("radius:        none could be chosen automatically: the points are written unchanged\n");
+    return;
+  }
   if (used.RadiusFollowsDensity)
   {
     Say("radius:        %s, following the density (automatic, each point's from its "
@@ -645,10 +604,7 @@ void WriteOutput(vtkPointCloudFileIO* files, const Options& options, vtkPolyData
 /// Why the streamed run (--memory-limit) cannot run with these files and options, or empty.
 std::string StreamingUnsupported(const Options& options)
 {
-  return pcbilateral::StreamingProblem(options.Input,
-    options.Output,
-    options.COPCLevel != -1 || options.COPCUseBounds,
-    !options.Classes.empty());
+  return pcbilateral::StreamingFormatsProblem(options.Input, options.Output);
 }
 
 /// The streamed run's progress: a bar per phase on a terminal, a line per slab otherwise.
@@ -702,13 +658,26 @@ void SayWarnings(const std::vector<std::string>& warnings, std::size_t& said)
   }
 }
 
-/// The out-of-core run: the file in slabs within `limit` bytes, the same output file as the
-/// run in memory. Returns an empty string or the one-line error.
-std::string RunStreamed(const Options& options, std::uint64_t limit)
+/// The input of the streamed run, its COPC part and classes chosen (with the run in memory's
+/// warning on a file that is not COPC), or null with `problem` set.
+std::unique_ptr<pcbilateral::StreamedFile> OpenStreamedInput(const Options& options,
+  std::string& problem)
 {
-  std::string problem;
-  const std::unique_ptr<pcbilateral::StreamedFile> file = pcbilateral::OpenStreamedFile(
-    options.Input, options.Output, options.OrientedNormals, options.KeepNaNPoints, problem);
+  pcbilateral::COPCQuery part;
+  part.MaxLevel = options.COPCLevel;
+  part.UseBounds = options.COPCUseBounds;
+  std::copy_n(options.COPCBounds, 6, part.Bounds);
+  const bool partAsked = part.MaxLevel != -1 || part.UseBounds;
+  std::unique_ptr<pcbilateral::StreamedFile> file = pcbilateral::OpenStreamedFile(options.Input,
+    options.Output,
+    options.OrientedNormals,
+    options.KeepNaNPoints,
+    partAsked ? &part : nullptr,
+    problem);
+  if (file && !file->GetReadWarning().empty())
+  {
+    std::fprintf(stderr, "pcbilateral: warning: %s\n", file->GetReadWarning().c_str());
+  }
   if (problem.empty() && file->GetNumberOfPoints() == 0)
   {
     problem = options.Input + ": contains no points";
@@ -717,26 +686,73 @@ std::string RunStreamed(const Options& options, std::uint64_t limit)
   {
     problem = file->ChooseClasses(options.ClassArray, options.Classes);
   }
+  return problem.empty() ? std::move(file) : nullptr;
+}
+
+/// The streamed run's parameters and slabs, once it has planned them.
+void SayPlan(const pcbilateral::OutOfCoreRun& run,
+  const pcbilateral::StreamedFile& input,
+  const Options& options)
+{
+  const pcbilateral::OutOfCorePlan& plan = run.GetPlan();
+  if (plan.NumberOfSlabs == 0)
+  {
+    Screen().EndPhase(); // measuring (no bucketing follows it: nothing to filter)
+  }
+  PrintClasses(
+    static_cast<long long>(input.GetNumberOfPoints() - input.GetNumberOfPointsLeftAlone()),
+    options);
+  PrintParameters(run.GetSummary(), options);
+  if (plan.NumberOfSlabs > 0)
+  {
+    Say("slabs:         %zu along %c, a halo of %.6g, at most %llu points with it\n",
+      plan.NumberOfSlabs,
+      "xyz"[plan.Axis],
+      plan.Halo,
+      static_cast<unsigned long long>(plan.LargestSlabPoints));
+  }
+}
+
+/// The out-of-core run: the file in slabs within `limit` bytes, the same output file as the
+/// run in memory. Returns an empty string or the one-line error.
+std::string RunStreamed(const Options& options, std::uint64_t limit)
+{
+  const pcbilateral::OutOfCoreSettings settings = StreamSettings(options, limit);
+  std::string problem = pcbilateral::MemoryLimitProblem(settings, options.EdgeAware);
+  if (!problem.empty())
+  {
+    return "--memory-limit: " + problem;
+  }
+  const std::unique_ptr<pcbilateral::StreamedFile> file = OpenStreamedInput(options, problem);
   if (!problem.empty())
   {
     return problem;
   }
+  WarnAboutOptions(options);
   pcbilateral::StreamedFile& input = *file;
   SayDropped(input.GetNumberOfDroppedPoints());
   Say("input:         %s, %llu points, streamed within %s of memory\n",
     options.Input.c_str(),
     static_cast<unsigned long long>(input.GetNumberOfPoints()),
-    pcbilateral::MegabytesText(limit).c_str());
-  const pcbilateral::OutOfCoreSettings settings = StreamSettings(options, limit);
+    pcbilateral::MemorySizeText(limit).c_str());
   pcbilateral::RemoveTemporaryFilesOnSignals(options.Output + ".partial");
   pcbilateral::OutOfCoreRun run(input, CoreParameters(options), settings);
   std::size_t warned = 0;
   problem = run.Measure();
+  // (Before the warnings, which this makes moot: the one line of a run that stops.)
+  const std::string unwritable = problem.empty()
+                                   ? pcbilateral_cli::NonFiniteOutputProblem(
+                                       options.Output, run.GetSummary().NumberOfNonFinitePoints)
+                                   : std::string();
+  if (!unwritable.empty())
+  {
+    return unwritable;
+  }
   SayWarnings(run.GetSummary().Warnings, warned);
   if (problem.empty())
   {
     Say("temporary:     %s on disk in %s (removed at the end)\n",
-      pcbilateral::MegabytesText(run.GetDiskBytesNeeded()).c_str(),
+      pcbilateral::MemorySizeText(run.GetDiskBytesNeeded()).c_str(),
       settings.TemporaryDirectory.c_str());
     problem = run.Bucket();
   }
@@ -744,16 +760,7 @@ std::string RunStreamed(const Options& options, std::uint64_t limit)
   {
     return problem;
   }
-  PrintClasses(
-    static_cast<long long>(input.GetNumberOfPoints() - input.GetNumberOfPointsLeftAlone()),
-    options);
-  PrintParameters(run.GetSummary(), options);
-  const pcbilateral::OutOfCorePlan& plan = run.GetPlan();
-  Say("slabs:         %zu along %c, a halo of %.6g, at most %llu points with it\n",
-    plan.NumberOfSlabs,
-    "xyz"[plan.Axis],
-    plan.Halo,
-    static_cast<unsigned long long>(plan.LargestSlabPoints));
+  SayPlan(run, input, options);
   const auto start = std::chrono::steady_clock::now();
   problem = run.Filter();
   SayWarnings(run.GetSummary().Warnings, warned);
@@ -824,9 +831,9 @@ std::uint64_t ChooseMemoryLimit(const Options& options)
   }
   Say("memory:        about %s needed in memory, %s available: streamed within %s "
       "(automatic; --memory-limit sets it)\n",
-    pcbilateral::MegabytesText(pcbilateral::InMemoryBytesPerPoint * points).c_str(),
-    pcbilateral::MegabytesText(available).c_str(),
-    pcbilateral::MegabytesText(limit).c_str());
+    pcbilateral::MemorySizeText(pcbilateral::InMemoryBytesPerPoint * points).c_str(),
+    pcbilateral::MemorySizeText(available).c_str(),
+    pcbilateral::MemorySizeText(limit).c_str());
   return limit;
 }
 
@@ -912,6 +919,7 @@ int main(int argc, char* argv[])
   const unsigned long reading = ShowProgress(files, "reading");
   ReadInput(files, options, input);
   files->RemoveObserver(reading);
+  WarnAboutOptions(options);
 
   Say("input:         %s, %lld points\n",
     options.Input.c_str(),

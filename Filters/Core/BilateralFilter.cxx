@@ -698,8 +698,11 @@ bool BilateralRun::Start(const CloudExtent& wholeCloud, const CloudScales* whole
   }
   if (!(run.Radii.Radius > 0.0))
   {
-    run.Warn("all points coincide, so no radius can be chosen automatically: the points are "
-             "left where they are");
+    run.Warn(wholeCloud.NumberOfFinitePoints == 1
+               ? "the cloud has a single point, so no radius can be chosen automatically (there "
+                 "is no spacing to measure): it is left where it is"
+               : "all points coincide, so no radius can be chosen automatically: the points are "
+                 "left where they are");
     return false;
   }
   // Where the radius follows the density, the smallest radius sets the octree's finest

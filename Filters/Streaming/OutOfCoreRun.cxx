@@ -414,8 +414,8 @@ std::string OutOfCoreRun::Internals::PlanSlabs()
       std::ostringstream problem;
       if (budget / perPoint == 0)
       {
-        problem << "the memory limit (" << this->Settings.MemoryLimit / megabyte
-                << " MB) does not cover what the program holds besides the slabs ("
+        problem << "the memory limit (" << MemorySizeText(this->Settings.MemoryLimit)
+                << ") does not cover what the program holds besides the slabs ("
                 << (reserved + megabyte - 1) / megabyte << " MB)";
       }
       else
@@ -561,6 +561,47 @@ std::string OutOfCoreRun::Internals::FilterSlab(std::size_t slab)
   return std::string();
 }
 
+void LeftAlonePoints::Add(const double* position)
+{
+  ++this->Count;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const double value = position[axis];
+    this->Floats = this->Floats && (std::isnan(value) || static_cast<float>(value) == value);
+  }
+  if (std::isfinite(position[0]) && std::isfinite(position[1]) && std::isfinite(position[2]))
+  {
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      this->Bounds[axis] = std::min(this->Bounds[axis], position[axis]);
+      this->Bounds[3 + axis] = std::max(this->Bounds[3 + axis], position[axis]);
+    }
+  }
+}
+
+void StreamedPoints::LeaveAlone(std::uint64_t first,
+  std::size_t count,
+  const std::uint8_t* chosen,
+  double* positions)
+{
+  const bool firstPass = first >= this->LeftAlone.CountedUpTo;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    if (!chosen[i])
+    {
+      if (firstPass)
+      {
+        this->LeftAlone.Add(positions + 3 * i);
+      }
+      std::fill_n(positions + 3 * i, 3, std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  if (firstPass)
+  {
+    this->LeftAlone.CountedUpTo = first + count;
+  }
+}
+
 OutOfCoreRun::OutOfCoreRun(StreamedPoints& points,
   const BilateralParameters& parameters,
   const OutOfCoreSettings& settings)
@@ -605,6 +646,8 @@ std::string OutOfCoreRun::Measure()
              "are never used as neighbours");
   }
   run.ResolveParameters();
+  // (After: the parameters' summary replaces the whole summary.)
+  run.Summary.NumberOfNonFinitePoints = static_cast<std::size_t>(nonFinite);
   if (run.Summary.Status == BilateralStatus::Failed)
   {
     return run.Summary.Error;
@@ -625,12 +668,17 @@ std::uint64_t OutOfCoreRun::GetDiskBytesNeeded() const
 
 bool OutOfCoreRun::AreFilteredPositionsFloats() const
 {
-  return this->Impl->ResultsAreFloats;
+  return this->Impl->ResultsAreFloats && this->Impl->Points.GetLeftAlonePoints().Floats;
 }
 
 void OutOfCoreRun::GetFilteredBounds(double bounds[6]) const
 {
-  std::copy_n(this->Impl->ResultBounds, 6, bounds);
+  const double* leftAlone = this->Impl->Points.GetLeftAlonePoints().Bounds;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    bounds[axis] = std::min(this->Impl->ResultBounds[axis], leftAlone[axis]);
+    bounds[3 + axis] = std::max(this->Impl->ResultBounds[3 + axis], leftAlone[3 + axis]);
+  }
 }
 
 std::uint64_t OutOfCoreRun::GetNumberOfRemovedPoints() const
@@ -887,11 +935,31 @@ OutOfCoreSettings StreamingSettings(std::uint64_t limit,
   return settings;
 }
 
-std::string MegabytesText(std::uint64_t bytes)
+std::string MemoryLimitProblem(const OutOfCoreSettings& settings, bool edgeAware)
 {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.0f MB", static_cast<double>(bytes) / 1048576.0);
-  return text;
+  const std::uint64_t reserved =
+    settings.ReservedBytes + (edgeAware ? OutOfCoreRun::EdgeAwareNeighbourListBytes : 0);
+  const std::uint64_t megabyte = 1024 * 1024;
+  if (settings.MemoryLimit >= megabyte || settings.MemoryLimit >= reserved)
+  {
+    return std::string();
+  }
+  return MemorySizeText(settings.MemoryLimit) +
+         " is far below what the program holds besides the slabs (" + MemorySizeText(reserved) +
+         "); a size without a unit is in bytes: give e.g. 512M or 2G";
+}
+
+std::string MemorySizeText(std::uint64_t bytes)
+{
+  const std::uint64_t kilobyte = 1024, megabyte = 1024 * 1024;
+  if (bytes >= megabyte)
+  {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.0f MB", static_cast<double>(bytes) / megabyte);
+    return text;
+  }
+  return bytes >= kilobyte ? std::to_string(bytes / kilobyte) + " KB"
+                           : std::to_string(bytes) + (bytes == 1 ? " byte" : " bytes");
 }
 
 } // namespace pcbilateral

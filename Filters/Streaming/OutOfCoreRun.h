@@ -22,6 +22,7 @@
 #include "CloudMeasurement.h"
 #include "PointCloudView.h"
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -30,6 +31,23 @@
 
 namespace pcbilateral
 {
+
+/// The points left alone (--classes) as read: they are written unchanged, so what the output's
+/// writer decides over every position written (a PCD file's F4 coordinates, a LAS header's
+/// scale and offset from the bounds) takes them too. Gathered on the first pass over the file.
+struct LeftAlonePoints
+{
+  std::uint64_t Count = 0;
+  /// Whether every coordinate is exactly a float (NaN counts as one, as for
+  /// vtkPCDPointCloudWriter).
+  bool Floats = true;
+  /// The bounds of those with finite coordinates (min x, y, z, max x, y, z).
+  double Bounds[6] = { HUGE_VAL, HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+  /// The ranges before this point were counted (ranges are read in order on the first pass).
+  std::uint64_t CountedUpTo = 0;
+
+  void Add(const double* position);
+};
 
 /// A file's points, read a range at a time in file order.
 class StreamedPoints
@@ -44,9 +62,21 @@ public:
   /// NaN coordinates so that the run passes them through and never uses them as neighbours, as
   /// the run in memory does; unlike points without coordinates, no warning is said for them.
   /// Known after the first pass over the file.
-  virtual std::uint64_t GetNumberOfPointsLeftAlone() const { return 0; }
-  /// The point array (the file's dimension) whose classes were chosen, or empty.
+  std::uint64_t GetNumberOfPointsLeftAlone() const { return this->LeftAlone.Count; }
+  /// Their positions as read (for the output's float check and bounds).
+  const LeftAlonePoints& GetLeftAlonePoints() const { return this->LeftAlone; }
+  /// The point array (the file's dimension or field) whose classes were chosen, or empty.
   virtual std::string GetClassArrayName() const { return std::string(); }
+
+protected:
+  /// For ReadPositions of points [first, first + count) read as `positions`: each point whose
+  /// `chosen` is 0 is counted and gathered on the first pass, then given NaN coordinates.
+  void LeaveAlone(std::uint64_t first,
+    std::size_t count,
+    const std::uint8_t* chosen,
+    double* positions);
+
+  LeftAlonePoints LeftAlone;
 };
 
 struct OutOfCoreSettings
@@ -121,10 +151,12 @@ public:
     std::uint8_t* removed = nullptr);
   /// The points --remove-isolated removed (known after Filter).
   std::uint64_t GetNumberOfRemovedPoints() const;
-  /// Whether every filtered position of the points kept is exactly a float (after Filter).
+  /// Whether every filtered position of the points kept, and every position of the points left
+  /// alone (--classes), is exactly a float (after Filter).
   bool AreFilteredPositionsFloats() const;
-  /// The bounds of the filtered positions of the points kept (min x, y, z, max x, y, z; the
-  /// points without coordinates left out, as VTK's bounds leave NaN out), after Filter.
+  /// The bounds of the filtered positions of the points kept and of the points left alone
+  /// (min x, y, z, max x, y, z; the points without coordinates left out, as VTK's bounds leave
+  /// NaN out), after Filter.
   void GetFilteredBounds(double bounds[6]) const;
 
   /// Bytes of memory a slab takes per point (the run's arrays, the octree, the bins read).
@@ -175,8 +207,16 @@ OutOfCoreSettings StreamingSettings(std::uint64_t limit,
   const std::string& outputPath,
   int numberOfThreads);
 
-/// "512 MB": a size in whole megabytes.
-std::string MegabytesText(std::uint64_t bytes);
+/// Why no run can work within the memory limit of these settings, judged before anything is
+/// read, or empty: a limit below a megabyte (most likely a size given without its unit, which
+/// means bytes), far below what the program holds besides the slabs (ReservedBytes, and in the
+/// `edgeAware` mode the neighbour lists). A larger limit that cannot hold a slab is said once
+/// the slabs are planned, with the limit that holds them (OutOfCoreRun::Bucket).
+std::string MemoryLimitProblem(const OutOfCoreSettings& settings, bool edgeAware);
+
+/// A size as people read it: "512 MB" in whole megabytes from 1 MB on, "800 KB" in whole
+/// kilobytes from 1 KB on, "100 bytes" below (never "0 MB" for a size that is not 0).
+std::string MemorySizeText(std::uint64_t bytes);
 
 } // namespace pcbilateral
 

@@ -86,11 +86,10 @@ public:
     {
       if (array.Name == name)
       {
-        return "the class array '" + name + "' must hold one integer per point (it has " +
-               std::to_string(array.Type.Count) + " component(s) of type double)";
+        return ClassArrayTypeProblem(name, array.Type.Count, "double");
       }
     }
-    return "classes were chosen, but the input has no point array '" + name + "'";
+    return MissingClassArrayProblem(name);
   }
   std::string WriteWarning(const std::string& path) const override
   {
@@ -201,6 +200,26 @@ std::string TextPointSource::WriteFiltered(OutOfCoreRun& run,
 }
 } // namespace
 
+bool IsChosenClass(const std::vector<long long>& classes, double value)
+{
+  return std::find_if(classes.begin(),
+           classes.end(),
+           [value](long long c) { return static_cast<double>(c) == value; }) != classes.end();
+}
+
+std::string ClassArrayTypeProblem(const std::string& name,
+  unsigned components,
+  const std::string& typeName)
+{
+  return "the class array '" + name + "' must hold one integer per point (it has " +
+         std::to_string(components) + " component(s) of type " + typeName + ")";
+}
+
+std::string MissingClassArrayProblem(const std::string& name)
+{
+  return "classes were chosen, but the input has no point array '" + name + "'";
+}
+
 std::string StreamingFormatsProblem(const std::string& input, const std::string& output)
 {
   if ((IsLASPath(input) || IsTextPath(input) || EndsWith(input, ".pcd")) && IsArraysOutput(output))
@@ -209,19 +228,6 @@ std::string StreamingFormatsProblem(const std::string& input, const std::string&
   }
   return "streaming reads .las, .laz, .txt, .xyz or .pcd into .las, .laz, .txt, .xyz or .pcd "
          "(not yet PLY or VTP)";
-}
-
-std::string StreamingProblem(const std::string& input,
-  const std::string& output,
-  bool copc,
-  bool classes)
-{
-  // (--classes with text input: the run in memory's error, from ChooseClasses.)
-  if (copc || (classes && EndsWith(output, ".pcd") && !IsTextPath(input)))
-  {
-    return "streaming does not take the --copc options, or --classes with PCD output, yet";
-  }
-  return StreamingFormatsProblem(input, output);
 }
 
 std::size_t StreamedRangePoints()
@@ -236,6 +242,7 @@ std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,
   const std::string& output,
   bool orientedNormals,
   bool keepNaN,
+  const COPCQuery* copcPart,
   std::string& problem)
 {
   problem = StreamingFormatsProblem(input, output);
@@ -243,21 +250,34 @@ std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,
   {
     return nullptr;
   }
+  std::unique_ptr<StreamedFile> file;
+  bool isCOPCPart = false;
   if (IsLASPath(input))
   {
     auto las = std::make_unique<LASPointSource>();
-    problem = las->Open(input);
-    return problem.empty() ? std::move(las) : nullptr;
+    problem = las->Open(input, copcPart);
+    isCOPCPart = las->IsCOPCPart();
+    file = std::move(las);
   }
-  if (EndsWith(input, ".pcd"))
+  else if (EndsWith(input, ".pcd"))
   {
     auto pcd = std::make_unique<PCDPointSource>();
     problem = pcd->Open(input, orientedNormals, keepNaN);
-    return problem.empty() ? std::move(pcd) : nullptr;
+    file = std::move(pcd);
   }
-  auto text = std::make_unique<TextPointSource>();
-  problem = text->Open(input, orientedNormals);
-  return problem.empty() ? std::move(text) : nullptr;
+  else
+  {
+    auto text = std::make_unique<TextPointSource>();
+    problem = text->Open(input, orientedNormals);
+    file = std::move(text);
+  }
+  if (copcPart && !isCOPCPart)
+  {
+    // (The run in memory's warning, vtkPointCloudFileIO's and vtkLASPointCloudReader's.)
+    file->SetReadWarning(input + ": not a COPC file: the COPC level and bounds apply to COPC "
+                                 "files only; every point is read");
+  }
+  return problem.empty() ? std::move(file) : nullptr;
 }
 
 } // namespace pcbilateral

@@ -3,6 +3,7 @@
 #ifndef pcbilateral_StreamedFile_h
 #define pcbilateral_StreamedFile_h
 
+#include "COPC.h"
 #include "OutOfCoreRun.h"
 #include "StreamedArrays.h"
 
@@ -49,6 +50,11 @@ public:
     return "--memory-limit: this input is not streamed into another format";
   }
 
+  /// The run in memory's warning on reading this input (--copc options on a file that is not
+  /// COPC), or empty.
+  const std::string& GetReadWarning() const { return this->ReadWarning; }
+  void SetReadWarning(const std::string& warning) { this->ReadWarning = warning; }
+
   /// Points without coordinates the run in memory's reader leaves out (PCD input), said as it
   /// says them.
   virtual std::uint64_t GetNumberOfDroppedPoints() const { return 0; }
@@ -60,21 +66,29 @@ public:
   {
     (void)name;
     (void)classes;
-    return "--memory-limit: --classes is streamed for LAS and LAZ input only";
+    return "--memory-limit: --classes is streamed for LAS, LAZ and PCD input only";
   }
+
+private:
+  std::string ReadWarning;
 };
+
+/// Whether a class array's value (an integer, read as a double) is one of `classes`: compared as
+/// doubles, as the filter in memory compares them (exact below 2^53).
+bool IsChosenClass(const std::vector<long long>& classes, double value);
+
+/// The one-line error of the filter in memory for a class array that is not one integer per
+/// point: `components` of the type VTK names `typeName` ("float", "unsigned short"...).
+std::string ClassArrayTypeProblem(const std::string& name,
+  unsigned components,
+  const std::string& typeName);
+
+/// The same for a class array the input does not have.
+std::string MissingClassArrayProblem(const std::string& name);
 
 /// Why `input` cannot be streamed into `output` (by their extensions), or empty: LAS, LAZ, text
 /// (.txt, .xyz) or PCD into any of them.
 std::string StreamingFormatsProblem(const std::string& input, const std::string& output);
-
-/// Why pcbilateral's options cannot be streamed with these files, or empty: the --copc options
-/// (`copc`), --classes (`classes`) into PCD (but from text, whose error is the run in memory's),
-/// then StreamingFormatsProblem.
-std::string StreamingProblem(const std::string& input,
-  const std::string& output,
-  bool copc,
-  bool classes);
 
 /// The points of a range read and written at a time: 2^18, or PCB_STREAMING_RANGE_POINTS from
 /// the environment (tests).
@@ -83,11 +97,14 @@ std::size_t StreamedRangePoints();
 /// The input opened for streaming into `output`'s format, or null with `problem` set;
 /// `orientedNormals` (pcbilateral -R): a text file's columns 4-6 are normals, and normals are
 /// written as a text output's columns 4-6; `keepNaN` (--keep-nan): a PCD file's points without
-/// coordinates are kept in place (passed through, never neighbours), not left out.
+/// coordinates are kept in place (passed through, never neighbours), not left out; `copcPart`
+/// (--copc-level, --copc-bounds, or null): a COPC file's points are those it asks for (any
+/// other file's are all read, with the run in memory's warning, GetReadWarning).
 std::unique_ptr<StreamedFile> OpenStreamedFile(const std::string& input,
   const std::string& output,
   bool orientedNormals,
   bool keepNaN,
+  const COPCQuery* copcPart,
   std::string& problem);
 
 } // namespace pcbilateral

@@ -70,7 +70,7 @@ bool IsTextName(const std::string& path)
 }
 } // namespace
 
-std::string LASPointSource::Open(const std::string& path)
+std::string LASPointSource::Open(const std::string& path, const COPCQuery* part)
 {
   this->Path = path;
   const std::string mapped = this->Mapped.Open(path);
@@ -78,10 +78,94 @@ std::string LASPointSource::Open(const std::string& path)
   {
     return path + ": " + mapped;
   }
-  const std::string problem =
+  std::string problem =
     ParseLASHeader(this->Mapped.Data(), this->Mapped.Size(), path, this->Info, true);
+  if (problem.empty() && part && IsCOPC(this->Info))
+  {
+    problem = this->OpenCOPCPart(*part);
+  }
   this->Release();
   return problem;
+}
+
+std::string LASPointSource::OpenCOPCPart(const COPCQuery& part)
+{
+  COPCHierarchy hierarchy;
+  std::string problem =
+    ReadCOPCHierarchy(this->Mapped.Data(), this->Mapped.Size(), this->Info, this->Path, hierarchy);
+  this->Part = true;
+  this->Query = part;
+  for (const COPCNode& node : SelectCOPCNodes(hierarchy, this->Info.Header, part))
+  {
+    this->PartChunks.push_back(node.Chunk);
+    this->PartFirst.push_back(this->PartFirst.back() + node.Chunk.Points);
+  }
+  for (std::size_t node = 0; node < this->PartChunks.size() && part.UseBounds; ++node)
+  {
+    // (The points inside the box are known once the node is decoded.)
+    std::vector<std::uint8_t> records;
+    problem = problem.empty() ? this->ReadPartNode(node, records) : problem;
+    this->PartFirst[node + 1] =
+      this->PartFirst[node] + records.size() / this->Info.Header.RecordLength;
+    this->Mapped.Release();
+  }
+  return problem;
+}
+
+std::string LASPointSource::ReadPartNode(std::size_t node, std::vector<std::uint8_t>& records)
+{
+  const LASHeader& h = this->Info.Header;
+  const LAZChunk& chunk = this->PartChunks[node];
+  records.resize(static_cast<std::size_t>(chunk.Points) * h.RecordLength);
+  const std::string problem =
+    DecompressLAZChunks(this->Mapped.Data(), this->Info, this->Path, { chunk }, records.data());
+  if (!problem.empty())
+  {
+    records.clear();
+  }
+  else if (this->Query.UseBounds)
+  {
+    const std::uint64_t inside =
+      KeepCOPCPointsInside(h, this->Query.Bounds, records.data(), chunk.Points);
+    records.resize(static_cast<std::size_t>(inside) * h.RecordLength);
+  }
+  return problem;
+}
+
+std::string LASPointSource::ReadPartRecords(std::uint64_t first, std::size_t count)
+{
+  const std::size_t length = this->Info.Header.RecordLength;
+  this->Decompressed.resize(count * length);
+  const std::vector<std::uint64_t>& starts = this->PartFirst;
+  auto node = static_cast<std::size_t>(
+    std::upper_bound(starts.begin(), starts.end(), first) - starts.begin());
+  node = node > 0 ? node - 1 : 0;
+  std::size_t done = 0;
+  for (; done < count && node + 1 < starts.size(); ++node)
+  {
+    const std::uint64_t from = first + done - starts[node];
+    if (starts[node + 1] == starts[node] || from >= starts[node + 1] - starts[node])
+    {
+      continue;
+    }
+    if (node != this->CachedNode)
+    {
+      const std::string problem = this->ReadPartNode(node, this->CachedRecords);
+      this->CachedNode = problem.empty() ? node : static_cast<std::size_t>(-1);
+      if (!problem.empty())
+      {
+        return problem;
+      }
+    }
+    const auto take = static_cast<std::size_t>(
+      std::min<std::uint64_t>(count - done, starts[node + 1] - starts[node] - from));
+    std::copy_n(this->CachedRecords.data() + from * length,
+      take * length,
+      this->Decompressed.data() + done * length);
+    done += take;
+  }
+  return done == count ? std::string()
+                       : this->Path + ": points beyond the COPC part were asked for";
 }
 
 void LASPointSource::Release()
@@ -101,24 +185,17 @@ std::string LASPointSource::ReadPositions(std::uint64_t first, std::size_t count
   std::vector<std::uint8_t> values(count * LASColumnBytes(dimension));
   columns[this->ClassDimension] = values.data();
   const std::string problem = this->ReadPoints(first, count, positions, columns.data());
-  std::uint64_t leftAlone = 0;
-  for (std::size_t i = 0; i < count && problem.empty(); ++i)
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  std::vector<std::uint8_t> chosen(count);
+  for (std::size_t i = 0; i < count; ++i)
   {
     // (As the filter in memory: integers compared as doubles, exact below 2^53.)
-    const double value = ColumnValue(dimension.ColumnType, values.data(), i);
-    if (std::find_if(this->Classes.begin(),
-          this->Classes.end(),
-          [&](long long c) { return static_cast<double>(c) == value; }) == this->Classes.end())
-    {
-      std::fill_n(positions + 3 * i, 3, std::numeric_limits<double>::quiet_NaN());
-      ++leftAlone;
-    }
+    chosen[i] = IsChosenClass(this->Classes, ColumnValue(dimension.ColumnType, values.data(), i));
   }
-  if (first >= this->CountedUpTo)
-  {
-    this->LeftAlone += leftAlone;
-    this->CountedUpTo = first + count;
-  }
+  this->LeaveAlone(first, count, chosen.data(), positions);
   return problem;
 }
 
@@ -146,16 +223,15 @@ std::string LASPointSource::ChooseClasses(const std::string& name,
         "long",
         "float",
         "double" };
-      return "the class array '" + name + "' must hold one integer per point (it has " +
-             std::to_string(dimension.Components) + " component(s) of type " +
-             typeNames[static_cast<int>(type)] + ")";
+      return ClassArrayTypeProblem(
+        name, static_cast<unsigned>(dimension.Components), typeNames[static_cast<int>(type)]);
     }
     this->ClassDimension = d;
     this->ClassName = name;
     this->Classes = classes;
     return std::string();
   }
-  return "classes were chosen, but the input has no point array '" + name + "'";
+  return MissingClassArrayProblem(name);
 }
 
 std::string LASPointSource::ReadPoints(std::uint64_t first,
@@ -163,15 +239,20 @@ std::string LASPointSource::ReadPoints(std::uint64_t first,
   double* positions,
   void* const* columns)
 {
-  const std::uint8_t* records = nullptr;
-  const std::string problem = UncompressedLASRecordRange(this->Mapped.Data(),
-    this->Mapped.Size(),
-    this->Info,
-    this->Path,
-    first,
-    count,
-    this->Decompressed,
-    records);
+  const std::uint8_t* records = this->Decompressed.data();
+  const std::string problem = this->Part ? this->ReadPartRecords(first, count)
+                                         : UncompressedLASRecordRange(this->Mapped.Data(),
+                                             this->Mapped.Size(),
+                                             this->Info,
+                                             this->Path,
+                                             first,
+                                             count,
+                                             this->Decompressed,
+                                             records);
+  if (this->Part)
+  {
+    records = this->Decompressed.data();
+  }
   if (problem.empty())
   {
     DecodeLASPoints(this->Info, records, count, positions, columns);
@@ -218,12 +299,14 @@ std::string LASPointSource::WriteWarning(const std::string& path) const
 
 std::string LASPointSource::ColoursFitEightBits(bool& fit)
 {
+  // (Of the whole file, also for a COPC part: the run in memory's reader looks at the points it
+  // did not read when those it read fit 8 bits.)
   const std::string problem = LASColoursFitEightBits(this->Mapped.Data(),
     this->Mapped.Size(),
     this->Info,
     this->Path,
     0,
-    this->GetNumberOfPoints(),
+    this->Info.Header.NumberOfPoints,
     fit);
   this->Release();
   return problem;

@@ -3,6 +3,7 @@
 #ifndef pcbilateral_StreamedLAS_h
 #define pcbilateral_StreamedLAS_h
 
+#include "COPC.h"
 #include "LASHeader.h"
 #include "MappedInput.h"
 #include "OutOfCoreRun.h"
@@ -28,10 +29,18 @@ public:
   LASPointSource(const LASPointSource&) = delete;
   LASPointSource& operator=(const LASPointSource&) = delete;
 
-  /// Maps the file and checks its header; an empty string or a one-line message.
-  std::string Open(const std::string& path);
+  /// Maps the file and checks its header; an empty string or a one-line message. With `part`
+  /// (--copc-level, --copc-bounds) and a COPC file, the points are only those `part` asks for,
+  /// in file order, as the run in memory's reader reads them (ReadCOPCPoints): the chosen
+  /// nodes' chunks, and with a box the points inside it (counted here, a node at a time).
+  std::string Open(const std::string& path, const COPCQuery* part = nullptr);
   const LASFileInfo& GetInfo() const { return this->Info; }
-  std::uint64_t GetNumberOfPoints() const override { return this->Info.Header.NumberOfPoints; }
+  /// Whether the points are a part of a COPC file (Open's `part` on a COPC file).
+  bool IsCOPCPart() const { return this->Part; }
+  std::uint64_t GetNumberOfPoints() const override
+  {
+    return this->Part ? this->PartFirst.back() : this->Info.Header.NumberOfPoints;
+  }
   std::string ReadPositions(std::uint64_t first, std::size_t count, double* positions) override;
   /// Positions and every dimension's column (laid out as DecodeLASPoints lays them out).
   std::string ReadPoints(std::uint64_t first,
@@ -48,22 +57,32 @@ public:
   /// Whether every RGB value of the file is at most 255 (true without RGB): the run in memory's
   /// display colours are then the values, else their high bytes.
   std::string ColoursFitEightBits(bool& fit);
-  std::uint64_t GetNumberOfPointsLeftAlone() const override { return this->LeftAlone; }
   std::string GetClassArrayName() const override { return this->ClassName; }
 
 private:
   void Release();
+  std::string OpenCOPCPart(const COPCQuery& part);
+  /// The records of node `node` of the part (the points inside the box only, with one) into
+  /// `records`.
+  std::string ReadPartNode(std::size_t node, std::vector<std::uint8_t>& records);
+  /// The records of the part's points [first, first + count) into Decompressed.
+  std::string ReadPartRecords(std::uint64_t first, std::size_t count);
   std::string Path;
   LASFileInfo Info;
   MappedInput Mapped;
   std::vector<std::uint8_t> Decompressed;
-  /// --classes: the class dimension's index (or none), the classes, and the points left alone
-  /// so far (counted on the first pass: ranges before CountedUpTo were counted).
+  /// --classes: the class dimension's index (or none) and the classes.
   std::size_t ClassDimension = static_cast<std::size_t>(-1);
   std::vector<long long> Classes;
   std::string ClassName;
-  std::uint64_t LeftAlone = 0;
-  std::uint64_t CountedUpTo = 0;
+  /// --copc-level, --copc-bounds on a COPC file: the query, the chosen nodes' chunks in file
+  /// order, the part's points before each (and their total, last), and the node read last.
+  bool Part = false;
+  COPCQuery Query;
+  std::vector<LAZChunk> PartChunks;
+  std::vector<std::uint64_t> PartFirst{ 0 };
+  std::size_t CachedNode = static_cast<std::size_t>(-1);
+  std::vector<std::uint8_t> CachedRecords;
 };
 
 /// The header a LAS file written from `info` has after pcbilateral's in-memory run (the

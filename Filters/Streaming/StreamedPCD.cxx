@@ -175,6 +175,27 @@ void ArraysOfRecords(const PCDHeader& header,
     offset += field.Bytes();
   }
 }
+
+/// The name VTK gives the type of the array vtkPCDPointCloudReader makes of a field of `type`.
+std::string VTKTypeName(const PCDField& type)
+{
+  const bool isSigned = type.Type == 'I';
+  switch (type.Type == 'F' ? -static_cast<int>(type.Size) : static_cast<int>(type.Size))
+  {
+    case -4:
+      return "float";
+    case -8:
+      return "double";
+    case 1:
+      return isSigned ? "signed char" : "unsigned char";
+    case 2:
+      return isSigned ? "short" : "unsigned short";
+    case 4:
+      return isSigned ? "int" : "unsigned int";
+    default:
+      return isSigned ? "long long" : "unsigned long long";
+  }
+}
 } // namespace
 
 std::string PCDPointSource::ReadArrays(std::uint64_t first,
@@ -478,7 +499,49 @@ std::string PCDPointSource::ReadPositions(std::uint64_t first, std::size_t count
   {
     this->RecordPosition(records.data() + i * this->Stride, positions + 3 * i);
   }
+  if (!problem.empty() || this->Classes.empty())
+  {
+    return problem;
+  }
+  std::vector<std::uint8_t> chosen(count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const std::uint8_t* value = records.data() + i * this->Stride + this->ClassOffset;
+    chosen[i] = IsChosenClass(this->Classes, PCDValueAsDouble(this->ClassField, value));
+  }
+  this->LeaveAlone(first, count, chosen.data(), positions);
   return problem;
+}
+
+std::string PCDPointSource::ChooseClasses(const std::string& name,
+  const std::vector<long long>& classes)
+{
+  // (The arrays the run in memory's filter looks the name up in: the reader's.)
+  std::vector<StreamedArray> arrays;
+  ArraysOfRecords(this->Header, nullptr, 0, arrays);
+  const auto array = std::find_if(
+    arrays.begin(), arrays.end(), [&](const StreamedArray& a) { return a.Name == name; });
+  if (array == arrays.end())
+  {
+    return MissingClassArrayProblem(name);
+  }
+  if (array->Type.Count != 1 || array->Type.Type == 'F')
+  {
+    return ClassArrayTypeProblem(name, array->Type.Count, VTKTypeName(array->Type));
+  }
+  std::size_t offset = 0;
+  for (const PCDField& field : this->Header.Fields)
+  {
+    if (field.Name == name)
+    {
+      this->ClassField = field;
+      this->ClassOffset = offset;
+    }
+    offset += field.Bytes();
+  }
+  this->ClassName = name;
+  this->Classes = classes;
+  return std::string();
 }
 
 std::string PCDPointSource::WriteFiltered(OutOfCoreRun& run,

@@ -54,6 +54,10 @@ public:
   /// field but x y z and padding, packed colours as 8-bit RGB or RGBA.
   std::string ReadArrays(std::uint64_t first, std::size_t count, StreamedArrays& range) override;
   std::string WriteWarning(const std::string& path) const override;
+  /// --classes: `name` is one of vtkPCDPointCloudReader's arrays, a field of one integer.
+  std::string ChooseClasses(const std::string& name,
+    const std::vector<long long>& classes) override;
+  std::string GetClassArrayName() const override { return this->ClassName; }
 
 private:
   struct Checkpoint
@@ -107,6 +111,11 @@ private:
   std::vector<std::uint8_t> Fields;
   std::vector<std::size_t> FieldStarts;
   std::uint64_t Kept = 0;
+  /// --classes: the class field, where it lies in a record, and the classes.
+  PCDField ClassField;
+  std::size_t ClassOffset = 0;
+  std::string ClassName;
+  std::vector<long long> Classes;
   bool WithNormals = false;
   bool KeepNaN = false;
 };

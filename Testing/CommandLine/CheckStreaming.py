@@ -133,7 +133,6 @@ def check_refusals(c, source):
     c.check(not c.temporary_left(), "the refusal leaves no temporary file")
     for arguments, words in (([source, os.path.join(c.scratch, "o.ply")], "into .las"),
                              ([source, os.path.join(c.scratch, "o.vtp")], "not yet"),
-                             ([source, output, "--copc-level", "0"], "does not take"),
                              ([source, output, "-r", "3"], None)):
         size = "2X" if words is None else "1G"
         result = c.run(arguments + ["--memory-limit", size])
@@ -141,6 +140,18 @@ def check_refusals(c, source):
         c.check(result.returncode != 0 and expected in result.stderr and not os.path.exists(output),
                 f"refused: {' '.join(arguments[2:])} --memory-limit {size}: "
                 f"{result.stderr.strip()}")
+    # --copc-level on a file that is not COPC (COPC files: CheckStreamingCOPC.py): the run in
+    # memory's warning, every point read.
+    runs = [c.run([source, os.path.join(c.scratch, f"copc-{kind}.las"), "--copc-level", "0",
+                   "-r", "1.2", "-N", "1"] + (["--memory-limit", "1G"] if kind == "streamed" else []),
+                  8000)
+            for kind in ("memory", "streamed")]
+    c.check(runs[1].returncode == 0 and "not a COPC file" in runs[1].stderr and
+            runs[1].stderr == runs[0].stderr and
+            c.read(os.path.join(c.scratch, "copc-streamed.las")) ==
+            c.read(os.path.join(c.scratch, "copc-memory.las")),
+            f"--copc-level on a file that is not COPC: the warning and bytes of the run in "
+            f"memory ({runs[1].stderr.strip()})")
     # An error after the bins are written: the output's folder does not exist.
     missing = os.path.join(c.scratch, "no-such-folder", "out.las")
     result = c.run([source, missing, "--memory-limit", "1G", "-r", "1.2", "-N", "2"], 30000)

@@ -2,7 +2,7 @@
 filtered in slabs into PCD gives the same file, byte for byte, as the run in memory (its fields,
 WIDTH, HEIGHT and VIEWPOINT, packed rgb unpacked and packed again, normals gathered and
 scattered, padding as zeros, the points without coordinates of an organised frame dropped);
-binary_compressed input is decompressed whole; --classes is refused; a damaged file gives the run in memory's
+binary_compressed input is decompressed whole; a damaged file gives the run in memory's
 one-line error, no output and no temporary file.
 
 Cases: a generated survey as an organised frame with NaN pixels (F4 and F8 coordinates, normals,
@@ -86,8 +86,9 @@ def frame(seed, shuffled):
 def check_refused_and_damaged(c, binary, ascii_file):
     output = os.path.join(c.scratch, "refused.pcd")
     # (--keep-nan and PCD into LAS or text are streamed: CheckStreamingFormats.py.)
-    for arguments, words in (([binary, output, "--classes", "1"], "--classes"),
-                             ([binary, os.path.join(c.scratch, "o.ply")], "not yet PLY")):
+    # (--classes and the --copc options are streamed: CheckStreamingClasses.py,
+    # CheckStreamingCOPC.py.)
+    for arguments, words in (([binary, os.path.join(c.scratch, "o.ply")], "not yet PLY"),):
         result = c.run(arguments + ["--memory-limit", "1G", "-r", "1"])
         c.check(result.returncode == 1 and words in result.stderr and
                 len(result.stderr.strip().splitlines()) == 1 and not os.path.exists(output),

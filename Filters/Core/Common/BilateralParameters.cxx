@@ -48,6 +48,12 @@ std::string CheckParameters(const BilateralParameters& parameters)
     return "the number of threads must be >= 0 (0 means all cores), got " +
            std::to_string(parameters.NumberOfThreads);
   }
+  if (parameters.NumberOfThreads > limits::MaximumThreads)
+  {
+    return "the number of threads must be at most " + std::to_string(limits::MaximumThreads) +
+           ", got " + std::to_string(parameters.NumberOfThreads) +
+           " (the result is the same for any count; 0 uses all cores)";
+  }
   return std::string();
 }
 

@@ -15,6 +15,11 @@ namespace limits
 /// More iterations than this are refused: the paper uses a few, and each one may move the points
 /// by up to the radius, so that thousands would only collapse the cloud, slowly.
 constexpr int MaximumIterations = 1000;
+/// More threads than this are refused: the largest machines have a few hundred hardware
+/// threads, the result is the same for any count, and beyond the hardware's threads each one
+/// only adds its start and its share of the synchronisation (an absurd count, a typo for a
+/// radius say, would start thousands of threads or fail to).
+constexpr int MaximumThreads = 1024;
 } // namespace limits
 
 /// How the parameters left at 0 (automatic) are chosen.
@@ -45,7 +50,8 @@ struct BilateralParameters
   /// Points with fewer than 5 neighbours (or a zero weight sum) stay where they are; with this
   /// on they are removed for the rest of the run instead, as the authors' program does.
   bool RemoveIsolatedPoints = false;
-  /// Threads for the parallel loops; 0 uses all cores. Results do not depend on it.
+  /// Threads for the parallel loops; 0 uses all cores, at most limits::MaximumThreads. Results
+  /// do not depend on it.
   int NumberOfThreads = 0;
   /// Also return the estimated normals of the last iteration.
   bool ComputeNormals = false;

@@ -1,5 +1,7 @@
 #include "Threads.h"
 
+#include <thread>
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -14,6 +16,15 @@ int ResolveThreadCount(int requested)
 #else
   (void)requested;
   return 1;
+#endif
+}
+
+int HardwareThreadCount()
+{
+#ifdef _OPENMP
+  return omp_get_num_procs();
+#else
+  return static_cast<int>(std::thread::hardware_concurrency());
 #endif
 }
 

@@ -10,6 +10,10 @@ namespace pcbilateral
 /// OpenMP).
 int ResolveThreadCount(int requested);
 
+/// The hardware threads this process may run on (its CPU affinity; with OpenMP, as OpenMP counts
+/// them), 0 when unknown. More threads than this give the same result, only more slowly.
+int HardwareThreadCount();
+
 /// The index of the calling thread inside a parallel region (0 outside one, or without OpenMP).
 int CurrentThreadIndex();
 

@@ -375,10 +375,7 @@ std::vector<COPCNode> COPCPieceOfNodes(const std::vector<COPCNode>& chosen, int 
   return own;
 }
 
-namespace
-{
-/// Keeps the records whose real coordinates lie inside the box, in order; returns their count.
-std::uint64_t KeepInside(const LASHeader& h,
+std::uint64_t KeepCOPCPointsInside(const LASHeader& h,
   const double bounds[6],
   std::uint8_t* records,
   std::uint64_t count)
@@ -404,7 +401,6 @@ std::uint64_t KeepInside(const LASHeader& h,
   }
   return kept;
 }
-} // namespace
 
 std::string ReadCOPCPoints(const std::uint8_t* data,
   std::size_t size,
@@ -441,7 +437,7 @@ std::string ReadCOPCPoints(const std::uint8_t* data,
   problem = DecompressLAZChunks(data, info, sourceName, chunks, records.data());
   if (problem.empty() && query.UseBounds)
   {
-    count = KeepInside(h, query.Bounds, records.data(), count);
+    count = KeepCOPCPointsInside(h, query.Bounds, records.data(), count);
     records.resize(count * h.RecordLength);
   }
   if (!problem.empty())

@@ -107,6 +107,14 @@ std::vector<COPCNode> SelectCOPCNodes(const COPCHierarchy& hierarchy,
  */
 std::vector<COPCNode> COPCPieceOfNodes(const std::vector<COPCNode>& chosen, int piece, int pieces);
 
+/// Keeps the records (`h`'s layout) whose real coordinates (integer times scale plus offset) lie
+/// inside `bounds` (xmin, xmax, ymin, ymax, zmin, zmax; a point on a face is inside), moved to
+/// the front in order; returns their count.
+std::uint64_t KeepCOPCPointsInside(const LASHeader& h,
+  const double bounds[6],
+  std::uint8_t* records,
+  std::uint64_t count);
+
 /**
  * Reads the points of a COPC file `query` asks for: ReadCOPCHierarchy, SelectCOPCNodes,
  * COPCPieceOfNodes for the query's piece, then only those nodes' chunks are decompressed (in
