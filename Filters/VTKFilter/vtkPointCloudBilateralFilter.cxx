@@ -29,6 +29,7 @@
 #include <functional>
 #include <numeric>
 #include <sstream>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -36,6 +37,10 @@ vtkStandardNewMacro(vtkPointCloudBilateralFilter);
 
 namespace
 {
+/// The share of the filter's progress the core's run takes; the hand-over of its result and the
+/// output's copies take the rest (reported as they go, see AskAbort).
+constexpr double KernelShare = 0.99;
+
 /// Copies a 3-component array of any value type into interleaved doubles, a million values at
 /// a time, asking `stop` before each (20 million points are 480 MB: a run's abort is asked
 /// within the copy); stops with the values copied so far.
@@ -381,6 +386,34 @@ pcbilateral::BilateralParameters vtkPointCloudBilateralFilter::MakeParameters() 
   return parameters;
 }
 
+pcbilateral::BilateralObserver vtkPointCloudBilateralFilter::MakeObserver()
+{
+  pcbilateral::BilateralObserver observer;
+  observer.Progress = [this](double fraction)
+  {
+    this->UpdateProgress(KernelShare * fraction);
+    if (fraction >= 1.0)
+    {
+      this->LastFinishingReport = std::chrono::steady_clock::time_point();
+      this->IterationsDone = true;
+    }
+  };
+  observer.ShouldAbort = [this]() { return this->AskAbort(); };
+  observer.DiscardsAbortedResult = true; // (an aborted run's output is empty)
+  observer.PhaseProgress = [this](const std::string& phase, double fraction)
+  {
+    this->ProgressPhase = phase;
+    this->PhaseFraction = fraction;
+  };
+  observer.Warning = [this](const std::string& warning) { vtkWarningMacro(<< warning); };
+  observer.ParametersChosen = [this](const pcbilateral::BilateralResult& chosen)
+  {
+    this->RecordRunInformation(chosen);
+    this->InvokeEvent(ParametersChosenEvent);
+  };
+  return observer;
+}
+
 int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
@@ -388,6 +421,8 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
   // An abort asked of an earlier run ends there: VTK 9.2 never clears the flag, and every later
   // update would stop at once. (Set directly: SetAbortExecute would mark the filter modified.)
   this->AbortExecute = 0;
+  this->IterationsDone = false;
+  this->RunningThread = std::this_thread::get_id();
   vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   output->Initialize();
@@ -409,21 +444,7 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
     vtkErrorMacro(<< problem);
   }
 
-  pcbilateral::BilateralObserver observer;
-  observer.Progress = [this](double fraction) { this->UpdateProgress(fraction); };
-  observer.ShouldAbort = [this]() { return this->GetAbortExecute() != 0; };
-  observer.DiscardsAbortedResult = true; // (an aborted run's output is empty)
-  observer.PhaseProgress = [this](const std::string& phase, double fraction)
-  {
-    this->ProgressPhase = phase;
-    this->PhaseFraction = fraction;
-  };
-  observer.Warning = [this](const std::string& warning) { vtkWarningMacro(<< warning); };
-  observer.ParametersChosen = [this](const pcbilateral::BilateralResult& chosen)
-  {
-    this->RecordRunInformation(chosen);
-    this->InvokeEvent(ParametersChosenEvent);
-  };
+  const pcbilateral::BilateralObserver observer = this->MakeObserver();
   this->UpdateProgress(0.0);
   const pcbilateral::BilateralResult result =
     this->RunOnChosen(cloud, chosen, observer, problem.empty());
@@ -457,6 +478,20 @@ int vtkPointCloudBilateralFilter::RequestData(vtkInformation*,
                            : this->DescribeRun(result);
   this->UpdateProgress(1.0);
   return 1;
+}
+
+bool vtkPointCloudBilateralFilter::AskAbort()
+{
+  if (this->IterationsDone && std::this_thread::get_id() == this->RunningThread)
+  {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - this->LastFinishingReport >= std::chrono::milliseconds(50))
+    {
+      this->LastFinishingReport = now;
+      this->UpdateProgress(0.5 * (KernelShare + 1.0));
+    }
+  }
+  return this->GetAbortExecute() != 0;
 }
 
 int vtkPointCloudBilateralFilter::EndAborted(vtkPolyData* output)
@@ -692,7 +727,7 @@ bool vtkPointCloudBilateralFilter::BuildOutput(vtkPointSet* input,
     vtkWarningMacro(<< "the input's cells (lines, polygons, volumes) are not carried to the "
                        "output, which is a point cloud");
   }
-  const std::function<bool()> stop = [this]() { return this->GetAbortExecute() != 0; };
+  const std::function<bool()> stop = [this]() { return this->AskAbort(); };
   const std::vector<vtkIdType> kept =
     KeptPointIds(result.Removed, input->GetNumberOfPoints(), stop);
   const auto outputCount = static_cast<vtkIdType>(kept.size());

@@ -93,8 +93,11 @@
 #include "vtkFiltersPointCloudBilateralModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
+#include <atomic>  // For IterationsDone
+#include <chrono>  // For LastFinishingReport
 #include <cstdint> // For ChooseClasses
 #include <string>  // For PrepareInput
+#include <thread>  // For RunningThread
 #include <vector>  // For Classes
 
 class vtkPointSet;
@@ -392,8 +395,20 @@ private:
   void RecordRunInformation(const pcbilateral::BilateralResult& result);
   std::string DescribeRun(const pcbilateral::BilateralResult& result) const;
   /// The output point cloud: the kept points, their arrays, the arrays the filter adds.
+  /// The core run's observer: its progress, abort, warnings and chosen parameters reported as
+  /// this filter's.
+  pcbilateral::BilateralObserver MakeObserver();
   /// Ends an aborted run: an empty output. Returns RequestData's 1.
   int EndAborted(vtkPolyData* output);
+  /// Whether an abort was asked. Once the core's iterations are done (their progress runs to
+  /// KernelShare), the result's hand-over and the output's copies take a good part of a second
+  /// on tens of millions of points: asked then, on the thread that runs the filter, it also
+  /// reports progress (a value below 1) at most every 50 ms, so that ParaView, which sees an
+  /// Abort click only while a run reports progress, can stop them.
+  bool AskAbort();
+  std::atomic<bool> IterationsDone{ false };
+  std::thread::id RunningThread;
+  std::chrono::steady_clock::time_point LastFinishingReport;
   /// Fills the output; false if an abort was asked meanwhile (asked between its copies).
   bool BuildOutput(vtkPointSet* input,
     const InputCloud& cloud,
