@@ -391,12 +391,14 @@ pcbilateral::BilateralObserver vtkPointCloudBilateralFilter::MakeObserver()
   pcbilateral::BilateralObserver observer;
   observer.Progress = [this](double fraction)
   {
-    this->UpdateProgress(KernelShare * fraction);
     if (fraction >= 1.0)
     {
+      // (The core paces its phase reports: the last iteration's end may not be among them.)
+      this->PhaseFraction = 1.0;
       this->LastFinishingReport = std::chrono::steady_clock::time_point();
       this->IterationsDone = true;
     }
+    this->UpdateProgress(KernelShare * fraction);
   };
   observer.ShouldAbort = [this]() { return this->AskAbort(); };
   observer.DiscardsAbortedResult = true; // (an aborted run's output is empty)
