@@ -95,6 +95,26 @@ class Checks:
     def temporary_left(self):
         return os.listdir(self.tmp)
 
+    def memory_and_streamed(self, name, source, extension, parameters, slab_sizes,
+                            range_points=None):
+        """The run in memory into NAME-memory.EXT, then one streamed run (--memory-limit 1G) per
+        slab size into NAME-SLAB.EXT, `range_points` points read and written at a time, earlier
+        outputs removed first: the in-memory path and run, and (slab size, streamed path, run)
+        for each slab size."""
+        in_memory = os.path.join(self.scratch, name + "-memory" + extension)
+        if os.path.exists(in_memory):
+            os.remove(in_memory)
+        memory = self.run([source, in_memory] + parameters)
+        streamed_runs = []
+        for slab_points in slab_sizes:
+            streamed = os.path.join(self.scratch, f"{name}-{slab_points}{extension}")
+            if os.path.exists(streamed):
+                os.remove(streamed)
+            streamed_runs.append((slab_points, streamed, self.run(
+                [source, streamed, "--memory-limit", "1G"] + parameters, slab_points,
+                range_points)))
+        return in_memory, memory, streamed_runs
+
     def same_as_in_memory(self, name, source, parameters, slab_sizes, expect=None,
                           extension=None, range_points=None):
         """The streamed outputs (into `extension`, by default the input's, LAZ into LAS) against

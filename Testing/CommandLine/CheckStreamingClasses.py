@@ -110,16 +110,9 @@ def same_as_in_memory(c, name, source, extension, parameters, slab_sizes, range_
                       classes=True):
     """The streamed outputs against the run in memory's: the same bytes (or the same one-line
     error and no output), the same standard error and (`classes`) the same `classes:` line."""
-    in_memory = os.path.join(c.scratch, name + "-memory" + extension)
-    if os.path.exists(in_memory):
-        os.remove(in_memory)
-    memory = c.run([source, in_memory] + parameters)
-    for slab_points in slab_sizes:
-        streamed = os.path.join(c.scratch, f"{name}-{slab_points}{extension}")
-        if os.path.exists(streamed):
-            os.remove(streamed)
-        result = c.run([source, streamed, "--memory-limit", "1G"] + parameters, slab_points,
-                       range_points)
+    in_memory, memory, streamed_runs = c.memory_and_streamed(name, source, extension, parameters,
+                                                             slab_sizes, range_points)
+    for slab_points, streamed, result in streamed_runs:
         slabs = [line for line in result.stdout.splitlines() if "along" in line]
         same_stderr = result.stderr.replace(streamed, in_memory) == memory.stderr
         if memory.returncode != 0:

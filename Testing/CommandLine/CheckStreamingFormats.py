@@ -29,16 +29,9 @@ def warnings(stderr):
 def same_as_in_memory(c, name, source, extension, parameters, slab_sizes, range_points=None):
     """The streamed outputs into `extension` against the run in memory's: the same bytes (or the
     same one-line error, and no output) and the same warnings."""
-    in_memory = os.path.join(c.scratch, name + "-memory" + extension)
-    if os.path.exists(in_memory):
-        os.remove(in_memory)
-    memory = c.run([source, in_memory] + parameters)
-    for slab_points in slab_sizes:
-        streamed = os.path.join(c.scratch, f"{name}-{slab_points}{extension}")
-        if os.path.exists(streamed):
-            os.remove(streamed)
-        result = c.run([source, streamed, "--memory-limit", "1G"] + parameters, slab_points,
-                       range_points)
+    in_memory, memory, streamed_runs = c.memory_and_streamed(name, source, extension, parameters,
+                                                             slab_sizes, range_points)
+    for slab_points, streamed, result in streamed_runs:
         slabs = [line for line in result.stdout.splitlines() if "along" in line]
         if memory.returncode != 0:
             c.check(result.returncode == memory.returncode and
